@@ -1,0 +1,109 @@
+//! Free (non-periodic) boundaries: exact discrete convolution by zero-padded FFT (DC-FFT,
+//! Liu, Wang & Liu 2000).
+
+use ndarray::{Array2, ArrayView2, ArrayViewMut2};
+use tack_geometry::Grid;
+
+use crate::fft2::Fft2;
+use crate::love::{SELF_COMPLIANCE, love_rectangle};
+use crate::{ElasticOperator, KernelError, check_modulus};
+
+/// Influence-matrix operator of an infinite half-space loaded only on the grid.
+///
+/// The Love kernel is sampled at offsets `i·Δx` for `i < n` and `(i − m)·Δx` for `i > m − n` on
+/// an `mx × my` grid with `m ≥ 2n − 1` (the next FFT-friendly size); pressure is zero-padded, so
+/// the cyclic convolution equals the direct sum `u_i = Σ_j K(x_i − x_j) p_j` exactly (no image
+/// interaction).
+pub struct FreeOperator {
+    grid: Grid,
+    e_star: f64,
+    /// Kernel spectrum. The kernel is real and even, so its spectrum is real: store only that.
+    kernel_hat: Array2<f64>,
+    fft: Fft2,
+}
+
+impl FreeOperator {
+    /// Builds the operator for `grid` and effective modulus `e_star` (> 0).
+    pub fn new(grid: Grid, e_star: f64) -> Result<Self, KernelError> {
+        let e_star = check_modulus(e_star)?;
+        let (nx, ny) = grid.shape();
+        let (mx, my) = (padded_size(nx), padded_size(ny));
+        let dx = grid.dx();
+        let offset = |i: usize, n: usize, m: usize| -> Option<f64> {
+            if i < n {
+                Some(i as f64)
+            } else if i > m - n {
+                Some(i as f64 - m as f64)
+            } else {
+                None
+            }
+        };
+        let kernel = Array2::from_shape_fn((mx, my), |(i, j)| {
+            match (offset(i, nx, mx), offset(j, ny, my)) {
+                (Some(ox), Some(oy)) => {
+                    love_rectangle(ox * dx, oy * dx, dx / 2.0, dx / 2.0) / e_star
+                }
+                _ => 0.0,
+            }
+        });
+        let mut fft = Fft2::new(mx, my);
+        let kernel_hat = fft.transform(kernel.view()).mapv(|c| c.re);
+        Ok(Self {
+            grid,
+            e_star,
+            kernel_hat,
+            fft,
+        })
+    }
+}
+
+impl ElasticOperator for FreeOperator {
+    fn grid(&self) -> &Grid {
+        &self.grid
+    }
+    fn e_star(&self) -> f64 {
+        self.e_star
+    }
+    fn apply(&mut self, pressure: ArrayView2<f64>, displacement: ArrayViewMut2<f64>) {
+        self.fft.convolve(pressure, &self.kernel_hat, displacement);
+    }
+    fn self_compliance(&self) -> f64 {
+        SELF_COMPLIANCE * self.grid.dx() / self.e_star
+    }
+}
+
+/// Smallest even `m ≥ 2n − 1` whose prime factors are 2, 3 and 5 (fast FFT sizes).
+pub fn padded_size(n: usize) -> usize {
+    let smooth = |mut m: usize| {
+        for p in [2, 3, 5] {
+            while m % p == 0 {
+                m /= p;
+            }
+        }
+        m == 1
+    };
+    let mut m = (2 * n - 1).max(2);
+    while m % 2 == 1 || !smooth(m) {
+        m += 1;
+    }
+    m
+}
+
+#[cfg(test)]
+mod tests {
+    use super::padded_size;
+
+    #[test]
+    fn padded_sizes_are_even_smooth_and_large_enough() {
+        assert_eq!(padded_size(1), 2);
+        assert_eq!(padded_size(101), 216);
+        assert_eq!(padded_size(128), 256);
+        for n in 1..300 {
+            let m = padded_size(n);
+            assert!(
+                m >= 2 * n - 1 && m % 2 == 0 && m <= 2 * n + 2 * n / 4 + 2,
+                "{n} -> {m}"
+            );
+        }
+    }
+}

@@ -1,0 +1,67 @@
+//! Elastic half-space operators: Love's influence coefficients and FFT-accelerated maps from
+//! element pressures to surface displacements, for free (non-periodic) and periodic boundaries.
+//!
+//! Both operators implement [`ElasticOperator`]; build the one a grid needs with [`operator_for`].
+//! FFT plans and all scratch buffers are allocated once, at construction; `apply` allocates nothing
+//! of its own. Nothing in this crate does IO.
+
+mod fft2;
+mod free;
+mod love;
+mod periodic;
+
+pub use free::{FreeOperator, padded_size};
+pub use love::{MEAN_SELF_COMPLIANCE, SELF_COMPLIANCE, love_rectangle};
+pub use periodic::PeriodicOperator;
+
+use ndarray::{ArrayView2, ArrayViewMut2};
+use tack_geometry::{Boundary, Grid};
+use thiserror::Error;
+
+/// Invalid operator input.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum KernelError {
+    /// The effective modulus is not a finite positive number.
+    #[error("material.e_star = {0} is invalid: must be a finite number > 0")]
+    Modulus(f64),
+}
+
+/// A linear map from element pressures to element-centre surface displacements of an
+/// elastic half-space (positive pressure is compressive and pushes the surface in).
+pub trait ElasticOperator: Send {
+    /// The grid the operator acts on.
+    fn grid(&self) -> &Grid;
+    /// The effective modulus `E*`.
+    fn e_star(&self) -> f64;
+    /// `displacement = K · pressure`. Both views have the grid's shape.
+    fn apply(&mut self, pressure: ArrayView2<f64>, displacement: ArrayViewMut2<f64>);
+    /// Displacement of an element's centre per unit pressure on that element alone.
+    fn self_compliance(&self) -> f64;
+    /// For periodic operators: solve `K p = u` for the zero-mean pressure `p` given a
+    /// displacement `u` (its mean is ignored) and return true; other operators return false.
+    fn solve_zero_mean(
+        &mut self,
+        _displacement: ArrayView2<f64>,
+        _pressure: ArrayViewMut2<f64>,
+    ) -> bool {
+        false
+    }
+}
+
+/// Validates `E*` (field `material.e_star`).
+pub(crate) fn check_modulus(e_star: f64) -> Result<f64, KernelError> {
+    if e_star.is_finite() && e_star > 0.0 {
+        Ok(e_star)
+    } else {
+        Err(KernelError::Modulus(e_star))
+    }
+}
+
+/// The operator a grid needs: zero-padded DC-FFT for [`Boundary::Free`], spectral for
+/// [`Boundary::Periodic`].
+pub fn operator_for(grid: Grid, e_star: f64) -> Result<Box<dyn ElasticOperator>, KernelError> {
+    Ok(match grid.boundary() {
+        Boundary::Free => Box::new(FreeOperator::new(grid, e_star)?),
+        Boundary::Periodic => Box::new(PeriodicOperator::new(grid, e_star)?),
+    })
+}

@@ -1,0 +1,66 @@
+//! Solver settings (tolerance, iteration caps) and the errors raised for invalid ones.
+
+use thiserror::Error;
+
+/// Invalid solver input; messages name the field, the value and the allowed range.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum SolverError {
+    /// A parameter is outside its allowed range.
+    #[error("{field} = {value} is invalid: must be {allowed}")]
+    OutOfRange {
+        /// The offending field.
+        field: &'static str,
+        /// The value given.
+        value: f64,
+        /// The allowed range.
+        allowed: &'static str,
+    },
+    /// The surface and the operator live on different grids.
+    #[error("the surface grid {surface:?} does not match the operator grid {operator:?}")]
+    GridMismatch {
+        /// Shape of the surface.
+        surface: (usize, usize),
+        /// Shape of the operator.
+        operator: (usize, usize),
+    },
+}
+
+/// Stopping rule and caps shared by the solvers.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolverOptions {
+    /// Converged when the rms gap residual (gap on the contact set, penetration elsewhere)
+    /// falls below `tolerance` times the displacement scale of the problem.
+    pub tolerance: f64,
+    /// Cap on conjugate-gradient iterations per solve.
+    pub max_iterations: usize,
+}
+
+impl Default for SolverOptions {
+    fn default() -> Self {
+        Self {
+            tolerance: 1e-10,
+            max_iterations: 5_000,
+        }
+    }
+}
+
+impl SolverOptions {
+    /// Checks `0 < tolerance < 1` and `max_iterations ≥ 1`.
+    pub fn validate(&self) -> Result<(), SolverError> {
+        if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
+            return Err(SolverError::OutOfRange {
+                field: "solver.tolerance",
+                value: self.tolerance,
+                allowed: "a number in (0, 1)",
+            });
+        }
+        if self.max_iterations == 0 {
+            return Err(SolverError::OutOfRange {
+                field: "solver.max_iterations",
+                value: 0.0,
+                allowed: "an integer ≥ 1",
+            });
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,73 @@
+//! Benchmarks that print ratios measured in the same run (operator time / bare FFT floor).
+
+use anyhow::Result;
+use ndarray::Array2;
+use ndrustfft::{Complex, FftHandler, R2cFftHandler, ndfft, ndfft_r2c, ndifft, ndifft_r2c};
+use std::time::Instant;
+use tack_geometry::{Boundary, Grid};
+use tack_kernels::operator_for;
+
+/// Median wall time in seconds of `f` over enough repetitions to fill ~0.5 s (at least 5).
+pub fn median_time(mut f: impl FnMut()) -> f64 {
+    f();
+    let probe = Instant::now();
+    f();
+    let once = probe.elapsed().as_secs_f64().max(1e-9);
+    let reps = ((0.5 / once) as usize).clamp(5, 200);
+    let mut times: Vec<f64> = (0..reps)
+        .map(|_| {
+            let t = Instant::now();
+            f();
+            t.elapsed().as_secs_f64()
+        })
+        .collect();
+    times.sort_by(f64::total_cmp);
+    times[reps / 2]
+}
+
+/// Forward + inverse real 2D FFT of an `mx × my` array: the floor any FFT operator pays.
+fn bare_fft_pair(mx: usize, my: usize) -> impl FnMut() {
+    let r2c = R2cFftHandler::<f64>::new(my);
+    let c2c = FftHandler::<f64>::new(mx);
+    let mut real = Array2::from_shape_fn((mx, my), |(i, j)| ((i * 7 + j * 3) % 11) as f64);
+    let mut s1 = Array2::<Complex<f64>>::zeros((mx, my / 2 + 1));
+    let mut s2 = s1.clone();
+    move || {
+        ndfft_r2c(&real, &mut s1, &r2c, 1);
+        ndfft(&s1, &mut s2, &c2c, 0);
+        ndifft(&s2, &mut s1, &c2c, 0);
+        ndifft_r2c(&s1, &mut real, &r2c, 1);
+    }
+}
+
+/// `cargo xtask bench-kernels`: operator application vs the bare FFT pair of its padded size.
+pub fn kernels() -> Result<()> {
+    println!("operator application vs bare forward+inverse r2c FFT pair of the same padded size");
+    println!(
+        "{:>6} {:>10} {:>12} {:>12} {:>8}",
+        "N", "boundary", "apply [ms]", "fft [ms]", "ratio"
+    );
+    for n in [256usize, 512, 1024] {
+        for boundary in [Boundary::Free, Boundary::Periodic] {
+            let grid = Grid::square(n, 1.0, boundary)?;
+            let mut op = operator_for(grid, 1.0)?;
+            let p = Array2::from_shape_fn((n, n), |(i, j)| ((i + 2 * j) % 5) as f64);
+            let mut u = Array2::zeros((n, n));
+            let t_op = median_time(|| op.apply(p.view(), u.view_mut()));
+            let m = if boundary == Boundary::Free {
+                tack_kernels::padded_size(n)
+            } else {
+                n
+            };
+            let t_fft = median_time(bare_fft_pair(m, m));
+            println!(
+                "{n:>6} {:>10} {:>12.3} {:>12.3} {:>8.2}",
+                format!("{boundary:?}").to_lowercase(),
+                t_op * 1e3,
+                t_fft * 1e3,
+                t_op / t_fft
+            );
+        }
+    }
+    Ok(())
+}
