@@ -1,1 +1,91 @@
-//! Shared helpers for the end-to-end tests.
+//! Shared scenarios for the end-to-end tests and the benchmarks: the smooth JKR sphere.
+
+use tack_analytics::{jkr_pull_off_force, jkr_pull_off_radius};
+use tack_geometry::{Boundary, Grid, Sphere, Surface};
+use tack_kernels::operator_for;
+use tack_solver::{AdhesiveOptions, AdhesiveSolver, ApproachPath, PathResult, SnapshotRequest};
+
+/// A smooth sphere in JKR units (R = E* = γ = 1, so â = a, d̂ = d, F̂ = F).
+pub struct JkrSphere {
+    /// Resolution: JKR pull-off contact radius over element size.
+    pub ac_over_dx: f64,
+    /// Pohrt–Popov constant κ.
+    pub kappa: f64,
+    /// Deepest dimensionless approach of the load phase (REFERENCE §2 uses 6).
+    pub max_approach: f64,
+    /// Dimensionless retraction step.
+    pub unload_step: f64,
+}
+
+/// Outcome of a smooth-sphere load–unload path.
+pub struct JkrRun {
+    /// The path.
+    pub result: PathResult,
+    /// Grid used.
+    pub grid: Grid,
+    /// Greatest tensile force over F_JKR, minus one.
+    pub pull_off_error: f64,
+    /// Approach of the last step that still had contact.
+    pub last_contact_approach: f64,
+    /// Largest bonded extent from the centre, in elements (must stay inside the grid).
+    pub max_extent: usize,
+}
+
+impl JkrSphere {
+    /// Paper settings at the given resolution.
+    pub fn new(ac_over_dx: f64, kappa: f64) -> Self {
+        Self {
+            ac_over_dx,
+            kappa,
+            max_approach: 6.0,
+            unload_step: 0.01,
+        }
+    }
+
+    /// Runs the path on a free grid just large enough for the deepest contact.
+    pub fn run(&self) -> JkrRun {
+        let a_c = jkr_pull_off_radius(1.0, 1.0, 1.0);
+        let dx = a_c / self.ac_over_dx;
+        // Loading is nearly Hertzian (a ≈ sqrt(R d)); adhesion adds a ring: 1.25·sqrt(d) holds it.
+        let half = (1.25 * self.max_approach.sqrt() / dx).ceil() as usize;
+        let grid = Grid::square(2 * half + 1, dx, Boundary::Free).unwrap();
+        let surface = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
+        let op = operator_for(grid, 1.0).unwrap();
+        let mut solver =
+            AdhesiveSolver::new(op, &surface, 1.0, self.kappa, AdhesiveOptions::default()).unwrap();
+        let path = ApproachPath {
+            start: self.max_approach / 20.0,
+            max_approach: self.max_approach,
+            load_step: self.max_approach / 20.0,
+            unload_step: self.unload_step,
+            retract_to: None,
+            max_steps: 100_000,
+        };
+        let mut max_extent = 0;
+        struct Extent<'a>(&'a mut usize);
+        impl tack_solver::Observer for Extent<'_> {
+            fn on_step(&mut self, _: usize, _: tack_solver::Phase, r: &tack_solver::StepRecord) {
+                *self.0 = (*self.0).max(r.n_bonded);
+            }
+        }
+        let result = solver
+            .run_path(&path, &SnapshotRequest::None, &mut Extent(&mut max_extent))
+            .unwrap();
+        let pull_off_error = result.pull_off_force() / jkr_pull_off_force(1.0, 1.0) - 1.0;
+        let last_contact_approach = result
+            .records
+            .iter()
+            .rev()
+            .find(|r| r.n_bonded > 0)
+            .map_or(f64::NAN, |r| r.approach);
+        // Equivalent radius of the largest bonded set, in elements.
+        let max_extent = ((max_extent as f64 / std::f64::consts::PI).sqrt()).ceil() as usize;
+        JkrRun {
+            result,
+            grid,
+            pull_off_error,
+            last_contact_approach,
+            max_extent,
+        }
+    }
+}

@@ -28,6 +28,25 @@ pub enum GeometryError {
     /// Two arrays or grids that must agree do not.
     #[error("shape mismatch: {0}")]
     Mismatch(String),
+    /// A roughness band `[q0, q1]` the grid cannot represent.
+    #[error(
+        "roughness.q0/q1 = [{q0}, {q1}] is invalid: the band must contain at least one grid wave \
+         vector; the grid holds wave vectors from 2π/L = {q_min} to π/Δx = {q_nyquist} \
+         (diagonal up to √2·π/Δx)"
+    )]
+    RoughnessBand {
+        /// The lower cut-off that was given.
+        q0: f64,
+        /// The upper cut-off that was given.
+        q1: f64,
+        /// The smallest non-zero grid wave vector, `2π/max(Lx, Ly)`.
+        q_min: f64,
+        /// The Nyquist wave vector along an axis, `π/Δx`.
+        q_nyquist: f64,
+    },
+    /// A height map could not be read; the message names the file, line and column.
+    #[error("height map: {0}")]
+    Parse(String),
 }
 
 /// Checks that `value` is finite and strictly positive.
@@ -39,6 +58,19 @@ pub(crate) fn positive(field: &'static str, value: f64) -> Result<f64, GeometryE
             field,
             value,
             allowed: "a finite number > 0",
+        })
+    }
+}
+
+/// Checks that `value` is finite and not negative.
+pub(crate) fn non_negative(field: &'static str, value: f64) -> Result<f64, GeometryError> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(GeometryError::OutOfRange {
+            field,
+            value,
+            allowed: "a finite number ≥ 0",
         })
     }
 }

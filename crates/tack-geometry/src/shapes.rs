@@ -1,6 +1,11 @@
-//! Analytic macro shapes (the sphere, ...) as height functions `f(x, y)` that can be sampled on a grid.
+//! Analytic shapes (sphere, 1D/2D waviness, flat punch) as height functions `f(x, y)` sampled on a grid.
+//!
+//! Shapes compose by adding surfaces: the sphere with 2D waviness of Eq. 6 is
+//! `Surface::from_shape(grid, &sphere)` followed by `add_shape(&waviness)`.
 
-use crate::error::{GeometryError, positive};
+use std::f64::consts::TAU;
+
+use crate::error::{GeometryError, non_negative, positive};
 
 /// A rigid body's height above its lowest point as a function of position.
 pub trait Shape {
@@ -33,6 +38,148 @@ impl Shape for Sphere {
     }
 }
 
+/// Checks a waviness amplitude `h ≥ 0` and wavelength `λ > 0` (fields `roughness.h`, `roughness.lambda`).
+fn waviness(h: f64, lambda: f64) -> Result<(f64, f64), GeometryError> {
+    Ok((
+        non_negative("roughness.h", h)?,
+        positive("roughness.lambda", lambda)?,
+    ))
+}
+
+/// One-dimensional waviness (Eq. 1): `f = h[1 − cos(2πx/λ)]`, lowest (first contact) at `x = 0`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Waviness1d {
+    h: f64,
+    lambda: f64,
+}
+
+impl Waviness1d {
+    /// Waviness with amplitude `h ≥ 0` and wavelength `λ > 0`, both finite.
+    pub fn new(h: f64, lambda: f64) -> Result<Self, GeometryError> {
+        let (h, lambda) = waviness(h, lambda)?;
+        Ok(Self { h, lambda })
+    }
+    /// The amplitude `h`.
+    pub fn h(&self) -> f64 {
+        self.h
+    }
+    /// The wavelength `λ`.
+    pub fn lambda(&self) -> f64 {
+        self.lambda
+    }
+}
+
+impl Shape for Waviness1d {
+    fn height(&self, x: f64, _y: f64) -> f64 {
+        self.h * (1.0 - (TAU * x / self.lambda).cos())
+    }
+}
+
+/// Two-dimensional waviness (Eq. 4): `f = h[1 − cos(2πx/λ)·cos(2πy/λ)]`, minimum at the origin.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Waviness2d {
+    h: f64,
+    lambda: f64,
+}
+
+impl Waviness2d {
+    /// Waviness with amplitude `h ≥ 0` and wavelength `λ > 0`, both finite.
+    pub fn new(h: f64, lambda: f64) -> Result<Self, GeometryError> {
+        let (h, lambda) = waviness(h, lambda)?;
+        Ok(Self { h, lambda })
+    }
+    /// The amplitude `h`.
+    pub fn h(&self) -> f64 {
+        self.h
+    }
+    /// The wavelength `λ`.
+    pub fn lambda(&self) -> f64 {
+        self.lambda
+    }
+}
+
+impl Shape for Waviness2d {
+    fn height(&self, x: f64, y: f64) -> f64 {
+        let k = TAU / self.lambda;
+        self.h * (1.0 - (k * x).cos() * (k * y).cos())
+    }
+}
+
+/// The face of a [`FlatPunch`], centred on the origin.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PunchFace {
+    /// A circle of radius `radius`.
+    Circle {
+        /// Radius `a` of the face.
+        radius: f64,
+    },
+    /// An axis-aligned square of side `2·half_side`.
+    Square {
+        /// Half the side of the face.
+        half_side: f64,
+    },
+}
+
+/// Default [`FlatPunch::lift_height`] in units of the face size (radius or half-side).
+pub const DEFAULT_PUNCH_LIFT: f64 = 1e3;
+
+/// A rigid flat-ended punch: height 0 on its face, [`FlatPunch::lift_height`] everywhere else.
+///
+/// Heights must be finite, so "never touches" is a finite lift: by default
+/// [`DEFAULT_PUNCH_LIFT`] times the face size, far beyond any approach a contact run reaches.
+/// A solver may treat every element with `f ≥ lift_height()` as never in contact. Element
+/// centres on the rim (to 1e-12 relative) count as on the face.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FlatPunch {
+    face: PunchFace,
+    lift: f64,
+}
+
+impl FlatPunch {
+    /// A circular punch of radius `a > 0` (field `geometry.punch_radius`).
+    pub fn circular(radius: f64) -> Result<Self, GeometryError> {
+        let radius = positive("geometry.punch_radius", radius)?;
+        Self::with_face(PunchFace::Circle { radius }, radius)
+    }
+    /// A square punch of half-side `s > 0` (field `geometry.punch_half_side`).
+    pub fn square(half_side: f64) -> Result<Self, GeometryError> {
+        let half_side = positive("geometry.punch_half_side", half_side)?;
+        Self::with_face(PunchFace::Square { half_side }, half_side)
+    }
+    fn with_face(face: PunchFace, size: f64) -> Result<Self, GeometryError> {
+        Self { face, lift: 1.0 }.with_lift(DEFAULT_PUNCH_LIFT * size)
+    }
+    /// The same punch with another finite lift `> 0` outside the face (field `geometry.punch_lift`).
+    pub fn with_lift(self, lift: f64) -> Result<Self, GeometryError> {
+        Ok(Self {
+            lift: positive("geometry.punch_lift", lift)?,
+            ..self
+        })
+    }
+    /// The face shape and size.
+    pub fn face(&self) -> PunchFace {
+        self.face
+    }
+    /// The height of every point off the face.
+    pub fn lift_height(&self) -> f64 {
+        self.lift
+    }
+    /// Whether `(x, y)` lies on the face (rim included).
+    pub fn on_face(&self, x: f64, y: f64) -> bool {
+        const RIM: f64 = 1.0 + 1e-12;
+        match self.face {
+            PunchFace::Circle { radius } => x * x + y * y <= radius * radius * RIM * RIM,
+            PunchFace::Square { half_side } => x.abs().max(y.abs()) <= half_side * RIM,
+        }
+    }
+}
+
+impl Shape for FlatPunch {
+    fn height(&self, x: f64, y: f64) -> f64 {
+        if self.on_face(x, y) { 0.0 } else { self.lift }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -45,5 +192,65 @@ mod tests {
         assert_eq!(s.height(0.0, -2.0), 1.0);
         assert!(Sphere::new(-1.0).is_err());
         assert!(Sphere::new(f64::NAN).is_err());
+    }
+
+    #[test]
+    fn waviness_follows_eqs_1_and_4() {
+        let w1 = Waviness1d::new(0.5, 2.0).unwrap();
+        let w2 = Waviness2d::new(0.5, 2.0).unwrap();
+        assert_eq!(w1.height(0.0, 0.3), 0.0);
+        assert!((w1.height(1.0, 0.7) - 1.0).abs() < 1e-15);
+        assert!((w1.height(0.5, 0.0) - 0.5).abs() < 1e-15);
+        assert_eq!(w2.height(0.0, 0.0), 0.0);
+        assert!((w2.height(1.0, 0.0) - 1.0).abs() < 1e-15);
+        assert!((w2.height(1.0, 1.0)).abs() < 1e-15);
+        assert!((w2.height(0.5, 0.3) - 0.5).abs() < 1e-15);
+        assert!(Waviness2d::new(0.0, 1.0).is_ok());
+    }
+
+    #[test]
+    fn waviness_rejects_bad_parameters_naming_the_field() {
+        for (h, lambda, field) in [
+            (-1.0, 1.0, "roughness.h"),
+            (f64::NAN, 1.0, "roughness.h"),
+            (1.0, 0.0, "roughness.lambda"),
+            (1.0, f64::INFINITY, "roughness.lambda"),
+        ] {
+            for e in [
+                Waviness1d::new(h, lambda).unwrap_err(),
+                Waviness2d::new(h, lambda).unwrap_err(),
+            ] {
+                assert!(e.to_string().contains(field), "{e}");
+            }
+        }
+    }
+
+    #[test]
+    fn flat_punch_is_flat_on_its_face_and_lifted_off_it() {
+        let c = FlatPunch::circular(1.0).unwrap();
+        assert_eq!(c.lift_height(), 1e3);
+        assert_eq!(c.height(0.6, 0.8), 0.0);
+        assert_eq!(c.height(0.0, -1.0), 0.0);
+        assert_eq!(c.height(0.8, 0.8), 1e3);
+        let s = FlatPunch::square(1.0).unwrap().with_lift(5.0).unwrap();
+        assert_eq!(s.height(-1.0, 1.0), 0.0);
+        assert_eq!(s.height(1.01, 0.0), 5.0);
+        assert_eq!(s.face(), PunchFace::Square { half_side: 1.0 });
+        for (e, field) in [
+            (
+                FlatPunch::circular(0.0).unwrap_err(),
+                "geometry.punch_radius",
+            ),
+            (
+                FlatPunch::square(f64::NAN).unwrap_err(),
+                "geometry.punch_half_side",
+            ),
+            (
+                c.with_lift(f64::INFINITY).unwrap_err(),
+                "geometry.punch_lift",
+            ),
+        ] {
+            assert!(e.to_string().contains(field), "{e}");
+        }
     }
 }

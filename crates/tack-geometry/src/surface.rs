@@ -115,6 +115,20 @@ mod tests {
     }
 
     #[test]
+    fn sphere_plus_2d_waviness_is_eq_6_by_composition() {
+        let g = Grid::square(9, 0.05, Boundary::Free).unwrap();
+        let (r, h, lambda) = (2.0, 0.01, 0.1);
+        let mut s = Surface::from_shape(g, &Sphere::new(r).unwrap());
+        s.add_shape(&crate::Waviness2d::new(h, lambda).unwrap());
+        for ((i, j), &f) in s.heights().indexed_iter() {
+            let (x, y) = (g.x(i), g.y(j));
+            let k = std::f64::consts::TAU / lambda;
+            let eq6 = (x * x + y * y) / (2.0 * r) + h * (1.0 - (k * x).cos() * (k * y).cos());
+            assert!((f - eq6).abs() < 1e-15, "({i}, {j})");
+        }
+    }
+
+    #[test]
     fn rejects_nan_heights_and_wrong_shape() {
         let g = Grid::square(2, 1.0, Boundary::Free).unwrap();
         let mut h = Array2::zeros((2, 2));

@@ -27,11 +27,6 @@ impl Fft2 {
         }
     }
 
-    /// Shape of the half spectrum, `(mx, my/2 + 1)`.
-    pub(crate) fn spectrum_dim(&self) -> (usize, usize) {
-        self.spec.dim()
-    }
-
     /// Forward transform of `self.real` (unnormalised); the spectrum is returned by reference.
     pub(crate) fn forward(&mut self) -> &mut Array2<Complex<f64>> {
         ndfft_r2c(&self.real, &mut self.spec, &self.r2c, 1);

@@ -6,7 +6,7 @@ use tack_geometry::Grid;
 
 use crate::fft2::Fft2;
 use crate::love::{SELF_COMPLIANCE, love_rectangle};
-use crate::{ElasticOperator, KernelError, check_modulus};
+use crate::{ElasticOperator, KernelError, check_modulus, stiffness_spectrum};
 
 /// Influence-matrix operator of an infinite half-space loaded only on the grid.
 ///
@@ -19,6 +19,7 @@ pub struct FreeOperator {
     e_star: f64,
     /// Kernel spectrum. The kernel is real and even, so its spectrum is real: store only that.
     kernel_hat: Array2<f64>,
+    precond_hat: Array2<f64>,
     fft: Fft2,
 }
 
@@ -52,6 +53,7 @@ impl FreeOperator {
             grid,
             e_star,
             kernel_hat,
+            precond_hat: stiffness_spectrum(mx, my, dx, e_star),
             fft,
         })
     }
@@ -66,6 +68,9 @@ impl ElasticOperator for FreeOperator {
     }
     fn apply(&mut self, pressure: ArrayView2<f64>, displacement: ArrayViewMut2<f64>) {
         self.fft.convolve(pressure, &self.kernel_hat, displacement);
+    }
+    fn precondition(&mut self, displacement: ArrayView2<f64>, pressure: ArrayViewMut2<f64>) {
+        self.fft.convolve(displacement, &self.precond_hat, pressure);
     }
     fn self_compliance(&self) -> f64 {
         SELF_COMPLIANCE * self.grid.dx() / self.e_star

@@ -37,6 +37,10 @@ pub trait ElasticOperator: Send {
     fn apply(&mut self, pressure: ArrayView2<f64>, displacement: ArrayViewMut2<f64>);
     /// Displacement of an element's centre per unit pressure on that element alone.
     fn self_compliance(&self) -> f64;
+    /// An approximate inverse for preconditioning: `pressure ≈ K⁻¹ · displacement`, applied as
+    /// the spectral stiffness `E*|q|/2` (positive definite; the q = 0 mode gets the smallest
+    /// non-zero wave number of the transform grid).
+    fn precondition(&mut self, displacement: ArrayView2<f64>, pressure: ArrayViewMut2<f64>);
     /// For periodic operators: solve `K p = u` for the zero-mean pressure `p` given a
     /// displacement `u` (its mean is ignored) and return true; other operators return false.
     fn solve_zero_mean(
@@ -46,6 +50,32 @@ pub trait ElasticOperator: Send {
     ) -> bool {
         false
     }
+}
+
+/// Spectral stiffness `E*|q|/2` on an `mx × my` transform grid of spacing `dx`, laid out as the
+/// half spectrum of [`fft2::Fft2`]; q = 0 is replaced by the smallest non-zero |q|.
+pub(crate) fn stiffness_spectrum(
+    mx: usize,
+    my: usize,
+    dx: f64,
+    e_star: f64,
+) -> ndarray::Array2<f64> {
+    let q = wave_numbers(mx, my, dx);
+    let q_min = (2.0 * std::f64::consts::PI / (mx.max(my) as f64 * dx)).min(f64::MAX);
+    q.mapv(|q| e_star * q.max(q_min) / 2.0)
+}
+
+/// |q| of the half spectrum of an `mx × my` real transform with spacing `dx`.
+pub(crate) fn wave_numbers(mx: usize, my: usize, dx: f64) -> ndarray::Array2<f64> {
+    let wave = |k: usize, n: usize| {
+        let k = if k <= n / 2 {
+            k as f64
+        } else {
+            k as f64 - n as f64
+        };
+        2.0 * std::f64::consts::PI * k / (n as f64 * dx)
+    };
+    ndarray::Array2::from_shape_fn((mx, my / 2 + 1), |(i, j)| wave(i, mx).hypot(wave(j, my)))
 }
 
 /// Validates `E*` (field `material.e_star`).

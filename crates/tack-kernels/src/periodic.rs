@@ -2,11 +2,10 @@
 //! mean (q = 0) mode dropped, so displacements are zero-mean (REFERENCE §1).
 
 use ndarray::{Array2, ArrayView2, ArrayViewMut2};
-use std::f64::consts::PI;
 use tack_geometry::Grid;
 
 use crate::fft2::Fft2;
-use crate::{ElasticOperator, KernelError, check_modulus};
+use crate::{ElasticOperator, KernelError, check_modulus, stiffness_spectrum, wave_numbers};
 
 /// Half-space operator for a grid that is one period of a repeated pattern.
 ///
@@ -18,6 +17,7 @@ pub struct PeriodicOperator {
     e_star: f64,
     kernel_hat: Array2<f64>,
     inverse_hat: Array2<f64>,
+    precond_hat: Array2<f64>,
     self_compliance: f64,
     fft: Fft2,
 }
@@ -28,17 +28,10 @@ impl PeriodicOperator {
         let e_star = check_modulus(e_star)?;
         let (nx, ny) = grid.shape();
         let fft = Fft2::new(nx, ny);
-        let wave = |k: usize, n: usize| {
-            let k = if k <= n / 2 {
-                k as f64
-            } else {
-                k as f64 - n as f64
-            };
-            2.0 * PI * k / (n as f64 * grid.dx())
-        };
-        let q = Array2::from_shape_fn(fft.spectrum_dim(), |(i, j)| wave(i, nx).hypot(wave(j, ny)));
+        let q = wave_numbers(nx, ny, grid.dx());
         let kernel_hat = q.mapv(|q| if q > 0.0 { 2.0 / (e_star * q) } else { 0.0 });
         let inverse_hat = q.mapv(|q| e_star * q / 2.0);
+        let precond_hat = stiffness_spectrum(nx, ny, grid.dx(), e_star);
         // Centre displacement under a unit pressure on one element, minus the dropped mean:
         // the inverse DFT at the origin of the kernel times the element's share 1/N of the load.
         let (mut total, n) = (0.0, (nx * ny) as f64);
@@ -56,6 +49,7 @@ impl PeriodicOperator {
             e_star,
             kernel_hat,
             inverse_hat,
+            precond_hat,
             self_compliance: total / n,
             fft,
         })
@@ -74,6 +68,9 @@ impl ElasticOperator for PeriodicOperator {
     }
     fn self_compliance(&self) -> f64 {
         self.self_compliance
+    }
+    fn precondition(&mut self, displacement: ArrayView2<f64>, pressure: ArrayViewMut2<f64>) {
+        self.fft.convolve(displacement, &self.precond_hat, pressure);
     }
     fn solve_zero_mean(
         &mut self,

@@ -1,0 +1,449 @@
+//! JKR-limit adhesive contact: a bonded set with the Pohrt–Popov mesh-dependent detachment
+//! criterion, solved at a prescribed approach by an active-set loop around a linear CG.
+//!
+//! Protocol at approach `d` (REFERENCE §2): solve `K p = d − f` on the bonded set `C`
+//! (`p = 0` off it); detach **every** bonded element whose tension exceeds `σ_c` (all at once,
+//! as in the reference prototype); attach every free element that penetrates; repeat until `C`
+//! no longer changes. Both decisions come from the same solution and are applied together, so
+//! the result does not depend on iteration order. Cycles are detected by remembering every
+//! bonded set visited in the step; a revisit stops the loop and the step reports
+//! `converged = false`. The loop is also capped.
+
+use std::collections::HashSet;
+use std::hash::{DefaultHasher, Hash, Hasher};
+
+use ndarray::{Array2, Zip};
+use tack_geometry::{Boundary, Surface};
+use tack_kernels::ElasticOperator;
+
+use crate::clusters::count_clusters;
+use crate::{SolverError, SolverOptions};
+
+/// The Pohrt–Popov constant κ of `σ_c = sqrt(E*γ/(κΔx))`, from the mean displacement of a
+/// square element under its own pressure: κ = (2/π)[ln(1+√2) − (√2−1)/3] = 0.473201.
+///
+/// MEASURED-ERRORS-PENDING
+pub const KAPPA: f64 = tack_kernels::MEAN_SELF_COMPLIANCE / 2.0;
+
+/// Settings of the adhesive solver.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AdhesiveOptions {
+    /// Linear CG stopping rule and cap (per solve on a bonded set).
+    pub cg: SolverOptions,
+    /// Cap on detach/attach rounds per approach step.
+    pub max_active_set_iterations: usize,
+    /// Precondition CG with the spectral stiffness `E*|q|/2` restricted to the bonded set.
+    pub preconditioned: bool,
+}
+
+impl Default for AdhesiveOptions {
+    fn default() -> Self {
+        Self {
+            cg: SolverOptions {
+                tolerance: 1e-9,
+                max_iterations: 5_000,
+            },
+            max_active_set_iterations: 1_000,
+            preconditioned: true,
+        }
+    }
+}
+
+/// What one approach step produced.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepRecord {
+    /// Prescribed approach `d` (positive = pressing; periodic: from the deformed mean plane).
+    pub approach: f64,
+    /// Total normal force `Σ p Δx²` (positive = compressive, negative = adhesive pull).
+    pub force: f64,
+    /// Force per domain area `Lx·Ly` (the mean pressure of periodic problems).
+    pub mean_pressure: f64,
+    /// Bonded (in-contact) area, `n_bonded · Δx²`.
+    pub area: f64,
+    /// Number of bonded elements.
+    pub n_bonded: usize,
+    /// Number of separate contact clusters (edge-connected).
+    pub n_clusters: usize,
+    /// Linear CG iterations summed over the step.
+    pub cg_iterations: usize,
+    /// Detach/attach rounds in the step.
+    pub active_set_iterations: usize,
+    /// Worst relative CG residual of the step's solves.
+    pub residual: f64,
+    /// Every solve met its tolerance and the bonded set settled without a cycle.
+    pub converged: bool,
+    /// Periodic grids: every element bonded (the mean pressure is then the least one that keeps
+    /// full contact admissible, see [`AdhesiveSolver::step`]).
+    pub full_contact: bool,
+}
+
+/// Quasi-static adhesive contact along an approach path; owns operator, fields and scratch.
+pub struct AdhesiveSolver {
+    op: Box<dyn ElasticOperator>,
+    heights: Array2<f64>,
+    sigma_c: f64,
+    options: AdhesiveOptions,
+    bonded: Array2<bool>,
+    pressure: Array2<f64>,
+    disp: Array2<f64>,
+    gap: Array2<f64>,
+    resid: Array2<f64>,
+    dir: Array2<f64>,
+    kdir: Array2<f64>,
+    zres: Array2<f64>,
+    /// Pressure and approach of the previous step, for the secant predictor.
+    history: Option<(Array2<f64>, f64)>,
+    last_approach: Option<f64>,
+}
+
+impl AdhesiveSolver {
+    /// A solver for `surface` against the half-space `op` with work of adhesion `gamma ≥ 0`
+    /// (`γ = 0` is non-adhesive contact) and Pohrt–Popov constant `kappa > 0` (see [`KAPPA`]).
+    pub fn new(
+        op: Box<dyn ElasticOperator>,
+        surface: &Surface,
+        gamma: f64,
+        kappa: f64,
+        options: AdhesiveOptions,
+    ) -> Result<Self, SolverError> {
+        options.cg.validate()?;
+        if !(gamma.is_finite() && gamma >= 0.0) {
+            return Err(SolverError::OutOfRange {
+                field: "material.gamma",
+                value: gamma,
+                allowed: "a finite number ≥ 0",
+            });
+        }
+        if !(kappa.is_finite() && kappa > 0.0) {
+            return Err(SolverError::OutOfRange {
+                field: "solver.kappa",
+                value: kappa,
+                allowed: "a finite number > 0",
+            });
+        }
+        if options.max_active_set_iterations == 0 {
+            return Err(SolverError::OutOfRange {
+                field: "solver.max_active_set_iterations",
+                value: 0.0,
+                allowed: "an integer ≥ 1",
+            });
+        }
+        let shape = op.grid().shape();
+        if surface.grid().shape() != shape {
+            return Err(SolverError::GridMismatch {
+                surface: surface.grid().shape(),
+                operator: shape,
+            });
+        }
+        let sigma_c = (op.e_star() * gamma / (kappa * op.grid().dx())).sqrt();
+        let z = Array2::zeros(shape);
+        Ok(Self {
+            op,
+            heights: surface.heights().clone(),
+            sigma_c,
+            options,
+            bonded: Array2::from_elem(shape, false),
+            pressure: z.clone(),
+            disp: z.clone(),
+            gap: z.clone(),
+            resid: z.clone(),
+            dir: z.clone(),
+            kdir: z.clone(),
+            zres: z,
+            history: None,
+            last_approach: None,
+        })
+    }
+
+    /// The critical tensile stress `σ_c = sqrt(E*γ/(κΔx))` of the detachment criterion.
+    pub fn critical_stress(&self) -> f64 {
+        self.sigma_c
+    }
+    /// Current element pressures.
+    pub fn pressure(&self) -> &Array2<f64> {
+        &self.pressure
+    }
+    /// Current bonded mask.
+    pub fn bonded(&self) -> &Array2<bool> {
+        &self.bonded
+    }
+    /// Current gap `f − d + u` (zero on the bonded set up to the tolerance).
+    pub fn gap(&self) -> &Array2<f64> {
+        &self.gap
+    }
+    /// The grid of the problem.
+    pub fn grid(&self) -> &tack_geometry::Grid {
+        self.op.grid()
+    }
+
+    /// Equilibrium at approach `d`, starting from the current bonded set and pressures.
+    ///
+    /// Periodic grids with every element bonded are handled in closed form: for `d ≥ mean f`
+    /// the state is full contact and reports the least mean pressure at which no element's
+    /// tension exceeds `σ_c`; for `d < mean f` full contact is impossible (the mean gap is
+    /// positive), so the most tensile element of the full-contact field is detached.
+    pub fn step(&mut self, approach: f64) -> Result<StepRecord, SolverError> {
+        if !approach.is_finite() {
+            return Err(SolverError::OutOfRange {
+                field: "approach",
+                value: approach,
+                allowed: "a finite number",
+            });
+        }
+        let d = approach;
+        self.predict(d);
+        let periodic = self.op.grid().boundary() == Boundary::Periodic;
+        let n = self.heights.len();
+        let fmean = self.heights.mean().unwrap_or(0.0);
+        let (mut cg_total, mut worst, mut converged, mut full) = (0, 0.0f64, true, false);
+        let mut visited = HashSet::new();
+        let mut rounds = 0;
+        loop {
+            if rounds == self.options.max_active_set_iterations {
+                converged = false;
+                break;
+            }
+            rounds += 1;
+            let n_bonded = self.bonded.iter().filter(|&&b| b).count();
+            if periodic && n_bonded == n {
+                let p_min = self.full_contact_field();
+                if d >= fmean {
+                    self.pressure.mapv_inplace(|p| p - p_min - self.sigma_c);
+                    self.gap.fill(0.0);
+                    full = true;
+                    break;
+                }
+                let weakest = self.pressure.iter().position(|&p| p == p_min).unwrap_or(0);
+                let idx = (
+                    weakest / self.heights.ncols(),
+                    weakest % self.heights.ncols(),
+                );
+                self.bonded[idx] = false;
+                continue;
+            }
+            let cycle = !visited.insert(hash_mask(&self.bonded));
+            if n_bonded == 0 {
+                self.pressure.fill(0.0);
+                self.disp.fill(0.0);
+            } else {
+                let (it, res, ok) = self.solve_bonded(d);
+                cg_total += it;
+                worst = worst.max(res);
+                converged &= ok;
+            }
+            Zip::from(&mut self.gap)
+                .and(&self.heights)
+                .and(&self.disp)
+                .for_each(|g, &f, &u| *g = f - d + u);
+            if cycle {
+                converged = false;
+                break;
+            }
+            let sigma_c = self.sigma_c;
+            let mut changed = false;
+            Zip::from(&mut self.bonded)
+                .and(&mut self.pressure)
+                .and(&self.gap)
+                .for_each(|b, p, &g| {
+                    if *b && *p < -sigma_c {
+                        *b = false;
+                        *p = 0.0;
+                        changed = true;
+                    } else if !*b && g < 0.0 {
+                        *b = true;
+                        changed = true;
+                    }
+                });
+            if !changed {
+                break;
+            }
+        }
+        Ok(self.record(d, cg_total, rounds, worst, converged, full))
+    }
+
+    /// Secant predictor: with an unchanged bonded set the pressure is affine in `d`, so
+    /// `p(d) = p₁ + (p₁ − p₀)(d − d₁)/(d₁ − d₀)` is exact and CG only corrects for set changes.
+    /// Remembers the current state as the new `(p₀, d₀)`.
+    fn predict(&mut self, d: f64) {
+        if let Some(d1) = self.last_approach {
+            match &mut self.history {
+                Some((p0, d0)) if *d0 != d1 => {
+                    let t = (d - d1) / (d1 - *d0);
+                    Zip::from(&mut self.pressure)
+                        .and(p0)
+                        .and(&self.bonded)
+                        .for_each(|p, q, &b| {
+                            let p1 = *p;
+                            if b {
+                                *p += (p1 - *q) * t;
+                            }
+                            *q = p1;
+                        });
+                    *d0 = d1;
+                }
+                _ => self.history = Some((self.pressure.clone(), d1)),
+            }
+        }
+        self.last_approach = Some(d);
+    }
+
+    /// Fills `pressure` with the zero-mean periodic full-contact field and returns its minimum.
+    fn full_contact_field(&mut self) -> f64 {
+        let fmean = self.heights.mean().unwrap_or(0.0);
+        self.gap.assign(&self.heights.mapv(|f| fmean - f));
+        let periodic = self
+            .op
+            .solve_zero_mean(self.gap.view(), self.pressure.view_mut());
+        debug_assert!(periodic);
+        self.disp.assign(&self.gap);
+        self.pressure.iter().copied().fold(f64::INFINITY, f64::min)
+    }
+
+    /// Conjugate gradients for `K_CC p_C = (d − f)_C`, warm-started from the current pressure.
+    /// Keeps the full-field displacement `disp = K p` up to date. Returns (iterations, relative
+    /// residual, converged).
+    fn solve_bonded(&mut self, d: f64) -> (usize, f64, bool) {
+        let bonded = &self.bonded;
+        Zip::from(&mut self.pressure).and(bonded).for_each(|p, &b| {
+            if !b {
+                *p = 0.0
+            }
+        });
+        let (mut n_c, mut b2, mut fmax, mut fmin) = (0usize, 0.0, f64::NEG_INFINITY, f64::INFINITY);
+        Zip::from(&self.heights).and(bonded).for_each(|&f, &b| {
+            if b {
+                n_c += 1;
+                b2 += (d - f) * (d - f);
+                fmax = fmax.max(f);
+                fmin = fmin.min(f);
+            }
+        });
+        // Displacement scale: rms right-hand side, floored so a zero right-hand side still has
+        // a meaningful relative tolerance.
+        let scale = (b2 / n_c as f64)
+            .sqrt()
+            .max(1e-3 * (fmax - fmin))
+            .max(f64::MIN_POSITIVE);
+        let target = (self.options.cg.tolerance * scale).powi(2) * n_c as f64;
+        let max_it = self.options.cg.max_iterations;
+        let mut it = 0;
+        loop {
+            // (Re)start from the true residual r = (d − f − K p)_C.
+            self.op.apply(self.pressure.view(), self.disp.view_mut());
+            let mut rr = 0.0;
+            Zip::from(&mut self.resid)
+                .and(&self.heights)
+                .and(&self.disp)
+                .and(&self.bonded)
+                .for_each(|r, &f, &u, &b| {
+                    *r = if b { d - f - u } else { 0.0 };
+                    rr += *r * *r;
+                });
+            let rel = (rr / n_c as f64).sqrt() / scale;
+            if rr <= target {
+                return (it, rel, true);
+            }
+            if it >= max_it {
+                return (it, rel, false);
+            }
+            let mut rz = self.precondition();
+            self.dir.assign(&self.zres);
+            while it < max_it {
+                it += 1;
+                self.op.apply(self.dir.view(), self.kdir.view_mut());
+                let mut sq = 0.0;
+                Zip::from(&self.dir)
+                    .and(&self.kdir)
+                    .and(&self.bonded)
+                    .for_each(|&s, &q, &b| {
+                        if b {
+                            sq += s * q
+                        }
+                    });
+                let alpha = rz / sq;
+                let mut rr_new = 0.0;
+                Zip::from(&mut self.pressure)
+                    .and(&mut self.resid)
+                    .and(&self.dir)
+                    .and(&self.kdir)
+                    .and(&self.bonded)
+                    .for_each(|p, r, &s, &q, &b| {
+                        if b {
+                            *p += alpha * s;
+                            *r -= alpha * q;
+                            rr_new += *r * *r;
+                        }
+                    });
+                if rr_new <= target {
+                    break;
+                }
+                let rz_new = self.precondition();
+                let beta = rz_new / rz;
+                rz = rz_new;
+                Zip::from(&mut self.dir)
+                    .and(&self.zres)
+                    .for_each(|s, &z| *s = z + beta * *s);
+            }
+        }
+    }
+
+    /// `z = P_C M r` (or `z = r` without preconditioning); returns `r·z`.
+    fn precondition(&mut self) -> f64 {
+        if self.options.preconditioned {
+            self.op
+                .precondition(self.resid.view(), self.zres.view_mut());
+        } else {
+            self.zres.assign(&self.resid);
+        }
+        let mut rz = 0.0;
+        Zip::from(&mut self.zres)
+            .and(&self.resid)
+            .and(&self.bonded)
+            .for_each(|z, &r, &b| {
+                if b {
+                    rz += r * *z;
+                } else {
+                    *z = 0.0;
+                }
+            });
+        rz
+    }
+
+    fn record(
+        &self,
+        d: f64,
+        cg: usize,
+        rounds: usize,
+        residual: f64,
+        converged: bool,
+        full: bool,
+    ) -> StepRecord {
+        let grid = self.op.grid();
+        let force = self.pressure.sum() * grid.element_area();
+        let n_bonded = self.bonded.iter().filter(|&&b| b).count();
+        StepRecord {
+            approach: d,
+            force,
+            mean_pressure: force / (grid.lx() * grid.ly()),
+            area: n_bonded as f64 * grid.element_area(),
+            n_bonded,
+            n_clusters: count_clusters(&self.bonded, grid.boundary() == Boundary::Periodic),
+            cg_iterations: cg,
+            active_set_iterations: rounds,
+            residual,
+            converged,
+            full_contact: full,
+        }
+    }
+}
+
+/// Deterministic fingerprint of a bonded set (for cycle detection within one step).
+fn hash_mask(mask: &Array2<bool>) -> u64 {
+    let mut h = DefaultHasher::new();
+    for (k, &b) in mask.iter().enumerate() {
+        if b {
+            k.hash(&mut h);
+        }
+    }
+    h.finish()
+}
