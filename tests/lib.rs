@@ -1,6 +1,6 @@
 //! Shared scenarios for the end-to-end tests and the benchmarks: the smooth JKR sphere.
 
-use tack_analytics::{jkr_pull_off_force, jkr_pull_off_radius};
+use tack_analytics::{jkr_force_from_approach, jkr_pull_off_force, jkr_pull_off_radius};
 use tack_geometry::{Boundary, Grid, Sphere, Surface};
 use tack_kernels::operator_for;
 use tack_solver::{AdhesiveOptions, AdhesiveSolver, ApproachPath, PathResult, SnapshotRequest};
@@ -29,6 +29,8 @@ pub struct JkrRun {
     pub last_contact_approach: f64,
     /// Largest bonded extent from the centre, in elements (must stay inside the grid).
     pub max_extent: usize,
+    /// Largest |F − F_JKR(d)|/|F_JKR| on the peeling branch, d̂ ∈ [−1.5, 1.5] of the unload.
+    pub curve_error: f64,
 }
 
 impl JkrSphere {
@@ -80,7 +82,20 @@ impl JkrSphere {
             .map_or(f64::NAN, |r| r.approach);
         // Equivalent radius of the largest bonded set, in elements.
         let max_extent = ((max_extent as f64 / std::f64::consts::PI).sqrt()).ceil() as usize;
+        let curve_error = result
+            .records
+            .iter()
+            .zip(&result.phases)
+            .filter(|(r, p)| {
+                **p == tack_solver::Phase::Unload && (-1.5..=1.5).contains(&r.approach)
+            })
+            .filter_map(|(r, _)| {
+                jkr_force_from_approach(1.0, 1.0, 1.0, r.approach).map(|f| (r.force - f).abs())
+            })
+            .fold(0.0, f64::max)
+            / jkr_pull_off_force(1.0, 1.0).abs();
         JkrRun {
+            curve_error,
             result,
             grid,
             pull_off_error,

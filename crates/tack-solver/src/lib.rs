@@ -14,7 +14,7 @@ mod options;
 mod path;
 mod state;
 
-pub use adhesive::{AdhesiveOptions, AdhesiveSolver, KAPPA, StepRecord};
+pub use adhesive::{AdhesiveOptions, AdhesiveSolver, KAPPA, KAPPA_LINE, StepRecord};
 pub use clusters::count_clusters;
 pub use contact::ContactSolver;
 pub use options::{SolverError, SolverOptions};

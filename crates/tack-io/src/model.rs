@@ -1,0 +1,246 @@
+//! The plain data model of a result file, filled by the CLI from the solver's states.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use ndarray::Array2;
+
+use crate::IoError;
+
+/// Where a result came from: written as root attributes of every result file.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Provenance {
+    /// `tack` version that produced the file.
+    pub tack_version: String,
+    /// Git revision of the source tree, or `unknown`.
+    pub git_revision: String,
+    /// The command line that produced the file.
+    pub command_line: String,
+    /// The full scene TOML the run was made from.
+    pub scene: String,
+    /// Creation time, RFC 3339 in UTC.
+    pub created: String,
+    /// Seed of the random surface, when the scene has one.
+    pub seed: Option<u64>,
+}
+
+impl Provenance {
+    /// Provenance of the current process with a caller-supplied revision and timestamp; `scene`
+    /// starts empty and `seed` unset (fill them with struct-update syntax).
+    pub fn current(git_revision: impl Into<String>, created: impl Into<String>) -> Self {
+        Self {
+            tack_version: env!("CARGO_PKG_VERSION").to_owned(),
+            git_revision: git_revision.into(),
+            command_line: std::env::args().collect::<Vec<_>>().join(" "),
+            scene: String::new(),
+            created: created.into(),
+            seed: None,
+        }
+    }
+}
+
+/// The force–approach curve: one entry per step of the approach path in every column.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Curve {
+    /// Rigid approach `d` (positive = pressing).
+    pub approach: Vec<f64>,
+    /// Total force (positive = compressive).
+    pub force: Vec<f64>,
+    /// Contact area.
+    pub area: Vec<f64>,
+    /// Number of bonded (in-contact) elements.
+    pub n_bonded: Vec<u64>,
+    /// Number of connected contact clusters.
+    pub n_clusters: Vec<u64>,
+    /// Conjugate-gradient iterations of the solve.
+    pub iterations: Vec<u64>,
+    /// Outer (active-set / detachment) iterations of the solve.
+    pub active_set_iterations: Vec<u64>,
+    /// Whether the solve converged within its caps.
+    pub converged: Vec<bool>,
+    /// Mean pressure over the grid, when recorded.
+    pub mean_pressure: Option<Vec<f64>>,
+}
+
+impl Curve {
+    /// Number of steps (the length of `approach`).
+    pub fn len(&self) -> usize {
+        self.approach.len()
+    }
+
+    /// Whether the curve has no steps.
+    pub fn is_empty(&self) -> bool {
+        self.approach.is_empty()
+    }
+
+    /// Name and length of every present column, `approach` first.
+    pub(crate) fn column_lengths(&self) -> Vec<(&'static str, usize)> {
+        let mut cols = vec![
+            ("approach", self.approach.len()),
+            ("force", self.force.len()),
+            ("area", self.area.len()),
+            ("n_bonded", self.n_bonded.len()),
+            ("n_clusters", self.n_clusters.len()),
+            ("iterations", self.iterations.len()),
+            ("active_set_iterations", self.active_set_iterations.len()),
+            ("converged", self.converged.len()),
+        ];
+        if let Some(p) = &self.mean_pressure {
+            cols.push(("mean_pressure", p.len()));
+        }
+        cols
+    }
+
+    /// Checks that every column has the length of `approach`.
+    pub(crate) fn check_lengths(&self, path: &Path) -> Result<(), IoError> {
+        let expected = self.len();
+        match self
+            .column_lengths()
+            .into_iter()
+            .find(|&(_, len)| len != expected)
+        {
+            Some((column, len)) => Err(IoError::ColumnLength {
+                path: path.to_owned(),
+                column,
+                len,
+                expected,
+            }),
+            None => Ok(()),
+        }
+    }
+}
+
+/// The contact configuration at one step of the curve.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Snapshot {
+    /// Index into the curve; also the group name under `/snapshots`.
+    pub step: usize,
+    /// Approach at this step.
+    pub approach: f64,
+    /// Element pressures `(nx, ny)`.
+    pub pressure: Array2<f64>,
+    /// Bonded (in-contact) elements `(nx, ny)`, stored as u8 0/1.
+    pub bonded: Array2<bool>,
+}
+
+impl Snapshot {
+    /// Checks that the step indexes a curve of `curve_len` steps and the arrays agree in shape.
+    pub(crate) fn check(&self, curve_len: usize, path: &Path) -> Result<(), IoError> {
+        let what = if self.step >= curve_len {
+            format!(
+                "snapshot step {} is beyond the curve's {curve_len} steps",
+                self.step
+            )
+        } else if self.pressure.dim() != self.bonded.dim() {
+            format!(
+                "snapshot {}: `pressure` is {:?} but `bonded` is {:?}",
+                self.step,
+                self.pressure.dim(),
+                self.bonded.dim()
+            )
+        } else {
+            return Ok(());
+        };
+        Err(IoError::Invalid {
+            path: path.to_owned(),
+            what,
+        })
+    }
+}
+
+/// Scalar results of a run, written as attributes of `/summary`.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Summary {
+    /// Pull-off force (the most tensile force of the curve).
+    pub pull_off_force: f64,
+    /// JKR pull-off force of the smooth sphere.
+    pub f_jkr: f64,
+    /// `pull_off_force / f_jkr`.
+    pub pull_off_ratio: f64,
+    /// Johnson's adhesion parameter α, when the surface is a single waviness.
+    pub johnson_alpha: Option<f64>,
+    /// The roughness parameter α*, when the surface is random.
+    pub alpha_star: Option<f64>,
+    /// Further named scalars; names must differ from the fields above. Read back in name order.
+    pub extra: BTreeMap<String, f64>,
+}
+
+impl Summary {
+    /// Names of the attributes modelled by fields, which `extra` may not use.
+    pub(crate) const RESERVED: [&'static str; 5] = [
+        "pull_off_force",
+        "f_jkr",
+        "pull_off_ratio",
+        "johnson_alpha",
+        "alpha_star",
+    ];
+
+    /// Every attribute to write: the fields that are set, then `extra`.
+    pub(crate) fn attributes(&self) -> Vec<(&str, f64)> {
+        let optional = [
+            ("johnson_alpha", self.johnson_alpha),
+            ("alpha_star", self.alpha_star),
+        ];
+        [
+            ("pull_off_force", self.pull_off_force),
+            ("f_jkr", self.f_jkr),
+            ("pull_off_ratio", self.pull_off_ratio),
+        ]
+        .into_iter()
+        .chain(optional.into_iter().filter_map(|(n, v)| Some((n, v?))))
+        .chain(self.extra.iter().map(|(n, &v)| (n.as_str(), v)))
+        .collect()
+    }
+}
+
+/// Everything a result file holds.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunResult {
+    /// Root attributes.
+    pub provenance: Provenance,
+    /// `/curve`.
+    pub curve: Curve,
+    /// `/surface/heights` `(nx, ny)` and its `dx`, when asked for.
+    pub surface: Option<(Array2<f64>, f64)>,
+    /// `/snapshots/<step>`, in any order when writing; read back sorted by step.
+    pub snapshots: Vec<Snapshot>,
+    /// `/summary`.
+    pub summary: Summary,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn current_records_version_and_command_line() {
+        let p = Provenance::current("abc123", "2026-01-01T00:00:00Z");
+        assert_eq!(p.tack_version, env!("CARGO_PKG_VERSION"));
+        assert_eq!(p.git_revision, "abc123");
+        assert!(!p.command_line.is_empty());
+        assert!(p.scene.is_empty() && p.seed.is_none());
+    }
+
+    #[test]
+    fn summary_writes_only_set_attributes() {
+        let mut s = Summary {
+            pull_off_force: -1.0,
+            f_jkr: 2.0,
+            pull_off_ratio: 0.5,
+            alpha_star: Some(0.3),
+            ..Summary::default()
+        };
+        s.extra.insert("w".into(), 0.1);
+        let names: Vec<_> = s.attributes().into_iter().map(|(n, _)| n).collect();
+        assert_eq!(
+            names,
+            [
+                "pull_off_force",
+                "f_jkr",
+                "pull_off_ratio",
+                "alpha_star",
+                "w"
+            ]
+        );
+    }
+}

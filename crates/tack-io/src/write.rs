@@ -1,0 +1,165 @@
+//! Writing a [`RunResult`] atomically: to a temporary file beside the target, renamed onto it
+//! only when everything has been written and the file closed.
+
+use std::collections::BTreeSet;
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use hdf5::{File, Group};
+
+use crate::h5::{create_group, h5err, write_attr, write_dataset, write_str_attr};
+use crate::read::check_dx;
+use crate::{Curve, IoError, Provenance, RunResult, Snapshot, Summary};
+
+/// Distinguishes temporaries of concurrent writes from one process.
+static TEMPORARIES: AtomicU64 = AtomicU64::new(0);
+
+/// Writes `result` to `path` in the layout described in the crate documentation.
+///
+/// The file is first written to `.<name>.tmp-<pid>-<n>` in the same directory and renamed onto
+/// `path` only on success; on any error the temporary is removed and an existing file at `path`
+/// is left untouched. Errors: missing parent directory, curve columns of unequal length,
+/// snapshots beyond the curve or with mismatched shapes, duplicate snapshot steps, `extra`
+/// summary names that shadow a field, a non-positive `dx`, and HDF5 or file-system failures.
+pub fn write_result(path: &Path, result: &RunResult) -> Result<(), IoError> {
+    let tmp = temporary_path(path)?;
+    let outcome = write_file(&tmp, path, result).and_then(|()| {
+        fs::rename(&tmp, path).map_err(|cause| IoError::Fs {
+            path: path.to_owned(),
+            what: format!("renaming the temporary `{}` onto it", tmp.display()),
+            cause,
+        })
+    });
+    if outcome.is_err() {
+        // The temporary may never have been created; nothing more to do if removal fails.
+        let _ = fs::remove_file(&tmp);
+    }
+    outcome
+}
+
+fn temporary_path(path: &Path) -> Result<PathBuf, IoError> {
+    let invalid = |what: &str| IoError::Invalid {
+        path: path.to_owned(),
+        what: what.to_owned(),
+    };
+    let name = path.file_name().ok_or_else(|| invalid("not a file name"))?;
+    let parent = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    if !parent.is_dir() {
+        return Err(IoError::MissingParent {
+            path: path.to_owned(),
+            parent: parent.to_owned(),
+        });
+    }
+    if path.is_dir() {
+        return Err(invalid("is a directory"));
+    }
+    let n = TEMPORARIES.fetch_add(1, Ordering::Relaxed);
+    let pid = std::process::id();
+    Ok(parent.join(format!(".{}.tmp-{pid}-{n}", name.to_string_lossy())))
+}
+
+fn write_file(tmp: &Path, path: &Path, result: &RunResult) -> Result<(), IoError> {
+    let file = File::create(tmp).map_err(h5err(
+        path,
+        format!("creating the temporary `{}`", tmp.display()),
+    ))?;
+    write_provenance(&file, &result.provenance, path)?;
+    write_curve(&file, &result.curve, path)?;
+    if let Some((heights, dx)) = &result.surface {
+        check_dx(*dx, "/surface/heights", path)?;
+        let surface = create_group(&file, "surface", path)?;
+        let heights = write_dataset(&surface, "heights", heights.view(), path)?;
+        write_attr(&heights, "dx", dx, path)?;
+    }
+    write_snapshots(&file, &result.snapshots, result.curve.len(), path)?;
+    write_summary(&file, &result.summary, path)?;
+    file.close().map_err(h5err(path, "closing the file"))
+}
+
+fn write_provenance(file: &File, p: &Provenance, path: &Path) -> Result<(), IoError> {
+    for (name, value) in [
+        ("tack_version", &p.tack_version),
+        ("git_revision", &p.git_revision),
+        ("command_line", &p.command_line),
+        ("scene", &p.scene),
+        ("created", &p.created),
+    ] {
+        write_str_attr(file, name, value, path)?;
+    }
+    match &p.seed {
+        Some(seed) => write_attr(file, "seed", seed, path),
+        None => Ok(()),
+    }
+}
+
+fn write_curve(file: &File, curve: &Curve, path: &Path) -> Result<(), IoError> {
+    curve.check_lengths(path)?;
+    let group = create_group(file, "curve", path)?;
+    let mean_pressure = curve.mean_pressure.as_ref().map(|p| ("mean_pressure", p));
+    for (name, data) in [
+        ("approach", &curve.approach),
+        ("force", &curve.force),
+        ("area", &curve.area),
+    ]
+    .into_iter()
+    .chain(mean_pressure)
+    {
+        write_dataset(&group, name, data.into(), path)?;
+    }
+    for (name, data) in [
+        ("n_bonded", &curve.n_bonded),
+        ("n_clusters", &curve.n_clusters),
+        ("iterations", &curve.iterations),
+        ("active_set_iterations", &curve.active_set_iterations),
+    ] {
+        write_dataset(&group, name, data.into(), path)?;
+    }
+    let converged: Vec<u8> = curve.converged.iter().map(|&c| u8::from(c)).collect();
+    write_dataset(&group, "converged", (&converged).into(), path).map(drop)
+}
+
+fn write_snapshots(
+    file: &File,
+    snapshots: &[Snapshot],
+    curve_len: usize,
+    path: &Path,
+) -> Result<(), IoError> {
+    let group = create_group(file, "snapshots", path)?;
+    let mut seen = BTreeSet::new();
+    for s in snapshots {
+        s.check(curve_len, path)?;
+        if !seen.insert(s.step) {
+            return Err(IoError::Invalid {
+                path: path.to_owned(),
+                what: format!("snapshot step {} appears more than once", s.step),
+            });
+        }
+        let step: Group = create_group(&group, &s.step.to_string(), path)?;
+        write_attr(&step, "approach", &s.approach, path)?;
+        write_dataset(&step, "pressure", s.pressure.view(), path)?;
+        write_dataset(&step, "bonded", s.bonded.mapv(u8::from).view(), path)?;
+    }
+    Ok(())
+}
+
+fn write_summary(file: &File, summary: &Summary, path: &Path) -> Result<(), IoError> {
+    if let Some(name) = summary
+        .extra
+        .keys()
+        .find(|n| Summary::RESERVED.contains(&n.as_str()))
+    {
+        return Err(IoError::Invalid {
+            path: path.to_owned(),
+            what: format!("summary extra `{name}` shadows the field of the same name"),
+        });
+    }
+    let group = create_group(file, "summary", path)?;
+    summary
+        .attributes()
+        .into_iter()
+        .try_for_each(|(name, value)| write_attr(&group, name, &value, path))
+}
