@@ -71,3 +71,38 @@ pub fn kernels() -> Result<()> {
     }
     Ok(())
 }
+
+/// `cargo xtask bench-jkr`: speed against error on the smooth JKR sphere (paper's criterion).
+pub fn jkr(args: &[String]) -> Result<()> {
+    let ratios: Vec<f64> = if args.is_empty() {
+        vec![5.0, 10.0, 20.0, 40.0, 80.0]
+    } else {
+        args.iter()
+            .map(|a| {
+                a.parse()
+                    .map_err(|_| anyhow::anyhow!("ratio `{a}` is not a number"))
+            })
+            .collect::<Result<_>>()?
+    };
+    println!(
+        "smooth sphere, free boundaries, κ = 0.473201, load to d̂ = 6, retract in steps of 0.01"
+    );
+    println!(
+        "{:>8} {:>8} {:>7} {:>10} {:>10} {:>12} {:>12}",
+        "a_c/Δx", "grid", "steps", "CG iters", "time [s]", "F/F_JKR − 1", "jump-off d̂"
+    );
+    for ratio in ratios {
+        let t = Instant::now();
+        let run = tack_tests::JkrSphere::new(ratio, tack_solver::KAPPA).run();
+        let secs = t.elapsed().as_secs_f64();
+        println!(
+            "{ratio:>8} {:>8} {:>7} {:>10} {secs:>10.2} {:>+12.4} {:>12.3}",
+            format!("{}²", run.grid.nx()),
+            run.result.records.len(),
+            run.result.cg_iterations(),
+            run.pull_off_error,
+            run.last_contact_approach
+        );
+    }
+    Ok(())
+}

@@ -18,4 +18,4 @@ pub use grid::{Boundary, Grid};
 pub use heightmap::{height_map_surface, read_height_map_file, read_height_map_text};
 pub use rough::{RoughSpec, rough_surface};
 pub use shapes::{DEFAULT_PUNCH_LIFT, FlatPunch, PunchFace, Shape, Sphere, Waviness1d, Waviness2d};
-pub use surface::Surface;
+pub use surface::{Surface, Window};

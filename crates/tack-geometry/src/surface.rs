@@ -5,6 +5,26 @@ use ndarray::Array2;
 use crate::error::{GeometryError, finite};
 use crate::{Grid, Shape};
 
+/// A rectangular block of elements `[i0, i1) × [j0, j1)` of a grid.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Window {
+    /// First row (x index).
+    pub i0: usize,
+    /// One past the last row.
+    pub i1: usize,
+    /// First column (y index).
+    pub j0: usize,
+    /// One past the last column.
+    pub j1: usize,
+}
+
+impl Window {
+    /// Number of elements `(rows, columns)`.
+    pub fn shape(&self) -> (usize, usize) {
+        (self.i1 - self.i0, self.j1 - self.j0)
+    }
+}
+
 /// Heights `f` of the rigid body, one per element of a [`Grid`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct Surface {
@@ -79,6 +99,45 @@ impl Surface {
         }
     }
 
+    /// The part of the surface inside `window` (a sub-grid with the same `dx` and boundary).
+    pub fn window(&self, window: &Window) -> Result<Surface, GeometryError> {
+        let (nx, ny) = self.grid.shape();
+        if window.i1 > nx || window.j1 > ny || window.i0 >= window.i1 || window.j0 >= window.j1 {
+            return Err(GeometryError::Mismatch(format!(
+                "window {window:?} does not lie inside the {nx}×{ny} grid"
+            )));
+        }
+        let grid = Grid::new(
+            window.i1 - window.i0,
+            window.j1 - window.j0,
+            self.grid.dx(),
+            self.grid.boundary(),
+        )?;
+        let heights = self
+            .heights
+            .slice(ndarray::s![window.i0..window.i1, window.j0..window.j1])
+            .to_owned();
+        Ok(Surface { grid, heights })
+    }
+
+    /// The smallest window holding every element with `height ≤ level`, grown by `pad` elements
+    /// on each side (clipped to the grid); `None` if no element qualifies.
+    pub fn window_below(&self, level: f64, pad: usize) -> Option<Window> {
+        let (nx, ny) = self.grid.shape();
+        let (mut i0, mut i1, mut j0, mut j1) = (usize::MAX, 0, usize::MAX, 0);
+        for ((i, j), &h) in self.heights.indexed_iter() {
+            if h <= level {
+                (i0, i1, j0, j1) = (i0.min(i), i1.max(i + 1), j0.min(j), j1.max(j + 1));
+            }
+        }
+        (i1 > 0).then(|| Window {
+            i0: i0.saturating_sub(pad),
+            i1: (i1 + pad).min(nx),
+            j0: j0.saturating_sub(pad),
+            j1: (j1 + pad).min(ny),
+        })
+    }
+
     /// Lowest height.
     pub fn min(&self) -> f64 {
         self.heights.iter().copied().fold(f64::INFINITY, f64::min)
@@ -126,6 +185,37 @@ mod tests {
             let eq6 = (x * x + y * y) / (2.0 * r) + h * (1.0 - (k * x).cos() * (k * y).cos());
             assert!((f - eq6).abs() < 1e-15, "({i}, {j})");
         }
+    }
+
+    #[test]
+    fn window_below_finds_the_lowest_region() {
+        let g = Grid::square(11, 1.0, Boundary::Free).unwrap();
+        let s = Surface::from_shape(g, &Sphere::new(1.0).unwrap());
+        // Heights (x² + y²)/2 ≤ 2 ⇔ |x|, |y| ≤ 2: rows 3..8 with the centre at 5.
+        let w = s.window_below(2.0, 0).unwrap();
+        assert_eq!(
+            w,
+            Window {
+                i0: 3,
+                i1: 8,
+                j0: 3,
+                j1: 8
+            }
+        );
+        let w2 = s.window_below(2.0, 10).unwrap();
+        assert_eq!(w2.shape(), (11, 11));
+        let sub = s.window(&w).unwrap();
+        assert_eq!(sub.heights()[[2, 2]], 0.0);
+        assert!(s.window_below(-1.0, 0).is_none());
+        assert!(
+            s.window(&Window {
+                i0: 5,
+                i1: 12,
+                j0: 0,
+                j1: 1
+            })
+            .is_err()
+        );
     }
 
     #[test]

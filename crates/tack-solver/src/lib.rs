@@ -10,6 +10,7 @@
 mod adhesive;
 mod clusters;
 mod contact;
+mod crop;
 mod options;
 mod path;
 mod state;
@@ -17,6 +18,7 @@ mod state;
 pub use adhesive::{AdhesiveOptions, AdhesiveSolver, KAPPA, KAPPA_LINE, StepRecord};
 pub use clusters::count_clusters;
 pub use contact::ContactSolver;
+pub use crop::{contact_window, touches_edge};
 pub use options::{SolverError, SolverOptions};
 pub use path::{ApproachPath, Observer, PathResult, Phase, Snapshot, SnapshotRequest};
 pub use state::ContactState;
