@@ -17,9 +17,9 @@ use crate::{ElasticOperator, KernelError, check_modulus, stiffness_spectrum};
 pub struct FreeOperator {
     grid: Grid,
     e_star: f64,
-    /// Kernel spectrum. The kernel is real and even, so its spectrum is real: store only that.
-    kernel_hat: Array2<f64>,
-    precond_hat: Array2<f64>,
+    /// Kernel spectrum (real: the kernel is even), in the transform's layout.
+    kernel_hat: Vec<f64>,
+    precond_hat: Vec<f64>,
     fft: Fft2,
 }
 
@@ -48,12 +48,14 @@ impl FreeOperator {
             }
         });
         let mut fft = Fft2::new(mx, my);
-        let kernel_hat = fft.transform(kernel.view()).mapv(|c| c.re);
+        let spectrum = fft.transform(kernel.view()).mapv(|c| c.re);
+        let kernel_hat = fft.prepare_kernel(&spectrum);
+        let precond_hat = fft.prepare_kernel(&stiffness_spectrum(mx, my, dx, e_star));
         Ok(Self {
             grid,
             e_star,
             kernel_hat,
-            precond_hat: stiffness_spectrum(mx, my, dx, e_star),
+            precond_hat,
             fft,
         })
     }

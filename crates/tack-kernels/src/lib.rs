@@ -6,6 +6,7 @@
 //! of its own. Nothing in this crate does IO.
 
 mod fft2;
+pub use fft2::Fft2;
 mod free;
 mod love;
 mod periodic;
@@ -52,8 +53,8 @@ pub trait ElasticOperator: Send {
     }
 }
 
-/// Spectral stiffness `E*|q|/2` on an `mx × my` transform grid of spacing `dx`, laid out as the
-/// half spectrum of [`fft2::Fft2`]; q = 0 is replaced by the smallest non-zero |q|.
+/// Spectral stiffness `E*|q|/2` on an `mx × my` transform grid of spacing `dx`, in natural
+/// half-spectrum layout `(mx, my/2 + 1)`; q = 0 is replaced by the smallest non-zero |q|.
 pub(crate) fn stiffness_spectrum(
     mx: usize,
     my: usize,

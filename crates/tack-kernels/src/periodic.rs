@@ -1,7 +1,7 @@
 //! Periodic boundaries: the spectral half-space kernel `ũ(q) = 2 p̃(q)/(E*|q|)` with the
 //! mean (q = 0) mode dropped, so displacements are zero-mean (REFERENCE §1).
 
-use ndarray::{Array2, ArrayView2, ArrayViewMut2};
+use ndarray::{ArrayView2, ArrayViewMut2};
 use tack_geometry::Grid;
 
 use crate::fft2::Fft2;
@@ -15,9 +15,9 @@ use crate::{ElasticOperator, KernelError, check_modulus, stiffness_spectrum, wav
 pub struct PeriodicOperator {
     grid: Grid,
     e_star: f64,
-    kernel_hat: Array2<f64>,
-    inverse_hat: Array2<f64>,
-    precond_hat: Array2<f64>,
+    kernel_hat: Vec<f64>,
+    inverse_hat: Vec<f64>,
+    precond_hat: Vec<f64>,
     self_compliance: f64,
     fft: Fft2,
 }
@@ -47,9 +47,9 @@ impl PeriodicOperator {
         Ok(Self {
             grid,
             e_star,
-            kernel_hat,
-            inverse_hat,
-            precond_hat,
+            kernel_hat: fft.prepare_kernel(&kernel_hat),
+            inverse_hat: fft.prepare_kernel(&inverse_hat),
+            precond_hat: fft.prepare_kernel(&precond_hat),
             self_compliance: total / n,
             fft,
         })
