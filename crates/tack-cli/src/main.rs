@@ -1,17 +1,149 @@
-//! The `tack` command line. Scene files, runs and result files arrive with the CLI issue; today
-//! it answers `--help` and `--version`.
+//! The `tack` binary: run scenes, write and inspect HDF5 result files, plot them.
+//!
+//! Exit status 0 on success; on any error a message `error: ...` naming the field or file goes
+//! to stderr and the status is 1 (2 for command-line usage errors, from clap).
 
-use clap::Parser;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::Context;
+use clap::{Parser, Subcommand};
+use tack_cli::problem::Problem;
+use tack_cli::run::{self, RunOptions, num};
+use tack_cli::scene::Scene;
+use tack_cli::{plot, provenance};
 
 /// Adhesive strength of rough elastic contacts (Li, Pohrt & Popov 2019), by FFT-accelerated BEM.
+///
+/// A scene file (TOML, see docs/scenes.md) describes material, body, grid and approach path;
+/// `tack run` solves it and writes an HDF5 result file readable by h5py and h5dump.
 #[derive(Debug, Parser)]
-#[command(name = "tack", version, about)]
-struct Cli {}
+#[command(name = "tack", version, propagate_version = true)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
 
-fn main() {
-    let _ = Cli::parse();
-    println!(
-        "tack {}: no subcommands yet; see README.md",
-        env!("CARGO_PKG_VERSION")
-    );
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Run a scene: load, unload, write the result file and print a summary.
+    Run {
+        /// The scene file (TOML).
+        scene: PathBuf,
+        /// The result file to write (HDF5; written atomically: temporary file + rename).
+        #[arg(short, long, value_name = "OUT.h5")]
+        output: PathBuf,
+        /// Do not draw the progress bar (it is drawn only on a terminal anyway).
+        #[arg(short, long)]
+        quiet: bool,
+        /// Override a scene value before validation, e.g. `--set roughness.h=0.002`
+        /// (value parsed as TOML, else taken as a string). Repeatable.
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+    },
+    /// Write only the generated surface (heights and dx) of a scene to an HDF5 file.
+    Surface {
+        /// The scene file (TOML).
+        scene: PathBuf,
+        /// The file to write (HDF5; `/surface/heights` with attribute `dx`).
+        #[arg(short, long, value_name = "SURF.h5")]
+        output: PathBuf,
+        /// Override a scene value, as for `tack run`. Repeatable.
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+    },
+    /// Validate a scene without running it: print the grid, first touch and path.
+    Check {
+        /// The scene file (TOML).
+        scene: PathBuf,
+        /// Override a scene value, as for `tack run`. Repeatable.
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+    },
+    /// Describe a result file: provenance, curve, surface, snapshots, summary.
+    Info {
+        /// The result file (HDF5).
+        file: PathBuf,
+    },
+    /// Plot the force–approach curve (and stored contact snapshots) of a result file.
+    Plot {
+        /// The result file (HDF5).
+        file: PathBuf,
+        /// The figure to write: `.svg` (or `.png` when built with the `png` feature).
+        #[arg(short, long, value_name = "FIG.svg")]
+        output: PathBuf,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match execute(cli.command) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn execute(command: Command) -> anyhow::Result<()> {
+    match command {
+        Command::Run {
+            scene,
+            output,
+            quiet,
+            set,
+        } => {
+            let options = RunOptions {
+                quiet,
+                command_line: None,
+            };
+            let (scene, outcome) = run::run_scene(&scene, &set, &output, &options)?;
+            print!("{}", run::report(&scene, &outcome, Some(&output)));
+        }
+        Command::Surface { scene, output, set } => {
+            let scene = Scene::load(&scene, &set)?;
+            run::check_output_path(&output)?;
+            let problem = Problem::from_scene(&scene)?;
+            let prov = provenance::provenance(&scene, &problem, provenance::command_line());
+            tack_io::write_result(&output, &run::surface_file(&problem, prov))?;
+            let g = problem.grid;
+            println!(
+                "wrote {}: {} x {} heights, dx = {}, min {}, max {}",
+                output.display(),
+                g.nx(),
+                g.ny(),
+                num(g.dx()),
+                num(problem.surface.min()),
+                num(problem.surface.max())
+            );
+        }
+        Command::Check { scene, set } => {
+            let loaded = Scene::load(&scene, &set)?;
+            let p = Problem::from_scene(&loaded)?;
+            println!(
+                "{}: ok\n  grid {} x {}, dx = {}\n  first touch at d = {}; path d = {} → {} \
+                 (load step {}, unload step {})",
+                scene.display(),
+                p.grid.nx(),
+                p.grid.ny(),
+                num(p.grid.dx()),
+                num(p.first_touch),
+                num(p.path.start),
+                num(p.path.max_approach),
+                num(p.path.load_step),
+                num(p.path.unload_step)
+            );
+        }
+        Command::Info { file } => {
+            let text = tack_io::describe(&file)?;
+            print!("{text}");
+        }
+        Command::Plot { file, output } => {
+            plot::plot_file(&file, &output)
+                .with_context(|| format!("plotting {}", file.display()))?;
+            println!("wrote {}", output.display());
+        }
+    }
+    Ok(())
 }

@@ -9,13 +9,14 @@
 //! bonded set visited in the step; a revisit stops the loop and the step reports
 //! `converged = false`. The loop is also capped.
 
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 use std::hash::{DefaultHasher, Hash, Hasher};
 
 use ndarray::{Array2, Zip};
-use tack_geometry::{Boundary, Surface};
-use tack_kernels::ElasticOperator;
+use tack_geometry::{Boundary, Surface, Window};
+use tack_kernels::{ElasticOperator, FreeOperator, padded_size};
 
+use crate::cg::{Work, pcg};
 use crate::clusters::count_clusters;
 use crate::{SolverError, SolverOptions};
 
@@ -55,6 +56,8 @@ pub struct AdhesiveOptions {
     pub max_active_set_iterations: usize,
     /// Precondition CG with the spectral stiffness `E*|q|/2` restricted to the bonded set.
     pub preconditioned: bool,
+    /// Free grids: run CG on a sub-grid around the bonded set when that is much smaller.
+    pub bonded_subgrid: bool,
 }
 
 impl Default for AdhesiveOptions {
@@ -66,6 +69,7 @@ impl Default for AdhesiveOptions {
             },
             max_active_set_iterations: 1_000,
             preconditioned: true,
+            bonded_subgrid: true,
         }
     }
 }
@@ -106,12 +110,9 @@ pub struct AdhesiveSolver {
     options: AdhesiveOptions,
     bonded: Array2<bool>,
     pressure: Array2<f64>,
-    disp: Array2<f64>,
     gap: Array2<f64>,
-    resid: Array2<f64>,
-    dir: Array2<f64>,
-    kdir: Array2<f64>,
-    zres: Array2<f64>,
+    work: Work,
+    boxes: HashMap<(usize, usize), SubProblem>,
     /// Pressure and approach of the previous step, for the secant predictor.
     history: Option<(Array2<f64>, f64)>,
     last_approach: Option<f64>,
@@ -165,12 +166,9 @@ impl AdhesiveSolver {
             options,
             bonded: Array2::from_elem(shape, false),
             pressure: z.clone(),
-            disp: z.clone(),
-            gap: z.clone(),
-            resid: z.clone(),
-            dir: z.clone(),
-            kdir: z.clone(),
-            zres: z,
+            gap: z,
+            work: Work::new(shape),
+            boxes: HashMap::new(),
             history: None,
             last_approach: None,
         })
@@ -251,7 +249,7 @@ impl AdhesiveSolver {
             let cycle = !visited.insert(hash_mask(&self.bonded));
             if n_bonded == 0 {
                 self.pressure.fill(0.0);
-                self.disp.fill(0.0);
+                self.work.disp.fill(0.0);
             } else {
                 let (it, res, ok) = self.solve_bonded(d);
                 cg_total += it;
@@ -260,7 +258,7 @@ impl AdhesiveSolver {
             }
             Zip::from(&mut self.gap)
                 .and(&self.heights)
-                .and(&self.disp)
+                .and(&self.work.disp)
                 .for_each(|g, &f, &u| *g = f - d + u);
             if cycle {
                 converged = false;
@@ -322,118 +320,86 @@ impl AdhesiveSolver {
             .op
             .solve_zero_mean(self.gap.view(), self.pressure.view_mut());
         debug_assert!(periodic);
-        self.disp.assign(&self.gap);
+        self.work.disp.assign(&self.gap);
         self.pressure.iter().copied().fold(f64::INFINITY, f64::min)
     }
 
-    /// Conjugate gradients for `K_CC p_C = (d − f)_C`, warm-started from the current pressure.
-    /// Keeps the full-field displacement `disp = K p` up to date. Returns (iterations, relative
-    /// residual, converged).
+    /// Conjugate gradients for `K_CC p_C = (d − f)_C`, warm-started from the current pressure;
+    /// leaves `work.disp = K p` on the full grid. On free grids whose bonded set fills little of
+    /// the grid, the CG runs on a sub-grid around the bonded set (the free operator is exact on
+    /// any sub-grid, so the linear problem is the same) and one full-grid product follows.
+    /// Returns (iterations, relative residual, converged).
     fn solve_bonded(&mut self, d: f64) -> (usize, f64, bool) {
-        let bonded = &self.bonded;
-        Zip::from(&mut self.pressure).and(bonded).for_each(|p, &b| {
-            if !b {
-                *p = 0.0
-            }
-        });
-        let (mut n_c, mut b2, mut fmax, mut fmin) = (0usize, 0.0, f64::NEG_INFINITY, f64::INFINITY);
-        Zip::from(&self.heights).and(bonded).for_each(|&f, &b| {
-            if b {
-                n_c += 1;
-                b2 += (d - f) * (d - f);
-                fmax = fmax.max(f);
-                fmin = fmin.min(f);
-            }
-        });
-        // Displacement scale: rms right-hand side, floored so a zero right-hand side still has
-        // a meaningful relative tolerance.
-        let scale = (b2 / n_c as f64)
-            .sqrt()
-            .max(1e-3 * (fmax - fmin))
-            .max(f64::MIN_POSITIVE);
-        let target = (self.options.cg.tolerance * scale).powi(2) * n_c as f64;
-        let max_it = self.options.cg.max_iterations;
-        let mut it = 0;
-        loop {
-            // (Re)start from the true residual r = (d − f − K p)_C.
-            self.op.apply(self.pressure.view(), self.disp.view_mut());
-            let mut rr = 0.0;
-            Zip::from(&mut self.resid)
-                .and(&self.heights)
-                .and(&self.disp)
-                .and(&self.bonded)
-                .for_each(|r, &f, &u, &b| {
-                    *r = if b { d - f - u } else { 0.0 };
-                    rr += *r * *r;
-                });
-            let rel = (rr / n_c as f64).sqrt() / scale;
-            if rr <= target {
-                return (it, rel, true);
-            }
-            if it >= max_it {
-                return (it, rel, false);
-            }
-            let mut rz = self.precondition();
-            self.dir.assign(&self.zres);
-            while it < max_it {
-                it += 1;
-                self.op.apply(self.dir.view(), self.kdir.view_mut());
-                let mut sq = 0.0;
-                Zip::from(&self.dir)
-                    .and(&self.kdir)
-                    .and(&self.bonded)
-                    .for_each(|&s, &q, &b| {
-                        if b {
-                            sq += s * q
-                        }
-                    });
-                let alpha = rz / sq;
-                let mut rr_new = 0.0;
-                Zip::from(&mut self.pressure)
-                    .and(&mut self.resid)
-                    .and(&self.dir)
-                    .and(&self.kdir)
-                    .and(&self.bonded)
-                    .for_each(|p, r, &s, &q, &b| {
-                        if b {
-                            *p += alpha * s;
-                            *r -= alpha * q;
-                            rr_new += *r * *r;
-                        }
-                    });
-                if rr_new <= target {
-                    break;
-                }
-                let rz_new = self.precondition();
-                let beta = rz_new / rz;
-                rz = rz_new;
-                Zip::from(&mut self.dir)
-                    .and(&self.zres)
-                    .for_each(|s, &z| *s = z + beta * *s);
-            }
+        let (cg, pre) = (self.options.cg, self.options.preconditioned);
+        let Some(window) = self.bonded_window() else {
+            return pcg(
+                self.op.as_mut(),
+                self.heights.view(),
+                self.bonded.view(),
+                d,
+                self.pressure.view_mut(),
+                &mut self.work,
+                &cg,
+                pre,
+            );
+        };
+        if self.boxes.len() > 16 {
+            self.boxes.clear();
         }
+        let shape = window.shape();
+        let (dx, e_star) = (self.op.grid().dx(), self.op.e_star());
+        let sub = self
+            .boxes
+            .entry(shape)
+            .or_insert_with(|| SubProblem::new(shape, dx, e_star));
+        let block = ndarray::s![window.i0..window.i1, window.j0..window.j1];
+        sub.pressure.assign(&self.pressure.slice(block));
+        sub.heights.assign(&self.heights.slice(block));
+        sub.bonded.assign(&self.bonded.slice(block));
+        let out = pcg(
+            &mut sub.op,
+            sub.heights.view(),
+            sub.bonded.view(),
+            d,
+            sub.pressure.view_mut(),
+            &mut sub.work,
+            &cg,
+            pre,
+        );
+        self.pressure.fill(0.0);
+        self.pressure.slice_mut(block).assign(&sub.pressure);
+        self.op
+            .apply(self.pressure.view(), self.work.disp.view_mut());
+        out
     }
 
-    /// `z = P_C M r` (or `z = r` without preconditioning); returns `r·z`.
-    fn precondition(&mut self) -> f64 {
-        if self.options.preconditioned {
-            self.op
-                .precondition(self.resid.view(), self.zres.view_mut());
-        } else {
-            self.zres.assign(&self.resid);
+    /// The sub-grid to solve on: the bonded set's bounding box, grown to the largest size with
+    /// the same FFT length (so few distinct sub-operators are built), or `None` when the grid is
+    /// periodic, sub-grids are switched off, or the box would not be much smaller than the grid.
+    fn bonded_window(&self) -> Option<Window> {
+        let grid = self.op.grid();
+        if grid.boundary() != Boundary::Free || !self.options.bonded_subgrid {
+            return None;
         }
-        let mut rz = 0.0;
-        Zip::from(&mut self.zres)
-            .and(&self.resid)
-            .and(&self.bonded)
-            .for_each(|z, &r, &b| {
-                if b {
-                    rz += r * *z;
-                } else {
-                    *z = 0.0;
-                }
-            });
-        rz
+        let (nx, ny) = grid.shape();
+        let (mut i0, mut i1, mut j0, mut j1) = (usize::MAX, 0, usize::MAX, 0);
+        for ((i, j), &b) in self.bonded.indexed_iter() {
+            if b {
+                (i0, i1, j0, j1) = (i0.min(i), i1.max(i + 1), j0.min(j), j1.max(j + 1));
+            }
+        }
+        if i1 == 0 {
+            return None;
+        }
+        let grow = |lo: usize, hi: usize, n: usize| {
+            let size = (padded_size(hi - lo) / 2).clamp(hi - lo, n);
+            let start = lo.min(n - size);
+            (start, start + size)
+        };
+        let (i0, i1) = grow(i0, i1, nx);
+        let (j0, j1) = grow(j0, j1, ny);
+        let small = 2 * (i1 - i0) * (j1 - j0) < nx * ny;
+        small.then_some(Window { i0, i1, j0, j1 })
     }
 
     fn record(
@@ -473,4 +439,28 @@ fn hash_mask(mask: &Array2<bool>) -> u64 {
         }
     }
     h.finish()
+}
+
+/// A bonded-set CG on a sub-grid: its own free operator and buffers.
+struct SubProblem {
+    op: FreeOperator,
+    work: Work,
+    pressure: Array2<f64>,
+    heights: Array2<f64>,
+    bonded: Array2<bool>,
+}
+
+impl SubProblem {
+    fn new(shape: (usize, usize), dx: f64, e_star: f64) -> Self {
+        let grid = tack_geometry::Grid::new(shape.0, shape.1, dx, Boundary::Free)
+            .expect("a sub-grid of a valid grid is valid");
+        Self {
+            op: FreeOperator::new(grid, e_star)
+                .expect("the modulus was validated with the operator"),
+            work: Work::new(shape),
+            pressure: Array2::zeros(shape),
+            heights: Array2::zeros(shape),
+            bonded: Array2::from_elem(shape, false),
+        }
+    }
 }

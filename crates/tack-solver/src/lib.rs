@@ -8,6 +8,7 @@
 //! this crate does IO or prints.
 
 mod adhesive;
+mod cg;
 mod clusters;
 mod contact;
 mod crop;

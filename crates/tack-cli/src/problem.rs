@@ -1,0 +1,712 @@
+//! From a parsed scene to a ready-to-solve problem: validated values, the grid, the surface
+//! (shape plus roughness, composed by addition), the approach path and the closed-form
+//! references (F_JKR, Johnson's α, α*, Kendall) that the summary compares against.
+//!
+//! Validation reuses the library crates' errors (they name the field) and adds the checks that
+//! need the whole scene: a wavelength the grid cannot resolve, a sphere contact that does not fit
+//! a free grid, a punch larger than the grid, a height map of the wrong shape or spacing, and an
+//! approach path that never touches the surface.
+
+use std::path::Path;
+
+use tack_geometry::{
+    Boundary, FlatPunch, Grid, RoughSpec, Sphere, Surface, Waviness1d, Waviness2d, rough_surface,
+};
+use tack_solver::{AdhesiveOptions, AdhesiveSolver, ApproachPath, KAPPA, SnapshotRequest};
+
+use crate::scene::{
+    BoundaryKind, DEFAULT_MAX_STEPS, Geometry, GridSpec, PunchKind, Roughness, Scene, SceneError,
+};
+
+/// Relative tolerance on a height map's `dx` against `grid.dx`.
+pub const DX_MATCH_TOLERANCE: f64 = 1e-9;
+
+/// Margin on the Hertz contact radius `sqrt(R·d)` when checking that a sphere fits a free grid.
+pub const SPHERE_FIT_MARGIN: f64 = 1.3;
+
+/// Largest number of grid elements `nx·ny` a scene may ask for (8192 × 8192): beyond it the
+/// solver's fields and FFT buffers would not fit in memory, and the run would abort instead of
+/// failing with a message.
+pub const MAX_ELEMENTS: usize = 1 << 26;
+
+/// Smallest wavelength, in elements, a waviness may have.
+pub const MIN_ELEMENTS_PER_WAVELENGTH: f64 = 4.0;
+
+/// Closed-form reference values for the summary; `None` where they do not apply.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct References {
+    /// JKR pull-off force −(3/2)πγR of the smooth sphere (Eq. 7), spheres only.
+    pub f_jkr: Option<f64>,
+    /// Approach at the JKR pull-off (Eq. 8), spheres only.
+    pub d_jkr: Option<f64>,
+    /// Johnson's parameter α (Eq. 3) of a waviness.
+    pub johnson_alpha: Option<f64>,
+    /// The adhesion parameter α* (Eq. 11) of random roughness.
+    pub alpha_star: Option<f64>,
+    /// Kendall's pull-off force −sqrt(8πa³E*γ) (signed: tensile) of a circular punch.
+    pub f_kendall: Option<f64>,
+    /// Mean pressure of complete non-adhesive contact of a waviness: p*_1D = πE*h/λ (Eq. 2)
+    /// or p*_2D = √2πE*h/λ (Eq. 5).
+    pub p_star: Option<f64>,
+}
+
+/// A validated scene, ready to run.
+#[derive(Debug, Clone)]
+pub struct Problem {
+    /// The grid.
+    pub grid: Grid,
+    /// The rigid body's heights (gap at zero approach).
+    pub surface: Surface,
+    /// Effective modulus `E*`.
+    pub e_star: f64,
+    /// Work of adhesion `γ`.
+    pub gamma: f64,
+    /// Pohrt–Popov constant κ.
+    pub kappa: f64,
+    /// Solver settings.
+    pub options: AdhesiveOptions,
+    /// The approach path.
+    pub path: ApproachPath,
+    /// Which steps keep fields.
+    pub snapshots: SnapshotRequest,
+    /// Whether the surface goes into the result file.
+    pub store_surface: bool,
+    /// `grid.crop` as given (recorded only: the solver runs on the full grid).
+    pub crop: bool,
+    /// The lowest surface height: the approach of the first touch.
+    pub first_touch: f64,
+    /// Seed of the random roughness, when there is one.
+    pub seed: Option<u64>,
+    /// Closed-form references.
+    pub references: References,
+}
+
+impl Problem {
+    /// Validates `scene` and builds grid, surface and path.
+    pub fn from_scene(scene: &Scene) -> Result<Self, SceneError> {
+        let f = &scene.file;
+        let (e_star, gamma) = (f.material.e_star, f.material.gamma);
+        if !(e_star.is_finite() && e_star > 0.0) {
+            return Err(tack_kernels::KernelError::Modulus(e_star).into());
+        }
+        if !(gamma.is_finite() && gamma >= 0.0) {
+            return Err(SceneError::out_of_range(
+                "material.gamma",
+                gamma,
+                "a finite number ≥ 0",
+            ));
+        }
+        let grid = build_grid(&f.grid)?;
+        let mut surface = base_surface(grid, &f.geometry)?;
+        let mut seed = None;
+        let mut references = References::default();
+        if let Some(roughness) = &f.roughness {
+            add_roughness(&mut surface, roughness, &scene.base_dir, &f.grid, &mut seed)?;
+            references.johnson_alpha = match *roughness {
+                Roughness::Waviness1d { h, lambda } | Roughness::Waviness2d { h, lambda } => {
+                    Some(tack_analytics::johnson_alpha(e_star, gamma, h, lambda))
+                }
+                _ => None,
+            };
+            references.p_star = match *roughness {
+                Roughness::Waviness1d { h, lambda } => {
+                    Some(tack_analytics::westergaard_p_star(e_star, h, lambda))
+                }
+                Roughness::Waviness2d { h, lambda } => {
+                    Some(tack_analytics::johnson_2d_p_star(e_star, h, lambda))
+                }
+                _ => None,
+            };
+            if let Roughness::Random {
+                h, hurst, q0, q1, ..
+            } = *roughness
+            {
+                let (q0, q1) = band(&grid, q0, q1);
+                references.alpha_star =
+                    Some(tack_analytics::alpha_star(e_star, gamma, h, hurst, q0, q1));
+            }
+        }
+        match f.geometry {
+            Geometry::Sphere { radius } => {
+                references.f_jkr = Some(tack_analytics::jkr_pull_off_force(gamma, radius));
+                references.d_jkr =
+                    Some(tack_analytics::jkr_pull_off_approach(e_star, gamma, radius));
+            }
+            Geometry::FlatPunch {
+                punch: PunchKind::Circle,
+                radius: Some(a),
+                ..
+            } => {
+                references.f_kendall = Some(-tack_analytics::kendall_pull_off(e_star, gamma, a));
+            }
+            _ => {}
+        }
+
+        let p = &f.protocol;
+        for (field, v) in [
+            ("protocol.max_approach", p.max_approach),
+            ("protocol.load_step", p.load_step),
+        ] {
+            if !v.is_finite() {
+                return Err(SceneError::out_of_range(field, v, "a finite number"));
+            }
+        }
+        if p.load_step <= 0.0 {
+            return Err(SceneError::out_of_range(
+                "protocol.load_step",
+                p.load_step,
+                "a finite number > 0",
+            ));
+        }
+        let first_touch = surface.min();
+        if p.max_approach <= first_touch {
+            return Err(SceneError::Inconsistent(format!(
+                "protocol.max_approach = {} never touches the surface: the first touch is at \
+                 approach {first_touch} (the lowest surface height); protocol.max_approach must \
+                 be > {first_touch}, e.g. {}",
+                p.max_approach,
+                first_touch + 10.0 * p.load_step
+            )));
+        }
+        let path = ApproachPath {
+            start: p
+                .start
+                .unwrap_or((first_touch + p.load_step).min(p.max_approach)),
+            max_approach: p.max_approach,
+            load_step: p.load_step,
+            unload_step: p.unload_step.unwrap_or(p.load_step),
+            retract_to: p.retract_to,
+            max_steps: p.max_steps.unwrap_or(DEFAULT_MAX_STEPS),
+        };
+        path.validate()?;
+        check_fits(&f.grid, &grid, &f.geometry, &path, first_touch)?;
+
+        let defaults = AdhesiveOptions::default();
+        let s = &f.solver;
+        let options = AdhesiveOptions {
+            cg: tack_solver::SolverOptions {
+                tolerance: s.tolerance.unwrap_or(defaults.cg.tolerance),
+                max_iterations: s.max_iterations.unwrap_or(defaults.cg.max_iterations),
+            },
+            max_active_set_iterations: s
+                .max_active_set_iterations
+                .unwrap_or(defaults.max_active_set_iterations),
+            ..defaults
+        };
+        options.cg.validate()?;
+        if options.max_active_set_iterations == 0 {
+            return Err(SceneError::out_of_range(
+                "solver.max_active_set_iterations",
+                0,
+                "an integer ≥ 1",
+            ));
+        }
+        let kappa = s.kappa.unwrap_or(KAPPA);
+        if !(kappa.is_finite() && kappa > 0.0) {
+            return Err(SceneError::out_of_range(
+                "solver.kappa",
+                kappa,
+                "a finite number > 0",
+            ));
+        }
+        Ok(Self {
+            grid,
+            surface,
+            e_star,
+            gamma,
+            kappa,
+            options,
+            path,
+            snapshots: (&f.output.snapshots).into(),
+            store_surface: f.output.surface,
+            crop: f.grid.crop,
+            first_touch,
+            seed,
+            references,
+        })
+    }
+
+    /// A fresh solver for this problem (builds the elastic operator: FFT plans, kernel spectrum).
+    pub fn solver(&self) -> Result<AdhesiveSolver, SceneError> {
+        let op = tack_kernels::operator_for(self.grid, self.e_star)?;
+        Ok(AdhesiveSolver::new(
+            op,
+            &self.surface,
+            self.gamma,
+            self.kappa,
+            self.options,
+        )?)
+    }
+}
+
+/// The roughness band with the paper's defaults: `q0 = 2π/L` (longer side), `q1 = π/Δx`.
+pub fn band(grid: &Grid, q0: Option<f64>, q1: Option<f64>) -> (f64, f64) {
+    let d = RoughSpec::paper_defaults(*grid, 0.0, 0.5, 0);
+    (q0.unwrap_or(d.q0), q1.unwrap_or(d.q1))
+}
+
+fn count(field: &str, n: usize) -> Result<usize, SceneError> {
+    if (1..=MAX_ELEMENTS_PER_AXIS).contains(&n) {
+        Ok(n)
+    } else {
+        Err(SceneError::out_of_range(
+            field,
+            n,
+            "an integer in 1..=65536",
+        ))
+    }
+}
+
+/// Largest number of elements per axis the geometry crate accepts (`grid.rs` there).
+const MAX_ELEMENTS_PER_AXIS: usize = 1 << 16;
+
+fn build_grid(g: &GridSpec) -> Result<Grid, SceneError> {
+    let (nx, ny) = match (g.n, g.nx, g.ny) {
+        (Some(n), None, None) => {
+            let n = count("grid.n", n)?;
+            (n, n)
+        }
+        (None, Some(nx), Some(ny)) => (count("grid.nx", nx)?, count("grid.ny", ny)?),
+        (Some(_), _, _) => {
+            return Err(SceneError::Inconsistent(
+                "grid: give either `n` (square grid) or both `nx` and `ny`, not both forms".into(),
+            ));
+        }
+        _ => {
+            return Err(SceneError::Inconsistent(
+                "grid: give either `n` (square grid) or both `nx` and `ny`".into(),
+            ));
+        }
+    };
+    if nx * ny > MAX_ELEMENTS {
+        let field = if g.n.is_some() {
+            "grid.n"
+        } else {
+            "grid.nx × grid.ny"
+        };
+        return Err(SceneError::Inconsistent(format!(
+            "{field} = {nx} × {ny} is too large: {} elements exceed the limit of {MAX_ELEMENTS} \
+             (8192 × 8192)",
+            nx * ny
+        )));
+    }
+    let dx = match (g.dx, g.length) {
+        (Some(dx), None) => dx,
+        (None, Some(length)) => {
+            if !(length.is_finite() && length > 0.0) {
+                return Err(SceneError::out_of_range(
+                    "grid.length",
+                    length,
+                    "a finite number > 0",
+                ));
+            }
+            length / nx as f64
+        }
+        (Some(_), Some(_)) => {
+            return Err(SceneError::Inconsistent(
+                "grid: give exactly one of `dx` and `length` (found both)".into(),
+            ));
+        }
+        (None, None) => {
+            return Err(SceneError::Inconsistent(
+                "grid: give exactly one of `dx` (element size) and `length` (domain length along x)"
+                    .into(),
+            ));
+        }
+    };
+    let boundary = match g.boundary {
+        BoundaryKind::Free => Boundary::Free,
+        BoundaryKind::Periodic => Boundary::Periodic,
+    };
+    Ok(Grid::new(nx, ny, dx, boundary)?)
+}
+
+fn base_surface(grid: Grid, geometry: &Geometry) -> Result<Surface, SceneError> {
+    Ok(match *geometry {
+        Geometry::Sphere { radius } => Surface::from_shape(
+            grid,
+            &Sphere::new(radius).map_err(rename("geometry.radius"))?,
+        ),
+        Geometry::FlatPunch {
+            punch,
+            radius,
+            half_side,
+        } => {
+            let punch = match (punch, radius, half_side) {
+                (PunchKind::Circle, Some(r), None) => {
+                    FlatPunch::circular(r).map_err(rename("geometry.radius"))?
+                }
+                (PunchKind::Square, None, Some(s)) => {
+                    FlatPunch::square(s).map_err(rename("geometry.half_side"))?
+                }
+                (PunchKind::Circle, _, _) => {
+                    return Err(SceneError::Inconsistent(
+                        "geometry: punch = \"circle\" needs `radius` (and no `half_side`)".into(),
+                    ));
+                }
+                (PunchKind::Square, _, _) => {
+                    return Err(SceneError::Inconsistent(
+                        "geometry: punch = \"square\" needs `half_side` (and no `radius`)".into(),
+                    ));
+                }
+            };
+            Surface::from_shape(grid, &punch)
+        }
+        Geometry::None => Surface::flat(grid),
+    })
+}
+
+/// Renames the field of a geometry range error to the scene's key (the geometry crate names
+/// the punch fields `geometry.punch_radius`/`punch_half_side`).
+fn rename(field: &'static str) -> impl Fn(tack_geometry::GeometryError) -> SceneError {
+    move |e| match e {
+        tack_geometry::GeometryError::OutOfRange { value, allowed, .. } => {
+            SceneError::out_of_range(field, value, allowed)
+        }
+        other => other.into(),
+    }
+}
+
+fn add_roughness(
+    surface: &mut Surface,
+    roughness: &Roughness,
+    base_dir: &Path,
+    spec: &GridSpec,
+    seed: &mut Option<u64>,
+) -> Result<(), SceneError> {
+    let grid = *surface.grid();
+    match roughness {
+        Roughness::Waviness1d { h, lambda } => {
+            let w = Waviness1d::new(*h, *lambda)?;
+            check_wavelength(&grid, *lambda, false)?;
+            surface.add_shape(&w);
+        }
+        Roughness::Waviness2d { h, lambda } => {
+            let w = Waviness2d::new(*h, *lambda)?;
+            check_wavelength(&grid, *lambda, true)?;
+            surface.add_shape(&w);
+        }
+        Roughness::Random {
+            h,
+            hurst,
+            q0,
+            q1,
+            seed: s,
+        } => {
+            let (q0, q1) = band(&grid, *q0, *q1);
+            let rough = rough_surface(
+                grid,
+                &RoughSpec {
+                    rms: *h,
+                    hurst: *hurst,
+                    q0,
+                    q1,
+                    seed: *s,
+                },
+            )?;
+            surface.add(&rough)?;
+            *seed = Some(*s);
+        }
+        Roughness::File { path, dataset } => {
+            let full = base_dir.join(path);
+            let heights = read_map(&full, path, dataset.as_deref(), &grid)?;
+            let (nx, ny) = heights.dim();
+            if (nx, ny) != grid.shape() {
+                return Err(SceneError::Inconsistent(format!(
+                    "roughness.path = `{}`: the height map is {nx} × {ny} but the grid is {} × {} \
+                     ({}); the map must have the grid's shape",
+                    path.display(),
+                    grid.nx(),
+                    grid.ny(),
+                    if spec.n.is_some() {
+                        "grid.n"
+                    } else {
+                        "grid.nx × grid.ny"
+                    }
+                )));
+            }
+            surface.add(&Surface::new(grid, heights)?)?;
+        }
+    }
+    Ok(())
+}
+
+/// Reads a height map (HDF5 by extension, else text) and checks its `dx` against the grid's.
+/// A text map without a `# dx = ...` header takes the grid's `dx`.
+fn read_map(
+    full: &Path,
+    given: &Path,
+    dataset: Option<&str>,
+    grid: &Grid,
+) -> Result<ndarray::Array2<f64>, SceneError> {
+    let field = |what: String| {
+        SceneError::Inconsistent(format!("roughness.path = `{}`: {what}", given.display()))
+    };
+    let is_h5 = full
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| matches!(e.to_ascii_lowercase().as_str(), "h5" | "hdf5"));
+    if !full.is_file() {
+        return Err(field(format!(
+            "no such file (looked for `{}`)",
+            full.display()
+        )));
+    }
+    let (heights, dx) = if is_h5 {
+        tack_io::read_height_map_h5(full, dataset).map_err(|e| field(e.to_string()))?
+    } else {
+        if dataset.is_some() {
+            return Err(field(
+                "roughness.dataset applies only to HDF5 maps (.h5, .hdf5)".into(),
+            ));
+        }
+        // Parse with the grid's dx (succeeds whatever the header says), then read the
+        // header's own dx: a parse error now means there is no header.
+        let (heights, _) = tack_geometry::read_height_map_file(full, Some(grid.dx()))
+            .map_err(|e| field(e.to_string()))?;
+        match tack_geometry::read_height_map_file(full, None) {
+            Ok((_, dx)) => (heights, dx),
+            Err(tack_geometry::GeometryError::Parse(_)) => (heights, grid.dx()),
+            Err(e) => return Err(field(e.to_string())),
+        }
+    };
+    if ((dx - grid.dx()) / grid.dx()).abs() > DX_MATCH_TOLERANCE {
+        return Err(field(format!(
+            "the map's dx = {dx} differs from grid.dx = {} (relative tolerance \
+             {DX_MATCH_TOLERANCE:e}); set grid.dx to the map's element size",
+            grid.dx()
+        )));
+    }
+    Ok(heights)
+}
+
+/// A waviness must span at least [`MIN_ELEMENTS_PER_WAVELENGTH`] elements; on a periodic grid
+/// the period must hold a whole number of wavelengths (along x; and along y for 2D waviness).
+fn check_wavelength(grid: &Grid, lambda: f64, two_d: bool) -> Result<(), SceneError> {
+    let min = MIN_ELEMENTS_PER_WAVELENGTH * grid.dx();
+    if lambda < min * (1.0 - 1e-12) {
+        return Err(SceneError::Inconsistent(format!(
+            "roughness.lambda = {lambda} is invalid: must be ≥ 4·grid.dx = {min} to be resolved \
+             (grid.dx = {})",
+            grid.dx()
+        )));
+    }
+    if grid.boundary() == Boundary::Periodic {
+        let mut sides = vec![("x", grid.lx())];
+        if two_d {
+            sides.push(("y", grid.ly()));
+        }
+        for (axis, length) in sides {
+            let waves = length / lambda;
+            if (waves - waves.round()).abs() > 1e-6 * waves.max(1.0) || waves.round() < 1.0 {
+                return Err(SceneError::Inconsistent(format!(
+                    "roughness.lambda = {lambda} does not fit the periodic grid: the period along \
+                     {axis} is {length} = {waves} wavelengths; it must be a whole number ≥ 1 \
+                     (adjust grid.dx, grid.n/nx/ny or roughness.lambda)"
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Checks that the body's contact fits a free grid: a sphere's Hertz radius at the deepest
+/// approach with [`SPHERE_FIT_MARGIN`], and a punch face with one element to spare.
+fn check_fits(
+    spec: &GridSpec,
+    grid: &Grid,
+    geometry: &Geometry,
+    path: &ApproachPath,
+    first_touch: f64,
+) -> Result<(), SceneError> {
+    if grid.boundary() != Boundary::Free {
+        return Ok(());
+    }
+    let half_extent = grid.lx().min(grid.ly()) / 2.0;
+    let size_field = if spec.n.is_some() {
+        "grid.n"
+    } else {
+        "grid.nx/grid.ny"
+    };
+    let (nx, ny) = grid.shape();
+    match *geometry {
+        Geometry::Sphere { radius } => {
+            let depth = path.max_approach - first_touch;
+            let hertz = (radius * depth).sqrt();
+            let needed = SPHERE_FIT_MARGIN * hertz;
+            if needed > half_extent {
+                let n_needed = (2.0 * needed / grid.dx()).ceil() as usize;
+                return Err(SceneError::Inconsistent(format!(
+                    "{size_field} = {} is too small for the sphere: at protocol.max_approach = {} \
+                     the Hertz contact radius sqrt(R·d) = {hertz:.4} plus a 30% margin needs a \
+                     free grid of at least {n_needed} × {n_needed} elements at grid.dx = {} \
+                     (the grid is {nx} × {ny}); raise {size_field} or lower protocol.max_approach",
+                    if spec.n.is_some() {
+                        nx.to_string()
+                    } else {
+                        format!("{nx}/{ny}")
+                    },
+                    path.max_approach,
+                    grid.dx()
+                )));
+            }
+        }
+        Geometry::FlatPunch {
+            radius, half_side, ..
+        } => {
+            let (field, size) = match (radius, half_side) {
+                (Some(r), _) => ("geometry.radius", r),
+                (_, Some(s)) => ("geometry.half_side", s),
+                _ => return Ok(()),
+            };
+            if size + grid.dx() > half_extent {
+                let n_needed = (2.0 * (size + grid.dx()) / grid.dx()).ceil() as usize;
+                return Err(SceneError::Inconsistent(format!(
+                    "{field} = {size} does not fit the grid: the punch needs a free grid of at \
+                     least {n_needed} × {n_needed} elements at grid.dx = {} (the grid is \
+                     {nx} × {ny}); raise {size_field}",
+                    grid.dx()
+                )));
+            }
+        }
+        Geometry::None => {}
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    const SPHERE: &str = r#"
+version = 1
+[material]
+e_star = 1.0
+gamma = 0.1
+[geometry]
+shape = "sphere"
+radius = 1.0
+[grid]
+n = 64
+dx = 0.05
+[protocol]
+max_approach = 0.5
+load_step = 0.05
+"#;
+
+    fn build(text: &str, sets: &[&str]) -> Result<Problem, SceneError> {
+        let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        Problem::from_scene(&Scene::parse(text, ".", &sets)?)
+    }
+
+    fn err(sets: &[&str]) -> String {
+        build(SPHERE, sets).unwrap_err().to_string()
+    }
+
+    #[test]
+    fn sphere_problem_has_jkr_references_and_first_touch_start() {
+        let p = build(SPHERE, &[]).unwrap();
+        assert_eq!(p.first_touch, 0.0);
+        assert_eq!(p.path.start, 0.05);
+        assert_eq!(p.path.unload_step, 0.05);
+        assert_eq!(p.path.max_steps, DEFAULT_MAX_STEPS);
+        assert_eq!(p.kappa, KAPPA);
+        let f_jkr = p.references.f_jkr.unwrap();
+        assert!((f_jkr + 1.5 * PI * 0.1).abs() < 1e-12);
+        assert!(p.references.johnson_alpha.is_none());
+    }
+
+    #[test]
+    fn field_errors_name_the_field_and_range() {
+        assert!(
+            err(&["material.e_star=-1"])
+                .contains("material.e_star = -1 is invalid: must be a finite number > 0")
+        );
+        assert!(err(&["material.e_star=nan"]).contains("material.e_star = NaN"));
+        assert!(err(&["material.gamma=-0.1"]).contains("material.gamma = -0.1"));
+        assert!(err(&["grid.n=0"]).contains("grid.n = 0 is invalid"));
+        assert!(err(&["grid.n=65536"]).contains("grid.n = 65536 × 65536 is too large"));
+        assert!(err(&["grid.dx=-1"]).contains("grid.dx = -1"));
+        assert!(err(&["grid.length=3.2"]).contains("exactly one of `dx` and `length`"));
+        assert!(err(&["geometry.radius=0"]).contains("geometry.radius = 0"));
+        assert!(err(&["solver.tolerance=2"]).contains("solver.tolerance = 2"));
+        assert!(err(&["solver.kappa=-1"]).contains("solver.kappa = -1"));
+        assert!(err(&["protocol.load_step=0"]).contains("protocol.load_step = 0"));
+        assert!(err(&["protocol.retract_to=1"]).contains("protocol.retract_to = 1"));
+    }
+
+    #[test]
+    fn scene_level_checks() {
+        let e = err(&["protocol.max_approach=-0.1"]);
+        assert!(
+            e.contains("protocol.max_approach = -0.1 never touches") && e.contains("first touch"),
+            "{e}"
+        );
+        let e = err(&["protocol.max_approach=4"]);
+        assert!(e.contains("grid.n = 64 is too small"), "{e}");
+        let e = err(&[
+            "roughness.kind=waviness2d",
+            "roughness.h=0.01",
+            "roughness.lambda=0.1",
+        ]);
+        assert!(
+            e.contains("roughness.lambda = 0.1 is invalid: must be ≥ 4·grid.dx"),
+            "{e}"
+        );
+        let e = err(&[
+            "roughness.kind=random",
+            "roughness.h=0.01",
+            "roughness.hurst=0.5",
+            "roughness.q1=100",
+        ]);
+        assert!(e.contains("roughness.q0/q1"), "{e}");
+    }
+
+    #[test]
+    fn rough_sphere_has_alpha_star_and_seed() {
+        let p = build(
+            SPHERE,
+            &[
+                "roughness.kind=random",
+                "roughness.h=0.001",
+                "roughness.hurst=0.5",
+                "roughness.seed=7",
+            ],
+        )
+        .unwrap();
+        assert_eq!(p.seed, Some(7));
+        assert!(p.first_touch < 0.0);
+        assert!(p.references.alpha_star.unwrap() > 0.0);
+    }
+
+    #[test]
+    fn periodic_waviness_must_fit_the_period() {
+        let strip = r#"
+version = 1
+[material]
+e_star = 1.0
+gamma = 0.0
+[geometry]
+shape = "none"
+[roughness]
+kind = "waviness1d"
+h = 0.01
+lambda = 1.0
+[grid]
+nx = 64
+ny = 1
+length = 1.0
+boundary = "periodic"
+[protocol]
+max_approach = 0.01
+load_step = 0.001
+"#;
+        let p = build(strip, &[]).unwrap();
+        assert!(p.references.johnson_alpha.is_some());
+        let e = build(strip, &["roughness.lambda=0.3"])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("does not fit the periodic grid"), "{e}");
+    }
+}

@@ -1,0 +1,190 @@
+//! Bad input never panics and never leaves a result behind: every scene in `tests/scenes/bad`
+//! fails with a non-zero exit and the message in its sibling `.expected` file; bad `--set`
+//! overrides fail the same way; an interrupted run leaves nothing under the final name.
+
+mod common;
+
+use std::process::Stdio;
+use std::time::{Duration, Instant};
+
+use common::{Scratch, bad_scenes_dir, examples_dir, files_with_extension, run, tack, text};
+
+/// Runs `args` (which write `out` when they succeed) and checks the failure contract.
+fn assert_fails_cleanly(args: &[&str], expected: &str, scratch: &Scratch, what: &str) {
+    let out = run(args);
+    let (stdout, stderr) = text(&out);
+    assert!(
+        !out.status.success(),
+        "{what}: expected failure, got success\nstdout: {stdout}"
+    );
+    assert!(
+        stderr.contains(expected),
+        "{what}: stderr does not contain {expected:?}\nstderr: {stderr}"
+    );
+    assert!(
+        stderr.starts_with("error: "),
+        "{what}: message must start with `error: `\nstderr: {stderr}"
+    );
+    assert!(!stderr.contains("panicked"), "{what}: panicked\n{stderr}");
+    assert!(
+        scratch.files().is_empty(),
+        "{what}: left files behind: {:?}",
+        scratch.files()
+    );
+}
+
+#[test]
+fn every_bad_scene_fails_with_its_expected_message() {
+    let scenes = files_with_extension(&bad_scenes_dir(), "toml");
+    assert!(scenes.len() >= 9, "too few bad scenes: {scenes:?}");
+    let scratch = Scratch::new("bad-scenes");
+    let out = scratch.join("out.h5");
+    let out = out.to_str().expect("utf-8 scratch path");
+    for scene in &scenes {
+        let expected_file = scene.with_extension("expected");
+        let expected = std::fs::read_to_string(&expected_file)
+            .unwrap_or_else(|e| panic!("{}: {e}", expected_file.display()));
+        let expected = expected.trim();
+        assert!(!expected.is_empty(), "{}", expected_file.display());
+        let scene = scene.to_str().expect("utf-8 path");
+        let runs: [&[&str]; 2] = [
+            &["run", scene, "-o", out, "--quiet"],
+            &["surface", scene, "-o", out],
+        ];
+        for args in runs {
+            assert_fails_cleanly(args, expected, &scratch, &args.join(" "));
+        }
+        assert_fails_cleanly(&["check", scene], expected, &scratch, scene);
+    }
+}
+
+#[test]
+fn bad_overrides_fail_through_the_schema() {
+    let scratch = Scratch::new("bad-overrides");
+    let scene = examples_dir().join("smooth_jkr_sphere.toml");
+    let scene = scene.to_str().expect("utf-8 path");
+    let out = scratch.join("out.h5");
+    let out = out.to_str().expect("utf-8 path");
+    for (set, expected) in [
+        ("material.colour=1", "unknown field `colour`"),
+        ("material.e_star=-1", "material.e_star = -1 is invalid"),
+        ("material.e_star=nan", "material.e_star = NaN is invalid"),
+        ("grid.n=0", "grid.n = 0 is invalid"),
+        ("material=3", "invalid type"),
+        ("material.gamma", "expected key=value"),
+        ("version=3", "version = 3 is not supported"),
+        ("geometry.shape=cube", "unknown variant `cube`"),
+    ] {
+        assert_fails_cleanly(
+            &["run", scene, "-o", out, "--quiet", "--set", set],
+            expected,
+            &scratch,
+            set,
+        );
+    }
+}
+
+#[test]
+fn missing_files_and_bad_outputs_name_the_path() {
+    let scratch = Scratch::new("bad-paths");
+    let out = scratch.join("out.h5");
+    let out = out.to_str().expect("utf-8 path");
+    assert_fails_cleanly(
+        &["run", "no/such/scene.toml", "-o", out],
+        "no/such/scene.toml",
+        &scratch,
+        "missing scene",
+    );
+    assert_fails_cleanly(
+        &["info", "no/such/result.h5"],
+        "no/such/result.h5",
+        &scratch,
+        "missing result",
+    );
+    assert_fails_cleanly(
+        &["plot", "no/such/result.h5", "-o", out],
+        "no/such/result.h5",
+        &scratch,
+        "missing result to plot",
+    );
+    let scene = examples_dir().join("flat_punch.toml");
+    let scene = scene.to_str().expect("utf-8 path");
+    let nested = scratch.join("missing-dir/out.h5");
+    assert_fails_cleanly(
+        &["run", scene, "-o", nested.to_str().expect("utf-8")],
+        "does not exist",
+        &scratch,
+        "missing output directory",
+    );
+    // A scene file is not an HDF5 result.
+    assert_fails_cleanly(&["info", scene], "flat_punch.toml", &scratch, "not HDF5");
+}
+
+#[test]
+fn usage_errors_exit_non_zero() {
+    for args in [&["run"][..], &["frobnicate"], &["run", "x.toml"], &[]] {
+        let out = run(args);
+        assert!(!out.status.success(), "{args:?}");
+        assert!(!text(&out).1.contains("panicked"), "{args:?}");
+    }
+}
+
+#[cfg(unix)]
+#[test]
+fn interrupted_run_leaves_no_result_under_the_final_name() {
+    let scratch = Scratch::new("interrupt");
+    let out = scratch.join("long.h5");
+    let scene = examples_dir().join("smooth_jkr_sphere.toml");
+    // A fine grid and tiny unload steps: minutes of work, interrupted after about a second.
+    let mut child = tack()
+        .arg("run")
+        .arg(&scene)
+        .arg("-o")
+        .arg(&out)
+        .args(["--quiet", "--set", "grid.n=240", "--set", "grid.dx=0.06"])
+        .args(["--set", "protocol.unload_step=0.0001"])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("cannot start tack");
+    let started = Instant::now();
+    while started.elapsed() < Duration::from_secs(1) {
+        if scratch.files().iter().any(|f| f.contains(".tmp-")) {
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    assert!(
+        child.try_wait().expect("try_wait").is_none(),
+        "the long run finished too early to be interrupted"
+    );
+    let killed = std::process::Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .expect("cannot run kill");
+    assert!(killed.success());
+    let deadline = Instant::now() + Duration::from_secs(20);
+    let status = loop {
+        if let Some(status) = child.try_wait().expect("try_wait") {
+            break status;
+        }
+        if Instant::now() > deadline {
+            let _ = child.kill();
+            panic!("tack did not stop on SIGINT");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    assert!(!status.success());
+    assert!(
+        !out.exists(),
+        "an interrupted run left {} behind",
+        out.display()
+    );
+    // At most a stray temporary may remain; the scratch directory is removed on drop.
+    for stray in scratch.files() {
+        assert!(
+            stray.starts_with(".long.h5.tmp-"),
+            "unexpected file {stray}"
+        );
+    }
+}

@@ -1,0 +1,335 @@
+//! End to end: every example scene runs with `tack run`, its result file is described by
+//! `tack info`, plotted by `tack plot`, read back by tack-io (and by h5py when installed), and
+//! carries provenance and a summary that fit the scene.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use common::{Scratch, examples_dir, files_with_extension, have_h5py, run, text};
+
+/// The examples this file tests, one `#[test]` each (see `example!`).
+const EXAMPLES: [&str; 5] = [
+    "flat_punch",
+    "smooth_jkr_sphere",
+    "sphere_random_roughness",
+    "sphere_waviness_2d",
+    "wavy_1d_periodic",
+];
+
+/// Runs the full pipeline on one example and returns the result read back.
+fn pipeline(name: &str) -> (tack_io::RunResult, String) {
+    let scratch = Scratch::new(&format!("example-{name}"));
+    let scene = examples_dir().join(format!("{name}.toml"));
+    let out = scratch.join(&format!("{name}.h5"));
+    let fig = scratch.join(&format!("{name}.svg"));
+    let s = |p: &Path| p.to_str().expect("utf-8 path").to_owned();
+
+    let o = run(&["run", &s(&scene), "-o", &s(&out), "--quiet"]);
+    let (stdout, stderr) = text(&o);
+    assert!(o.status.success(), "tack run {name}: {stderr}");
+    assert!(stdout.contains("pull-off"), "{stdout}");
+    assert!(stdout.contains("converged"), "{stdout}");
+    assert!(out.is_file(), "{name}: no result file");
+    assert_eq!(
+        scratch.files(),
+        vec![format!("{name}.h5")],
+        "stray files next to the result"
+    );
+
+    let o = run(&["info", &s(&out)]);
+    let (info, stderr) = text(&o);
+    assert!(o.status.success(), "tack info {name}: {stderr}");
+    assert!(
+        info.contains("curve:") && info.contains("summary:"),
+        "{info}"
+    );
+
+    let o = run(&["plot", &s(&out), "-o", &s(&fig)]);
+    assert!(o.status.success(), "tack plot {name}: {}", text(&o).1);
+    let svg = std::fs::read_to_string(&fig).expect("the figure was not written");
+    assert!(
+        svg.contains("<svg") && svg.contains("</svg>"),
+        "{name}: not SVG"
+    );
+    assert!(svg.contains("approach"), "{name}: axis label missing");
+
+    let result = tack_io::read_result(&out).expect("tack-io cannot read the result");
+    let text_of_scene = std::fs::read_to_string(&scene).expect("scene");
+    let p = &result.provenance;
+    assert_eq!(p.scene, text_of_scene, "the scene is recorded verbatim");
+    assert!(p.command_line.contains("run") && p.command_line.contains(name));
+    assert!(!p.git_revision.is_empty());
+    assert_eq!(p.tack_version, env!("CARGO_PKG_VERSION"));
+    assert!(
+        p.created.len() == 20 && p.created.ends_with('Z') && p.created.as_bytes()[10] == b'T',
+        "created = {}",
+        p.created
+    );
+    let c = &result.curve;
+    assert!(c.len() > 10, "{name}: only {} steps", c.len());
+    assert!(
+        c.converged.iter().all(|&ok| ok),
+        "{name}: non-converged steps"
+    );
+    let min = c.force.iter().copied().fold(f64::INFINITY, f64::min);
+    assert_eq!(result.summary.pull_off_force, min);
+    assert!(min < 0.0, "{name}: no adhesive pull-off");
+    assert!(result.surface.is_some(), "{name}: surface not stored");
+    assert!(!result.snapshots.is_empty(), "{name}: no snapshots");
+
+    if have_h5py() {
+        check_with_h5py(&out, c.len());
+    } else {
+        eprintln!("h5py not installed: skipping the h5py check of {name}");
+    }
+    (result, info)
+}
+
+/// h5py (no tack code) reads the curve and the attributes.
+fn check_with_h5py(file: &Path, steps: usize) {
+    let script = "import h5py, sys\n\
+                  with h5py.File(sys.argv[1], 'r') as f:\n\
+                  \x20   print(len(f['curve/force']), len(f['curve/approach']))\n\
+                  \x20   print(','.join(sorted(f.attrs.keys())))\n\
+                  \x20   print(','.join(sorted(f['summary'].attrs.keys())))\n\
+                  \x20   print(f.attrs['scene'][:11])\n";
+    let o = Command::new("python3")
+        .args(["-c", script])
+        .arg(file)
+        .output()
+        .expect("python3");
+    let (stdout, stderr) = text(&o);
+    assert!(o.status.success(), "h5py failed: {stderr}");
+    let lines: Vec<&str> = stdout.lines().collect();
+    assert_eq!(lines[0], format!("{steps} {steps}"), "{stdout}");
+    for attr in [
+        "command_line",
+        "created",
+        "git_revision",
+        "scene",
+        "tack_version",
+    ] {
+        assert!(lines[1].split(',').any(|a| a == attr), "{attr}: {stdout}");
+    }
+    for attr in ["f_jkr", "pull_off_force", "pull_off_ratio"] {
+        assert!(lines[2].split(',').any(|a| a == attr), "{attr}: {stdout}");
+    }
+}
+
+macro_rules! example {
+    ($name:ident, $check:expr) => {
+        #[test]
+        fn $name() {
+            let (result, info) = pipeline(stringify!($name));
+            let check: fn(&tack_io::RunResult, &str) = $check;
+            check(&result, &info);
+        }
+    };
+}
+
+example!(smooth_jkr_sphere, |r, _| {
+    let s = &r.summary;
+    assert!(s.f_jkr < 0.0);
+    // Pohrt–Popov at a_c/Δx = 10 overshoots F_JKR by about 13% (REFERENCE.md §2).
+    assert!(
+        (1.0..1.3).contains(&s.pull_off_ratio),
+        "F/F_JKR = {}",
+        s.pull_off_ratio
+    );
+    assert!(s.extra.contains_key("d_jkr"));
+    assert!(s.johnson_alpha.is_none() && s.alpha_star.is_none());
+    assert!(r.provenance.seed.is_none());
+});
+
+example!(wavy_1d_periodic, |r, _| {
+    let s = &r.summary;
+    assert!(
+        s.f_jkr.is_nan() && s.pull_off_ratio.is_nan(),
+        "not a sphere"
+    );
+    let alpha = s.johnson_alpha.expect("johnson_alpha");
+    let want = tack_analytics::johnson_alpha(1.0, 5e-5, 0.01, 1.0); // = 1/π
+    assert!((alpha - want).abs() < 1e-12, "{alpha}");
+    // Johnson (Eq. 2) at α = 0.318: the least mean pressure is about −0.10 p*.
+    let ratio = s.extra["min_mean_pressure"] / s.extra["p_star"];
+    assert!((-0.2..-0.05).contains(&ratio), "p/p* = {ratio}");
+    let (nx, ny) = r.surface.as_ref().expect("surface").0.dim();
+    assert_eq!((nx, ny), (512, 1));
+});
+
+example!(sphere_waviness_2d, |r, _| {
+    let s = &r.summary;
+    assert!(s.f_jkr < 0.0 && s.pull_off_ratio > 0.0);
+    let alpha = s.johnson_alpha.expect("johnson_alpha");
+    assert!((alpha - 1.0).abs() < 0.01, "{alpha}");
+});
+
+example!(sphere_random_roughness, |r, info| {
+    let s = &r.summary;
+    assert!(s.alpha_star.is_some() && s.johnson_alpha.is_none());
+    assert_eq!(r.provenance.seed, Some(1));
+    assert!(info.contains("seed: 1"), "{info}");
+    assert!(s.pull_off_ratio > 0.0);
+});
+
+example!(flat_punch, |r, _| {
+    let s = &r.summary;
+    assert!(
+        s.f_jkr.is_nan() && s.pull_off_ratio.is_nan(),
+        "not a sphere"
+    );
+    let kendall = s.extra["f_kendall"];
+    let ratio = s.pull_off_force / kendall;
+    assert!((0.9..1.15).contains(&ratio), "F/F_Kendall = {ratio}");
+    let steps: Vec<usize> = r.snapshots.iter().map(|s| s.step).collect();
+    assert_eq!(steps, [0, 50, 100]);
+});
+
+#[test]
+fn every_example_scene_is_tested() {
+    let found: Vec<String> = files_with_extension(&examples_dir(), "toml")
+        .iter()
+        .filter_map(|p| p.file_stem().map(|s| s.to_string_lossy().into_owned()))
+        .collect();
+    assert_eq!(found, EXAMPLES, "add a test for each example scene");
+}
+
+#[test]
+fn overrides_are_applied_and_recorded() {
+    let scratch = Scratch::new("overrides");
+    let scene = examples_dir().join("flat_punch.toml");
+    let out = scratch.join("punch.h5");
+    let o = run(&[
+        "run",
+        scene.to_str().expect("utf-8"),
+        "-o",
+        out.to_str().expect("utf-8"),
+        "--quiet",
+        "--set",
+        "protocol.unload_step=0.01",
+        "--set",
+        "output.snapshots=\"none\"",
+        "--set",
+        "output.surface=false",
+    ]);
+    assert!(o.status.success(), "{}", text(&o).1);
+    let r = tack_io::read_result(&out).expect("read");
+    assert!(r.provenance.scene.contains("unload_step = 0.01"));
+    assert!(r.provenance.command_line.contains("--set"));
+    assert!(r.snapshots.is_empty() && r.surface.is_none());
+    let steps = r.curve.approach.windows(2).filter(|w| w[1] < w[0]).count();
+    assert!(
+        steps < 100,
+        "the coarser unload step was not applied: {steps}"
+    );
+}
+
+/// `tack surface` output is a valid `roughness.kind = "file"` input (HDF5 and text), and the
+/// heights survive the round trip exactly.
+#[test]
+fn surface_files_round_trip_as_height_maps() {
+    let scratch = Scratch::new("surface");
+    let scene = examples_dir().join("sphere_random_roughness.toml");
+    let surf = scratch.join("surf.h5");
+    let o = run(&[
+        "surface",
+        scene.to_str().expect("utf-8"),
+        "-o",
+        surf.to_str().expect("utf-8"),
+    ]);
+    assert!(o.status.success(), "{}", text(&o).1);
+    let original = tack_io::read_result(&surf).expect("read surface");
+    assert!(original.curve.is_empty());
+    let (heights, dx) = original.surface.clone().expect("heights");
+    assert_eq!(original.provenance.seed, Some(1));
+
+    let csv = scratch.join("surf.csv");
+    let rows: Vec<String> = heights
+        .rows()
+        .into_iter()
+        .map(|r| {
+            r.iter()
+                .map(|h| format!("{h:e}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        })
+        .collect();
+    std::fs::write(&csv, format!("# dx = {dx}\n{}\n", rows.join("\n"))).expect("write csv");
+
+    for map in [&surf, &csv] {
+        let file_scene = scratch.join("from_file.toml");
+        std::fs::write(
+            &file_scene,
+            format!(
+                "version = 1\n[material]\ne_star = 1.0\ngamma = 0.125\n[geometry]\nshape = \"none\"\n\
+                 [roughness]\nkind = \"file\"\npath = \"{}\"\n[grid]\nn = {}\ndx = {dx}\n\
+                 [protocol]\nmax_approach = 2.5\nload_step = 0.15\n",
+                map.file_name().expect("name").to_string_lossy(),
+                heights.nrows()
+            ),
+        )
+        .expect("write scene");
+        let again = scratch.join("again.h5");
+        let o = run(&[
+            "surface",
+            file_scene.to_str().expect("utf-8"),
+            "-o",
+            again.to_str().expect("utf-8"),
+        ]);
+        assert!(o.status.success(), "{}: {}", map.display(), text(&o).1);
+        let (h2, dx2) = tack_io::read_result(&again)
+            .expect("read")
+            .surface
+            .expect("heights");
+        assert_eq!(dx2, dx);
+        assert_eq!(h2, heights, "{}: heights changed", map.display());
+        let o = run(&["check", file_scene.to_str().expect("utf-8")]);
+        assert!(o.status.success(), "{}", text(&o).1);
+        std::fs::remove_file(&again).expect("rm");
+    }
+}
+
+#[test]
+fn help_and_version() {
+    let o = run(&["--version"]);
+    assert!(o.status.success());
+    assert!(text(&o).0.contains(env!("CARGO_PKG_VERSION")));
+    for sub in ["run", "surface", "check", "info", "plot"] {
+        let o = run(&[sub, "--help"]);
+        assert!(o.status.success(), "{sub} --help");
+        assert!(text(&o).0.contains("Usage: tack"), "{sub}");
+    }
+    let o = run(&["--help"]);
+    let help = text(&o).0;
+    for sub in ["run", "surface", "check", "info", "plot"] {
+        assert!(help.contains(sub), "{sub} missing from --help");
+    }
+}
+
+/// `tack plot` refuses formats it cannot write, before touching the output.
+#[test]
+fn plot_rejects_unknown_formats() {
+    let scratch = Scratch::new("plot-format");
+    let scene = examples_dir().join("flat_punch.toml");
+    let out = scratch.join("p.h5");
+    let o = run(&[
+        "run",
+        scene.to_str().expect("utf-8"),
+        "-o",
+        out.to_str().expect("utf-8"),
+        "--quiet",
+    ]);
+    assert!(o.status.success());
+    let pdf: PathBuf = scratch.join("p.pdf");
+    let o = run(&[
+        "plot",
+        out.to_str().expect("utf-8"),
+        "-o",
+        pdf.to_str().expect("utf-8"),
+    ]);
+    assert!(!o.status.success());
+    assert!(text(&o).1.contains(".svg or .png"), "{}", text(&o).1);
+    assert!(!pdf.exists());
+}
