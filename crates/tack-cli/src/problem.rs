@@ -10,9 +10,12 @@
 use std::path::Path;
 
 use tack_geometry::{
-    Boundary, FlatPunch, Grid, RoughSpec, Sphere, Surface, Waviness1d, Waviness2d, rough_surface,
+    Boundary, FlatPunch, Grid, RoughSpec, Sphere, Surface, Waviness1d, Waviness2d, Window,
+    rough_surface,
 };
-use tack_solver::{AdhesiveOptions, AdhesiveSolver, ApproachPath, KAPPA, SnapshotRequest};
+use tack_solver::{
+    AdhesiveOptions, AdhesiveSolver, ApproachPath, KAPPA, SnapshotRequest, contact_window,
+};
 
 use crate::scene::{
     BoundaryKind, DEFAULT_MAX_STEPS, Geometry, GridSpec, PunchKind, Roughness, Scene, SceneError,
@@ -71,8 +74,11 @@ pub struct Problem {
     pub snapshots: SnapshotRequest,
     /// Whether the surface goes into the result file.
     pub store_surface: bool,
-    /// `grid.crop` as given (recorded only: the solver runs on the full grid).
+    /// `grid.crop` as given.
     pub crop: bool,
+    /// The window the solver runs on when cropping applies (free grids, `grid.crop = true`, and
+    /// a window smaller than the grid): see `tack_solver::contact_window`.
+    pub window: Option<Window>,
     /// The lowest surface height: the approach of the first touch.
     pub first_touch: f64,
     /// Seed of the random roughness, when there is one.
@@ -100,8 +106,13 @@ impl Problem {
         let mut surface = base_surface(grid, &f.geometry)?;
         let mut seed = None;
         let mut references = References::default();
+        let mut roughness_range = 0.0;
         if let Some(roughness) = &f.roughness {
+            let smooth = surface.heights().clone();
             add_roughness(&mut surface, roughness, &scene.base_dir, &f.grid, &mut seed)?;
+            let rough = surface.heights() - &smooth;
+            roughness_range = rough.iter().copied().fold(f64::NEG_INFINITY, f64::max)
+                - rough.iter().copied().fold(f64::INFINITY, f64::min);
             references.johnson_alpha = match *roughness {
                 Roughness::Waviness1d { h, lambda } | Roughness::Waviness2d { h, lambda } => {
                     Some(tack_analytics::johnson_alpha(e_star, gamma, h, lambda))
@@ -201,6 +212,12 @@ impl Problem {
                 "an integer ≥ 1",
             ));
         }
+        let window = if f.grid.crop {
+            contact_window(&surface, path.max_approach, roughness_range, e_star, gamma)
+                .filter(|w| w.shape() != grid.shape())
+        } else {
+            None
+        };
         let kappa = s.kappa.unwrap_or(KAPPA);
         if !(kappa.is_finite() && kappa > 0.0) {
             return Err(SceneError::out_of_range(
@@ -220,18 +237,24 @@ impl Problem {
             snapshots: (&f.output.snapshots).into(),
             store_surface: f.output.surface,
             crop: f.grid.crop,
+            window,
             first_touch,
             seed,
             references,
         })
     }
 
-    /// A fresh solver for this problem (builds the elastic operator: FFT plans, kernel spectrum).
-    pub fn solver(&self) -> Result<AdhesiveSolver, SceneError> {
-        let op = tack_kernels::operator_for(self.grid, self.e_star)?;
+    /// A fresh solver for this problem (builds the elastic operator: FFT plans, kernel spectrum),
+    /// on the crop window when `window` is given.
+    pub fn solver(&self, window: Option<&Window>) -> Result<AdhesiveSolver, SceneError> {
+        let surface = match window {
+            Some(w) => self.surface.window(w)?,
+            None => self.surface.clone(),
+        };
+        let op = tack_kernels::operator_for(*surface.grid(), self.e_star)?;
         Ok(AdhesiveSolver::new(
             op,
-            &self.surface,
+            &surface,
             self.gamma,
             self.kappa,
             self.options,

@@ -83,8 +83,27 @@ impl Observer for Progress {
 }
 
 /// Runs the problem's approach path on a fresh solver.
+///
+/// With a crop window the path runs on the window; snapshots are embedded back into the full
+/// grid. Should contact ever reach the window's edge (the crop rule is conservative, so this
+/// means a surprise), the path is solved again on the full grid.
 pub fn solve(problem: &Problem, observer: &mut dyn Observer) -> Result<PathResult, SceneError> {
-    let mut solver = problem.solver()?;
+    if let Some(w) = &problem.window {
+        let mut solver = problem.solver(Some(w))?;
+        let mut result = solver.run_path(&problem.path, &problem.snapshots, observer)?;
+        if !result.records.iter().any(|r| r.edge_contact) {
+            let block = ndarray::s![w.i0..w.i1, w.j0..w.j1];
+            for snap in &mut result.snapshots {
+                let mut pressure = ndarray::Array2::zeros(problem.grid.shape());
+                let mut bonded = ndarray::Array2::from_elem(problem.grid.shape(), false);
+                pressure.slice_mut(block).assign(&snap.pressure);
+                bonded.slice_mut(block).assign(&snap.bonded);
+                (snap.pressure, snap.bonded) = (pressure, bonded);
+            }
+            return Ok(result);
+        }
+    }
+    let mut solver = problem.solver(None)?;
     Ok(solver.run_path(&problem.path, &problem.snapshots, observer)?)
 }
 
@@ -129,6 +148,12 @@ pub fn summary(problem: &Problem, path: &PathResult) -> tack_io::Summary {
     extra.insert("first_touch".to_owned(), problem.first_touch);
     let bad = path.records.iter().filter(|r| !r.converged).count();
     extra.insert("non_converged_steps".to_owned(), bad as f64);
+    let edge = path.records.iter().filter(|r| r.edge_contact).count();
+    extra.insert("edge_contact_steps".to_owned(), edge as f64);
+    if let Some(w) = &problem.window {
+        extra.insert("crop_rows".to_owned(), w.shape().0 as f64);
+        extra.insert("crop_cols".to_owned(), w.shape().1 as f64);
+    }
     tack_io::Summary {
         pull_off_force: pull_off,
         f_jkr,
@@ -291,10 +316,15 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
         p.grid.nx(),
         p.grid.ny(),
         p.grid.dx(),
-        if p.crop {
-            " (crop requested; not implemented yet: full grid used)"
-        } else {
-            ""
+        match (&p.window, p.crop) {
+            (Some(w), _) => format!(
+                " (cropped to the {} x {} elements that can touch)",
+                w.shape().0,
+                w.shape().1
+            ),
+            (None, true) if p.grid.boundary() == tack_geometry::Boundary::Free =>
+                " (crop: nothing to remove)".to_owned(),
+            _ => String::new(),
         }
     ));
     let loads = path.phases.iter().filter(|&&ph| ph == Phase::Load).count();
@@ -387,6 +417,13 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
             String::new()
         }
     ));
+    let edge = path.records.iter().filter(|r| r.edge_contact).count();
+    if edge > 0 {
+        lines.push(format!(
+            "WARNING     contact reached the edge of the free grid in {edge} steps: the domain \
+             cuts it off; enlarge grid.n or grid.length"
+        ));
+    }
     lines.push(format!(
         "wall time   {:.2} s ({} CG iterations)",
         outcome.wall_time.as_secs_f64(),

@@ -333,3 +333,32 @@ fn plot_rejects_unknown_formats() {
     assert!(text(&o).1.contains(".svg or .png"), "{}", text(&o).1);
     assert!(!pdf.exists());
 }
+
+/// Cropping changes the cost, not the answer: the rough-sphere example on a grid twice as wide
+/// as it needs, with and without crop.
+#[test]
+fn crop_gives_the_same_pull_off() {
+    let dir = common::Scratch::new("crop");
+    let scene = common::examples_dir().join("sphere_random_roughness.toml");
+    let mut forces = Vec::new();
+    for crop in ["true", "false"] {
+        let out = dir.join(&format!("crop-{crop}.h5"));
+        let set = format!("grid.crop={crop}");
+        let args = [
+            "run",
+            scene.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--quiet",
+        ];
+        let run = common::run(&[&args[..], &["--set", &set, "--set", "grid.n=128"]].concat());
+        assert!(run.status.success(), "{:?}", common::text(&run));
+        let stdout = common::text(&run).0;
+        assert_eq!(crop == "true", stdout.contains("cropped to"), "{stdout}");
+        forces.push(tack_io::read_result(&out).unwrap().summary.pull_off_force);
+    }
+    assert!(
+        (forces[0] - forces[1]).abs() <= 1e-9 * forces[1].abs(),
+        "{forces:?}"
+    );
+}

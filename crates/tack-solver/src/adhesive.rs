@@ -100,6 +100,9 @@ pub struct StepRecord {
     /// Periodic grids: every element bonded (the mean pressure is then the least one that keeps
     /// full contact admissible, see [`AdhesiveSolver::step`]).
     pub full_contact: bool,
+    /// Free grids: a bonded element lies on the outer ring of the grid, so the contact may be
+    /// cut off by the domain (enlarge the grid or the crop).
+    pub edge_contact: bool,
 }
 
 /// Quasi-static adhesive contact along an approach path; owns operator, fields and scratch.
@@ -426,6 +429,7 @@ impl AdhesiveSolver {
             residual,
             converged,
             full_contact: full,
+            edge_contact: grid.boundary() == Boundary::Free && crate::touches_edge(&self.bonded),
         }
     }
 }

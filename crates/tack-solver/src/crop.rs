@@ -39,9 +39,12 @@ pub fn contact_window(
 /// means the window may have cut off contact, and the result must not be trusted.
 pub fn touches_edge(bonded: &Array2<bool>) -> bool {
     let (nx, ny) = bonded.dim();
-    bonded
-        .indexed_iter()
-        .any(|((i, j), &b)| b && (i == 0 || j == 0 || i + 1 == nx || j + 1 == ny))
+    let rows = bonded.row(0).iter().chain(bonded.row(nx - 1)).any(|&b| b);
+    rows || bonded
+        .column(0)
+        .iter()
+        .chain(bonded.column(ny - 1))
+        .any(|&b| b)
 }
 
 #[cfg(test)]
