@@ -1,16 +1,20 @@
-//! The `tack` binary: run scenes, write and inspect HDF5 result files, plot them.
+//! The `tack` binary: run scenes and parameter sweeps, write and inspect HDF5 result files,
+//! plot them.
 //!
 //! Exit status 0 on success; on any error a message `error: ...` naming the field or file goes
 //! to stderr and the status is 1 (2 for command-line usage errors, from clap).
 
+use std::num::NonZeroUsize;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::Context;
 use clap::{Parser, Subcommand};
+use tack_cli::merge::{self, MergeOptions};
 use tack_cli::problem::Problem;
 use tack_cli::run::{self, RunOptions, num};
 use tack_cli::scene::Scene;
+use tack_cli::sweep::{self, Shard, Sweep, SweepOptions};
 use tack_cli::{plot, provenance};
 
 /// Adhesive strength of rough elastic contacts (Li, Pohrt & Popov 2019), by FFT-accelerated BEM.
@@ -64,6 +68,36 @@ enum Command {
     Info {
         /// The result file (HDF5).
         file: PathBuf,
+    },
+    /// Run a parameter sweep (docs/sweeps.md): every point, or one shard of them, in parallel,
+    /// one result file per point in DIR/points; a rerun skips completed points.
+    Sweep {
+        /// The sweep file (TOML).
+        sweep: PathBuf,
+        /// The output directory (created; a rerun must use the same sweep file).
+        #[arg(short, long, value_name = "DIR")]
+        output: PathBuf,
+        /// Points to run at once (default: all cores). Results do not depend on it.
+        #[arg(long, value_name = "N")]
+        threads: Option<NonZeroUsize>,
+        /// Run only shard I of N (1 ≤ I ≤ N, e.g. `--shard $SLURM_ARRAY_TASK_ID/8`): the points
+        /// whose index i has i % N == I - 1.
+        #[arg(long, value_name = "I/N")]
+        shard: Option<Shard>,
+        /// Do not draw the progress bar (it is drawn only on a terminal anyway).
+        #[arg(short, long)]
+        quiet: bool,
+    },
+    /// Merge a sweep directory into one HDF5 table: parameters, collected results, status.
+    Merge {
+        /// The sweep's output directory (as given to `tack sweep -o`).
+        dir: PathBuf,
+        /// The table to write (HDF5, atomically).
+        #[arg(short, long, value_name = "SWEEP.h5")]
+        output: PathBuf,
+        /// Write the table even if points are missing (status 2, NaN results).
+        #[arg(long)]
+        allow_missing: bool,
     },
     /// Plot the force–approach curve (and stored contact snapshots) of a result file.
     Plot {
@@ -134,6 +168,53 @@ fn execute(command: Command) -> anyhow::Result<()> {
                 num(p.path.load_step),
                 num(p.path.unload_step)
             );
+        }
+        Command::Sweep {
+            sweep,
+            output,
+            threads,
+            shard,
+            quiet,
+        } => {
+            let loaded = Sweep::load(&sweep)?;
+            let options = SweepOptions {
+                threads: threads.map(NonZeroUsize::get),
+                shard: shard.unwrap_or_default(),
+                quiet,
+                command_line: None,
+            };
+            let report = sweep::run_sweep(&loaded, &output, &options)?;
+            println!("{report}");
+            if !report.failed.is_empty() {
+                anyhow::bail!(
+                    "{} of {} points failed (errors above and in {}/points/*.err); the other \
+                     points completed",
+                    report.failed.len(),
+                    report.in_shard,
+                    output.display()
+                );
+            }
+        }
+        Command::Merge {
+            dir,
+            output,
+            allow_missing,
+        } => {
+            let options = MergeOptions {
+                allow_missing,
+                command_line: None,
+            };
+            let report = merge::merge(&dir, &output, &options)?;
+            eprint!("{}", report.issues());
+            if report.written {
+                println!("{report}; wrote {}", output.display());
+            } else {
+                anyhow::bail!(
+                    "{report}; nothing written: run `tack sweep` on {} again for the missing \
+                     points (or pass --allow-missing to merge what there is)",
+                    dir.display()
+                );
+            }
         }
         Command::Info { file } => {
             let text = tack_io::describe(&file)?;

@@ -25,13 +25,33 @@ pub fn parse_value(value: &str) -> toml::Value {
 }
 
 fn apply_one(table: &mut toml::Table, assignment: &str) -> Result<(), SceneError> {
+    let (key, value) = assignment
+        .split_once('=')
+        .ok_or_else(|| SceneError::Override {
+            assignment: assignment.to_owned(),
+            reason: "expected key=value, e.g. roughness.h=0.002".into(),
+        })?;
+    set_path(table, key, parse_value(value), assignment)
+}
+
+/// Sets the dotted `key` (`roughness.h`) of `table` to an already typed `value`, exactly as
+/// `--set key=value` would (missing tables are created); parameter sweeps use it so that values
+/// need no round trip through text. Errors are [`SceneError::Override`] naming `key=value`.
+pub fn set_value(table: &mut toml::Table, key: &str, value: toml::Value) -> Result<(), SceneError> {
+    let assignment = format!("{key}={value}");
+    set_path(table, key, value, &assignment)
+}
+
+fn set_path(
+    table: &mut toml::Table,
+    key: &str,
+    value: toml::Value,
+    assignment: &str,
+) -> Result<(), SceneError> {
     let fail = |reason: String| SceneError::Override {
         assignment: assignment.to_owned(),
         reason,
     };
-    let (key, value) = assignment
-        .split_once('=')
-        .ok_or_else(|| fail("expected key=value, e.g. roughness.h=0.002".into()))?;
     let parts: Vec<&str> = key.trim().split('.').map(str::trim).collect();
     if parts.iter().any(|p| p.is_empty()) {
         return Err(fail(format!(
@@ -52,7 +72,7 @@ fn apply_one(table: &mut toml::Table, assignment: &str) -> Result<(), SceneError
             ))
         })?;
     }
-    current.insert(last.to_string(), parse_value(value));
+    current.insert(last.to_string(), value);
     Ok(())
 }
 
@@ -88,6 +108,17 @@ mod tests {
         .unwrap();
         assert_eq!(t["material"]["gamma"].as_float(), Some(0.5));
         assert_eq!(t["roughness"]["h"].as_float(), Some(2e-3));
+    }
+
+    #[test]
+    fn typed_values_set_like_overrides() {
+        let mut t = table("[material]\ngamma = 1.0\n");
+        set_value(&mut t, "material.gamma", toml::Value::Float(0.1 + 0.2)).unwrap();
+        set_value(&mut t, "roughness.seed", toml::Value::Integer(7)).unwrap();
+        assert_eq!(t["material"]["gamma"].as_float(), Some(0.1 + 0.2));
+        assert_eq!(t["roughness"]["seed"].as_integer(), Some(7));
+        let e = set_value(&mut t, "material.gamma.x", 1.into()).unwrap_err();
+        assert!(e.to_string().starts_with("--set material.gamma.x=1"), "{e}");
     }
 
     #[test]

@@ -164,6 +164,41 @@ pub fn summary(problem: &Problem, path: &PathResult) -> tack_io::Summary {
     }
 }
 
+/// Names of every scalar [`summary`] can record: the [`tack_io::Summary`] fields, then its
+/// `extra` keys. A run need not have all of them (`d_jkr` only for spheres, `crop_rows` only
+/// when cropped, ...). Parameter sweeps collect quantities by these names.
+pub const SUMMARY_QUANTITIES: [&str; 16] = [
+    "pull_off_force",
+    "f_jkr",
+    "pull_off_ratio",
+    "johnson_alpha",
+    "alpha_star",
+    "d_jkr",
+    "f_kendall",
+    "p_star",
+    "min_mean_pressure",
+    "sigma_c",
+    "kappa",
+    "first_touch",
+    "non_converged_steps",
+    "edge_contact_steps",
+    "crop_rows",
+    "crop_cols",
+];
+
+/// The summary quantity `name` (a field of [`tack_io::Summary`] or a key of its `extra`), NaN
+/// when the summary does not have it.
+pub fn summary_quantity(summary: &tack_io::Summary, name: &str) -> f64 {
+    match name {
+        "pull_off_force" => summary.pull_off_force,
+        "f_jkr" => summary.f_jkr,
+        "pull_off_ratio" => summary.pull_off_ratio,
+        "johnson_alpha" => summary.johnson_alpha.unwrap_or(f64::NAN),
+        "alpha_star" => summary.alpha_star.unwrap_or(f64::NAN),
+        other => summary.extra.get(other).copied().unwrap_or(f64::NAN),
+    }
+}
+
 /// The curve of a path, one entry per step.
 pub fn curve(path: &PathResult) -> tack_io::Curve {
     let r = &path.records;
@@ -491,7 +526,54 @@ pub fn num(x: f64) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::num;
+    use super::*;
+
+    #[test]
+    fn every_summary_quantity_is_listed() {
+        let text = r#"
+version = 1
+[material]
+e_star = 1.0
+gamma = 0.125
+[geometry]
+shape = "sphere"
+radius = 8.0
+[roughness]
+kind = "waviness2d"
+h = 0.01
+lambda = 3.0
+[grid]
+n = 48
+dx = 0.6
+[protocol]
+max_approach = 1.0
+load_step = 0.25
+unload_step = 0.1
+"#;
+        let scene = Scene::parse(text, ".", &[]).unwrap();
+        let problem = Problem::from_scene(&scene).unwrap();
+        assert!(problem.window.is_some(), "the test wants a cropped run");
+        let path = solve(&problem, &mut ()).unwrap();
+        let s = summary(&problem, &path);
+        let mut present = vec![
+            ("pull_off_force", s.pull_off_force),
+            ("f_jkr", s.f_jkr),
+            ("pull_off_ratio", s.pull_off_ratio),
+            ("johnson_alpha", s.johnson_alpha.unwrap()),
+        ];
+        present.extend(s.extra.iter().map(|(k, &v)| (k.as_str(), v)));
+        assert!(present.len() >= 14, "{present:?}");
+        for (name, value) in present {
+            assert!(SUMMARY_QUANTITIES.contains(&name), "{name} is not listed");
+            assert_eq!(
+                summary_quantity(&s, name).to_bits(),
+                value.to_bits(),
+                "{name}"
+            );
+        }
+        assert!(summary_quantity(&s, "alpha_star").is_nan());
+        assert!(summary_quantity(&s, "f_kendall").is_nan());
+    }
 
     #[test]
     fn numbers_have_six_significant_digits() {

@@ -17,14 +17,38 @@
 //! Files are written to a temporary file beside the target and renamed onto it only on success
 //! ([`write_result`]), so a failed or interrupted run never leaves a half-written result under
 //! the final name. Everything is readable with `h5dump` or h5py, without tack.
+//!
+//! Parameter sweeps merge the summaries of their points into one *sweep table*
+//! ([`write_sweep_table`], [`read_sweep_table`]).
+//!
+//! # Layout of a sweep table
+//!
+//! | object | content |
+//! |---|---|
+//! | `/` attributes | `sweep` (the sweep file's TOML), `scene` (the base scene's TOML), `tack_version`, `git_revision`, `command_line`, `created`: variable-length UTF-8 strings |
+//! | `/point/index` | 1D u64, the point index (row `k` holds point `k`) |
+//! | `/point/status` | 1D u8: 0 ok, 1 failed, 2 missing ([`POINT_OK`], [`POINT_FAILED`], [`POINT_MISSING`]) |
+//! | `/point/error` | 1D variable-length UTF-8 strings: the error of a failed point, why a point is missing, else empty |
+//! | `/parameters/<field>` | 1D i64, f64 or variable-length UTF-8 strings: the value of a varied scene field (dotted name, e.g. `roughness.h`) at every point |
+//! | `/parameters` attribute `fields` | 1D strings: the varied fields in sweep order (first = outermost loop) |
+//! | `/results/<name>` | 1D f64: a collected summary quantity, NaN where the point has none (failed, missing, or not defined for it) |
+//! | `/results` attribute `names` | 1D strings: the collected quantities in the sweep's order |
+//!
+//! HDF5 lists group members alphabetically; the `fields` and `names` attributes keep the
+//! order of the sweep file. Written atomically, like result files.
 
 mod error;
 mod h5;
 mod model;
 mod read;
+mod sweep;
 mod write;
 
 pub use error::IoError;
 pub use model::{Curve, Provenance, RunResult, Snapshot, Summary};
 pub use read::{describe, read_height_map_h5, read_result};
+pub use sweep::{
+    POINT_FAILED, POINT_MISSING, POINT_OK, ParameterColumn, SweepTable, read_sweep_table,
+    write_sweep_table,
+};
 pub use write::write_result;

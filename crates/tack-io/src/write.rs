@@ -23,8 +23,18 @@ static TEMPORARIES: AtomicU64 = AtomicU64::new(0);
 /// snapshots beyond the curve or with mismatched shapes, duplicate snapshot steps, `extra`
 /// summary names that shadow a field, a non-positive `dx`, and HDF5 or file-system failures.
 pub fn write_result(path: &Path, result: &RunResult) -> Result<(), IoError> {
+    write_atomically(path, |tmp| write_file(tmp, path, result))
+}
+
+/// Runs `write` on a temporary path beside `path` (`.<name>.tmp-<pid>-<n>`) and renames the
+/// temporary onto `path` when `write` succeeds; on any error the temporary is removed and an
+/// existing file at `path` is left untouched.
+pub(crate) fn write_atomically(
+    path: &Path,
+    write: impl FnOnce(&Path) -> Result<(), IoError>,
+) -> Result<(), IoError> {
     let tmp = temporary_path(path)?;
-    let outcome = write_file(&tmp, path, result).and_then(|()| {
+    let outcome = write(&tmp).and_then(|()| {
         fs::rename(&tmp, path).map_err(|cause| IoError::Fs {
             path: path.to_owned(),
             what: format!("renaming the temporary `{}` onto it", tmp.display()),

@@ -1,0 +1,218 @@
+//! Merging a sweep's output directory into one table (`tack merge`): the varied parameters and
+//! the collected summary quantities of every point, with the status of each point (complete,
+//! failed, missing) so that nothing is silently dropped.
+
+use std::fmt;
+use std::path::Path;
+
+use tack_io::{POINT_FAILED, POINT_MISSING, POINT_OK, ParameterColumn, SweepTable};
+
+use crate::provenance;
+use crate::run::summary_quantity;
+use crate::sweep::{Axis, Sweep, SweepError, point_path, verify_point};
+
+/// How [`merge`] behaves.
+#[derive(Debug, Clone, Default)]
+pub struct MergeOptions {
+    /// Write the table even when points are missing (their rows have status 2 and NaN results).
+    pub allow_missing: bool,
+    /// Command line to record; default: this process's.
+    pub command_line: Option<String>,
+}
+
+/// A point that failed or is missing, for the report.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PointIssue {
+    /// The point index.
+    pub index: usize,
+    /// Its varied values, `field = value, ...`.
+    pub label: String,
+    /// The error of a failed point, or why the point counts as missing.
+    pub message: String,
+}
+
+/// What [`merge`] found and did.
+#[derive(Debug, Clone)]
+pub struct MergeReport {
+    /// Points in the sweep.
+    pub total: usize,
+    /// Complete points.
+    pub ok: usize,
+    /// Failed points, with their errors.
+    pub failed: Vec<PointIssue>,
+    /// Missing points, with the reason.
+    pub missing: Vec<PointIssue>,
+    /// Whether the table was written (not when points are missing without `allow_missing`).
+    pub written: bool,
+}
+
+impl MergeReport {
+    /// One line per failed or missing point (`point 3 (material.e_star = -1) failed: ...`).
+    pub fn issues(&self) -> String {
+        let failed = self.failed.iter().map(|p| (p, "failed"));
+        let missing = self.missing.iter().map(|p| (p, "is missing"));
+        failed
+            .chain(missing)
+            .map(|(p, what)| {
+                format!(
+                    "point {} ({}) {what}: {}\n",
+                    p.index,
+                    p.label,
+                    p.message.trim_end()
+                )
+            })
+            .collect()
+    }
+}
+
+impl fmt::Display for MergeReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{} points: {} complete, {} failed, {} missing",
+            self.total,
+            self.ok,
+            self.failed.len(),
+            self.missing.len()
+        )
+    }
+}
+
+/// Gathers the per-point summaries of the sweep in `dir` into the sweep table `out` (written
+/// atomically; layout in `tack_io`'s documentation).
+///
+/// A point is complete when `points/<index>.h5` reads back and records exactly the point's
+/// scene; failed when its `points/<index>.err` exists instead; missing otherwise (never run, or
+/// a stale or unreadable result). Failed and missing points get NaN results and are listed in
+/// the report. With missing points and without `allow_missing` nothing is written.
+pub fn merge(dir: &Path, out: &Path, options: &MergeOptions) -> Result<MergeReport, SweepError> {
+    let sweep = Sweep::open_dir(dir)?;
+    let total = sweep.len();
+    let mut status = Vec::with_capacity(total);
+    let mut errors = Vec::with_capacity(total);
+    let mut results: Vec<Vec<f64>> = vec![Vec::with_capacity(total); sweep.collect.len()];
+    let mut report = MergeReport {
+        total,
+        ok: 0,
+        failed: Vec::new(),
+        missing: Vec::new(),
+        written: false,
+    };
+    for index in 0..total {
+        let h5 = point_path(dir, index, total, "h5");
+        let err = point_path(dir, index, total, "err");
+        let verified = sweep
+            .point_text(index)
+            .map_err(|e| e.to_string())
+            .and_then(|text| {
+                if h5.exists() {
+                    verify_point(&h5, &text).map(Some)
+                } else {
+                    Ok(None)
+                }
+            });
+        let issue = |message: String| PointIssue {
+            index,
+            label: sweep.label(index),
+            message,
+        };
+        let (code, message) = match verified {
+            Ok(Some(result)) => {
+                for (column, name) in results.iter_mut().zip(&sweep.collect) {
+                    column.push(summary_quantity(&result.summary, name));
+                }
+                report.ok += 1;
+                (POINT_OK, String::new())
+            }
+            other => {
+                results.iter_mut().for_each(|c| c.push(f64::NAN));
+                if err.is_file() {
+                    let message = std::fs::read_to_string(&err)
+                        .map(|m| m.trim_end().to_owned())
+                        .unwrap_or_else(|e| format!("{}: unreadable: {e}", err.display()));
+                    report.failed.push(issue(message.clone()));
+                    (POINT_FAILED, message)
+                } else {
+                    let message = match other {
+                        Err(reason) => reason,
+                        _ => format!(
+                            "no result file {} and no error file: the point has not run",
+                            h5.display()
+                        ),
+                    };
+                    report.missing.push(issue(message.clone()));
+                    (POINT_MISSING, message)
+                }
+            }
+        };
+        status.push(code);
+        errors.push(message);
+    }
+    if !report.missing.is_empty() && !options.allow_missing {
+        return Ok(report);
+    }
+    let command_line = options
+        .command_line
+        .clone()
+        .unwrap_or_else(provenance::command_line);
+    let table = SweepTable {
+        sweep: sweep.text.clone(),
+        provenance: tack_io::Provenance {
+            tack_version: provenance::VERSION.to_owned(),
+            git_revision: provenance::GIT_REVISION.to_owned(),
+            command_line,
+            scene: sweep.base_text.clone(),
+            created: provenance::now_rfc3339(),
+            seed: None,
+        },
+        index: (0..total as u64).collect(),
+        status,
+        error: errors,
+        parameters: sweep
+            .axes
+            .iter()
+            .map(|axis| (axis.field.clone(), parameter_column(&sweep, axis)))
+            .collect(),
+        results: sweep.collect.iter().cloned().zip(results).collect(),
+    };
+    tack_io::write_sweep_table(out, &table)?;
+    report.written = true;
+    Ok(report)
+}
+
+/// The values of `axis` at every point: i64 when all its values are integers, f64 when all are
+/// numbers, else text (strings unquoted, other values as TOML).
+fn parameter_column(sweep: &Sweep, axis: &Axis) -> ParameterColumn {
+    let position = sweep
+        .axes
+        .iter()
+        .position(|a| a.field == axis.field)
+        .unwrap_or(0);
+    let values: Vec<&toml::Value> = (0..sweep.len())
+        .map(|i| sweep.point_values(i)[position].1)
+        .collect();
+    if values.iter().all(|v| v.is_integer()) {
+        ParameterColumn::Integer(values.iter().filter_map(|v| v.as_integer()).collect())
+    } else if values.iter().all(|v| v.is_integer() || v.is_float()) {
+        ParameterColumn::Float(
+            values
+                .iter()
+                .map(|v| {
+                    v.as_float()
+                        .or(v.as_integer().map(|i| i as f64))
+                        .unwrap_or(f64::NAN)
+                })
+                .collect(),
+        )
+    } else {
+        ParameterColumn::Text(
+            values
+                .iter()
+                .map(|v| match v {
+                    toml::Value::String(s) => s.clone(),
+                    other => other.to_string(),
+                })
+                .collect(),
+        )
+    }
+}
