@@ -1,99 +1,227 @@
-//! `cargo xtask reproduce`: regenerates the datasets that exist so far and writes a report.
-//!
-//! The paper's Figures 1–8 need the adhesive solver and are not reproduced yet; this command
-//! says so and reproduces the non-adhesive validation (Hertz, Westergaard) that underpins them.
+//! `cargo xtask reproduce [FIG...] [--full] [--out DIR] [--threads N]`: regenerates the paper's
+//! Figures 1–8 from the specs in `data/figures/` and the non-adhesive validation tables, and
+//! writes `DIR/REPORT.md` (plots, measured deviations, wall times) and `DIR/validation.md`.
 
-use anyhow::{Context, Result, bail};
-use std::f64::consts::PI;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Instant;
-use tack_analytics::{hertz_contact_radius, hertz_force, westergaard_p_star};
-use tack_geometry::{Boundary, Grid, Sphere, Surface};
-use tack_kernels::operator_for;
-use tack_solver::{ContactSolver, SolverOptions};
 
-/// Parses `[--out DIR]` and runs every available dataset.
-pub fn run(args: &[String]) -> Result<()> {
-    let mut out = PathBuf::from("results");
-    let mut it = args.iter();
-    while let Some(a) = it.next() {
-        match a.as_str() {
-            "--out" => out = it.next().context("--out needs a directory")?.into(),
-            other => bail!("unknown argument `{other}` (allowed: --out DIR)"),
+use anyhow::{Context, Result};
+
+use crate::engine::Cache;
+use crate::figures::{self, Ctx, Summary};
+use crate::validation;
+
+/// What to reproduce and where.
+#[derive(Debug, Clone)]
+pub struct Options {
+    /// Figures to run, in order.
+    pub figures: Vec<u8>,
+    /// Also regenerate the validation tables (default when no figure is named).
+    pub validation: bool,
+    /// Full mode: the paper's settings.
+    pub full: bool,
+    /// Output directory.
+    pub out: PathBuf,
+    /// Worker threads for independent runs.
+    pub threads: usize,
+    /// Directory of the figure specs.
+    pub specs: PathBuf,
+}
+
+impl Options {
+    /// Parses the command's arguments.
+    pub fn parse(args: &[String]) -> Result<Self> {
+        let mut o = Self {
+            figures: Vec::new(),
+            validation: false,
+            full: false,
+            out: PathBuf::from("results"),
+            threads: std::thread::available_parallelism().map_or(1, |n| n.get()),
+            specs: default_specs(),
+        };
+        let mut it = args.iter();
+        while let Some(a) = it.next() {
+            match a.as_str() {
+                "--full" => o.full = true,
+                "--out" => o.out = it.next().context("--out needs a directory")?.into(),
+                "--specs" => o.specs = it.next().context("--specs needs a directory")?.into(),
+                "--threads" => {
+                    let n = it.next().context("--threads needs a number")?;
+                    o.threads = n
+                        .parse()
+                        .ok()
+                        .filter(|&n| n >= 1)
+                        .with_context(|| format!("--threads {n}: must be an integer ≥ 1"))?;
+                }
+                "validation" => o.validation = true,
+                fig => {
+                    let n: u8 = fig
+                        .strip_prefix("fig")
+                        .unwrap_or(fig)
+                        .parse()
+                        .ok()
+                        .filter(|n| (1..=8).contains(n))
+                        .with_context(|| {
+                            format!(
+                                "unknown argument `{fig}` (allowed: 1..8 or fig1..fig8, \
+                                 validation, --full, --out DIR, --threads N, --specs DIR)"
+                            )
+                        })?;
+                    if !o.figures.contains(&n) {
+                        o.figures.push(n);
+                    }
+                }
+            }
         }
+        if o.figures.is_empty() && !o.validation {
+            o.figures = (1..=8).collect();
+            o.validation = true;
+        }
+        Ok(o)
     }
-    println!(
-        "Figures 1-8 of Li, Pohrt & Popov (2019) need the adhesive solver, which is not built yet;"
-    );
-    println!(
-        "reproducing what exists: the non-adhesive validation against Hertz and Westergaard.\n"
-    );
+}
+
+/// `data/figures` of this workspace.
+pub fn default_specs() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../data/figures")
+}
+
+/// A figure's summary and wall time.
+pub struct Done {
+    /// The figure's title (from its spec).
+    pub title: String,
+    /// The summary.
+    pub summary: Summary,
+    /// Wall time in seconds.
+    pub seconds: f64,
+}
+
+/// Runs the selected figures in order (runs inside a figure in parallel on the current rayon
+/// pool) and returns their summaries.
+pub fn figures(o: &Options) -> Result<Vec<Done>> {
+    std::fs::create_dir_all(&o.out).with_context(|| format!("creating {}", o.out.display()))?;
+    let cache = Cache::default();
+    let ctx = Ctx {
+        specs: o.specs.clone(),
+        out: o.out.clone(),
+        full: o.full,
+        cache: &cache,
+    };
+    let mut done = Vec::new();
+    for &n in &o.figures {
+        println!("fig{n} ({} mode)", if o.full { "full" } else { "quick" });
+        let t = Instant::now();
+        let title = ctx.spec(n)?.title;
+        let summary = figures::run(n, &ctx).with_context(|| format!("figure {n}"))?;
+        let seconds = t.elapsed().as_secs_f64();
+        print!("{}", summary.text());
+        println!("fig{n}: {seconds:.1} s\n");
+        done.push(Done {
+            title,
+            summary,
+            seconds,
+        });
+    }
+    Ok(done)
+}
+
+/// The command.
+pub fn run(args: &[String]) -> Result<()> {
+    let o = Options::parse(args)?;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(o.threads)
+        .build()
+        .context("starting the worker threads")?;
     let start = Instant::now();
-    let mut report = String::from("# tack validation report\n\n");
-    report += &hertz_table()?;
-    report += &westergaard_table()?;
-    std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
-    let path = out.join("validation.md");
-    let tmp = out.join("validation.md.tmp");
-    std::fs::write(&tmp, &report).with_context(|| format!("writing {}", tmp.display()))?;
-    std::fs::rename(&tmp, &path)?;
-    print!("{report}");
+    let done = pool.install(|| figures(&o))?;
+    let mut report = format!(
+        "# tack: reproduction of Li, Pohrt & Popov (2019)\n\nMode: **{}** ({} threads). \
+         Generated by `cargo xtask reproduce`; figure specs in `data/figures/`.\n\n",
+        if o.full { "full" } else { "quick" },
+        o.threads
+    );
+    if !done.is_empty() {
+        report += "| figure | compared | wall time [s] |\n|---|---|---|\n";
+        for d in &done {
+            let _ = writeln!(
+                report,
+                "| [{n}](#figure-{n}) | {} | {:.1} |",
+                d.summary.compared.replace('|', "\\|"),
+                d.seconds,
+                n = d.summary.figure
+            );
+        }
+        report.push('\n');
+    }
+    for d in &done {
+        let n = d.summary.figure;
+        let _ = write!(
+            report,
+            "## Figure {n}: {}\n\n![fig{n}](fig{n}.svg)\n\n{}\n\n{}\nData: `fig{n}.h5`, runs in \
+             `fig{n}/`. Wall time {:.1} s.\n\n",
+            d.title,
+            d.summary.compared,
+            d.summary.markdown(),
+            d.seconds
+        );
+    }
+    if o.validation {
+        println!("validation (non-adhesive: Hertz, Westergaard)");
+        let t = Instant::now();
+        let v = validation::report()?;
+        write_atomic(&o.out.join("validation.md"), &v)?;
+        println!("validation: {:.1} s\n", t.elapsed().as_secs_f64());
+        report += &v.replacen("# tack validation report", "## Non-adhesive validation", 1);
+    }
+    let path = o.out.join("REPORT.md");
+    write_atomic(&path, &report)?;
     println!(
-        "\nwrote {} in {:.1} s",
+        "wrote {} in {:.1} s",
         path.display(),
         start.elapsed().as_secs_f64()
     );
     Ok(())
 }
 
-fn hertz_table() -> Result<String> {
-    let (r, e, d) = (1.0, 1.0, 0.01);
-    let a = hertz_contact_radius(r, d);
-    let mut s = String::from(
-        "## Hertz sphere, free boundaries\n\n| a/Δx | grid | force error | iterations | time [s] |\n|---|---|---|---|---|\n",
-    );
-    for ratio in [10.0f64, 20.0, 40.0, 80.0] {
-        let n = 2 * (1.25 * ratio).ceil() as usize + 1;
-        let grid = Grid::square(n, a / ratio, Boundary::Free)?;
-        let surface = Surface::from_shape(grid, &Sphere::new(r)?);
-        let t = Instant::now();
-        let st = ContactSolver::new(operator_for(grid, e)?, &surface, SolverOptions::default())?
-            .solve(d)?;
-        let err = st.force / hertz_force(e, r, d) - 1.0;
-        writeln!(
-            s,
-            "| {ratio} | {n}² | {err:+.3e} | {} | {:.3} |",
-            st.iterations,
-            t.elapsed().as_secs_f64()
-        )?;
-    }
-    Ok(s + "\n")
+fn write_atomic(path: &std::path::Path, text: &str) -> Result<()> {
+    let tmp = path.with_extension("tmp");
+    std::fs::write(&tmp, text).with_context(|| format!("writing {}", tmp.display()))?;
+    std::fs::rename(&tmp, path).with_context(|| format!("writing {}", path.display()))?;
+    Ok(())
 }
 
-fn westergaard_table() -> Result<String> {
-    let (e, h, lambda) = (1.0, 0.01, 1.0);
-    let p_star = westergaard_p_star(e, h, lambda);
-    let mut s = String::from(
-        "## Westergaard 1D waviness, periodic\n\nmax |p̄ − p* sin²(πa/λ)|/p* over πa/λ ∈ [0.2, 1.4]\n\n| λ/Δx | max deviation |\n|---|---|\n",
-    );
-    for nx in [128usize, 256, 512, 1024] {
-        let grid = Grid::new(nx, 1, lambda / nx as f64, Boundary::Periodic)?;
-        let heights = ndarray::Array2::from_shape_fn((nx, 1), |(i, _)| {
-            h * (1.0 - (2.0 * PI * grid.x(i) / lambda).cos())
-        });
-        let surface = Surface::new(grid, heights)?;
-        let mut solver =
-            ContactSolver::new(operator_for(grid, e)?, &surface, SolverOptions::default())?;
-        let mut worst: f64 = 0.0;
-        for k in 1..60 {
-            let st = solver.solve(h * (1.0 - ((60 - k) as f64 / 60.0).powi(4)))?;
-            let psi = PI * st.n_contact as f64 * grid.dx() / (2.0 * lambda);
-            if (0.2..=1.4).contains(&psi) {
-                worst = worst.max((st.mean_pressure - p_star * psi.sin().powi(2)).abs() / p_star);
-            }
-        }
-        writeln!(s, "| {nx} | {worst:.3e} |")?;
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn arguments() {
+        let o = Options::parse(&["fig2".into(), "7".into(), "--full".into()]).unwrap();
+        assert_eq!((o.figures, o.full, o.validation), (vec![2, 7], true, false));
+        let o = Options::parse(&[]).unwrap();
+        assert_eq!(o.figures, (1..=8).collect::<Vec<_>>());
+        assert!(o.validation);
+        assert!(Options::parse(&["9".into()]).is_err());
+        assert!(Options::parse(&["--threads".into(), "0".into()]).is_err());
     }
-    Ok(s)
+
+    /// Quick mode of every figure; the rounded summaries are insta snapshots
+    /// (`src/snapshots/`). A changed number fails the test until reviewed: `cargo insta review`,
+    /// or rerun with `INSTA_UPDATE=always` and inspect the diff of the `.snap` files. Outside CI
+    /// a mismatch also leaves a `.snap.new` beside the snapshot; with `CI=true` nothing is written.
+    #[test]
+    fn quick_mode_summaries() {
+        let out = std::env::temp_dir().join(format!("tack-xtask-quick-{}", std::process::id()));
+        let o = Options {
+            validation: false,
+            out: out.clone(),
+            ..Options::parse(&[]).unwrap()
+        };
+        let done = figures(&o);
+        let _ = std::fs::remove_dir_all(&out);
+        for d in done.unwrap() {
+            insta::assert_snapshot!(format!("fig{}", d.summary.figure), d.summary.text());
+        }
+    }
 }

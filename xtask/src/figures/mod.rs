@@ -1,0 +1,375 @@
+//! The paper's Figures 1–8: each builds its runs from its spec, runs them, and writes
+//! `figN.h5`, `figN.svg`, the runs' result files under `figN/` and a [`Summary`].
+//!
+//! `figN.h5` uses the tack-io layout for the figure's collected table, one entry per plotted
+//! point: `/curve/approach` = abscissa, `/curve/force` = ordinate, `/curve/mean_pressure` =
+//! the closed form at that abscissa (NaN where none), `/curve/area` = a spread (standard
+//! deviation, or a second abscissa), `/curve/n_bonded` = series index; the other columns are
+//! zero. What each column means for the figure is written into the root attribute `scene`
+//! after the spec's TOML, and the summary numbers are `/summary` attributes.
+
+mod periodic;
+mod rough_sphere;
+mod surfaces;
+mod wavy_sphere;
+
+use std::f64::consts::PI;
+use std::fmt::Write as _;
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use anyhow::{Context, Result};
+use serde::Deserialize;
+use tack_analytics::{
+    jkr_approach_hat, jkr_approach_scale, jkr_force_hat, jkr_pull_off_approach, jkr_pull_off_force,
+};
+use tack_cli::scene::{Geometry, SceneFile};
+
+use crate::engine::{Cache, RunOutput, write_run};
+use crate::plot::{Area, svg};
+use crate::spec::FigureSpec;
+
+/// Where a figure reads its spec and writes its outputs, and the shared run cache.
+pub struct Ctx<'a> {
+    /// Directory of the figure specs (`data/figures`).
+    pub specs: PathBuf,
+    /// Output directory (`results`).
+    pub out: PathBuf,
+    /// Full mode (the paper's settings).
+    pub full: bool,
+    /// Runs already made by this process.
+    pub cache: &'a Cache,
+}
+
+impl Ctx<'_> {
+    /// The spec of figure `n` in this mode.
+    pub fn spec(&self, n: u8) -> Result<FigureSpec> {
+        FigureSpec::load(&self.specs, n, self.full)
+    }
+}
+
+/// One number of a figure's summary, with the paper's value where there is one.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Item {
+    /// Name (`snake_case`, used as an HDF5 attribute name).
+    pub key: String,
+    /// Measured value.
+    pub value: f64,
+    /// The paper's value, if it gives one.
+    pub paper: Option<f64>,
+}
+
+/// The numbers a figure reports, printed with three significant digits.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Summary {
+    /// Figure number.
+    pub figure: u8,
+    /// One line on what was compared.
+    pub compared: String,
+    /// The numbers.
+    pub items: Vec<Item>,
+}
+
+impl Summary {
+    /// An empty summary of figure `figure`.
+    pub fn new(figure: u8, compared: impl Into<String>) -> Self {
+        Self {
+            figure,
+            compared: compared.into(),
+            items: Vec::new(),
+        }
+    }
+    /// Appends a number.
+    pub fn add(&mut self, key: impl Into<String>, value: f64) {
+        self.items.push(Item {
+            key: key.into(),
+            value,
+            paper: None,
+        });
+    }
+    /// Appends a number with the paper's value.
+    pub fn add_vs(&mut self, key: impl Into<String>, value: f64, paper: f64) {
+        self.items.push(Item {
+            key: key.into(),
+            value,
+            paper: Some(paper),
+        });
+    }
+    /// `key = value` lines (three significant digits), the form checked by the snapshot test.
+    pub fn text(&self) -> String {
+        let mut s = format!("fig{}: {}\n", self.figure, self.compared);
+        for i in &self.items {
+            let _ = write!(s, "{} = {}", i.key, sig3(i.value));
+            if let Some(p) = i.paper {
+                let _ = write!(s, " (paper {})", sig3(p));
+            }
+            s.push('\n');
+        }
+        s
+    }
+    /// A markdown table of the numbers.
+    pub fn markdown(&self) -> String {
+        let mut s = String::from("| quantity | measured | paper |\n|---|---|---|\n");
+        for i in &self.items {
+            let paper = i.paper.map_or("".into(), sig3);
+            let _ = writeln!(s, "| `{}` | {} | {paper} |", i.key, sig3(i.value));
+        }
+        s
+    }
+}
+
+/// `x` rounded to three significant digits and printed without noise (`0.0231`, `1.02e-5`).
+pub fn sig3(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    if x.fract() == 0.0 && x.abs() < 1e6 {
+        return format!("{x}");
+    }
+    let mag = x.abs().log10().floor();
+    let unit = 10f64.powf(mag - 2.0);
+    let r = (x / unit).round() * unit;
+    let mag = r.abs().log10().floor();
+    if (-3.0..4.0).contains(&mag) {
+        format!("{r:.*}", (2.0 - mag).max(0.0) as usize)
+    } else {
+        format!("{r:.2e}")
+    }
+}
+
+/// A figure's collected table (see the module documentation for the HDF5 columns).
+#[derive(Debug, Clone, Default)]
+pub struct Table {
+    /// What the columns mean, one `# ...` line each.
+    pub legend: String,
+    /// Abscissa.
+    pub x: Vec<f64>,
+    /// Ordinate.
+    pub y: Vec<f64>,
+    /// Closed form at `x` (NaN where none).
+    pub reference: Vec<f64>,
+    /// Spread or second abscissa.
+    pub spread: Vec<f64>,
+    /// Series index.
+    pub series: Vec<u64>,
+    /// `(run name, step)` of fields shown in the figure, written to the run files besides the
+    /// pull-off step and the last contact.
+    pub shown: Vec<(String, usize)>,
+}
+
+impl Table {
+    /// A table whose columns mean `legend`.
+    pub fn new(legend: &str) -> Self {
+        Self {
+            legend: legend.into(),
+            ..Self::default()
+        }
+    }
+    /// Appends one point.
+    pub fn push(&mut self, series: usize, x: f64, y: f64, reference: f64, spread: f64) {
+        self.series.push(series as u64);
+        self.x.push(x);
+        self.y.push(y);
+        self.reference.push(reference);
+        self.spread.push(spread);
+    }
+}
+
+/// Writes a figure's outputs: `figN.h5` (table + summary), `figN.svg` (drawn by `draw` on a
+/// canvas of `size` pixels) and every run's result file under `figN/`, with the fields of its
+/// pull-off step, its last contact and the steps in `table.shown` (`figN/` is emptied first).
+pub fn write_figure(
+    ctx: &Ctx,
+    spec: &FigureSpec,
+    table: &Table,
+    summary: &Summary,
+    runs: &[Arc<RunOutput>],
+    size: (u32, u32),
+    draw: impl FnOnce(&Area) -> Result<()>,
+) -> Result<()> {
+    let n = spec.figure;
+    std::fs::create_dir_all(&ctx.out)?;
+    let dir = ctx.out.join(format!("fig{n}"));
+    // The run directory holds exactly this invocation's runs.
+    if dir.is_dir() {
+        std::fs::remove_dir_all(&dir).with_context(|| format!("clearing {}", dir.display()))?;
+    }
+    for r in runs {
+        let steps: Vec<usize> = table
+            .shown
+            .iter()
+            .filter(|(name, _)| *name == r.name)
+            .map(|&(_, k)| k)
+            .collect();
+        write_run(&dir, r, &steps)?;
+    }
+    let zeros = vec![0u64; table.x.len()];
+    let mut extra = std::collections::BTreeMap::new();
+    for i in &summary.items {
+        extra.insert(i.key.clone(), i.value);
+        if let Some(p) = i.paper {
+            extra.insert(format!("{}_paper", i.key), p);
+        }
+    }
+    let result = tack_io::RunResult {
+        provenance: tack_io::Provenance {
+            tack_version: tack_cli::provenance::VERSION.into(),
+            git_revision: tack_cli::provenance::GIT_REVISION.into(),
+            command_line: tack_cli::provenance::command_line(),
+            scene: format!(
+                "{}\n# mode: {}\n# figN.h5 columns:\n{}",
+                spec.text,
+                if spec.full { "full" } else { "quick" },
+                table.legend
+            ),
+            created: tack_cli::provenance::now_rfc3339(),
+            seed: None,
+        },
+        curve: tack_io::Curve {
+            approach: table.x.clone(),
+            force: table.y.clone(),
+            area: table.spread.clone(),
+            n_bonded: table.series.clone(),
+            n_clusters: zeros.clone(),
+            iterations: zeros.clone(),
+            active_set_iterations: zeros,
+            converged: vec![true; table.x.len()],
+            mean_pressure: Some(table.reference.clone()),
+        },
+        surface: None,
+        snapshots: Vec::new(),
+        summary: tack_io::Summary {
+            pull_off_force: f64::NAN,
+            f_jkr: f64::NAN,
+            pull_off_ratio: f64::NAN,
+            johnson_alpha: None,
+            alpha_star: None,
+            extra,
+        },
+    };
+    let h5 = ctx.out.join(format!("fig{n}.h5"));
+    tack_io::write_result(&h5, &result).with_context(|| format!("writing {}", h5.display()))?;
+    svg(&ctx.out.join(format!("fig{n}.svg")), size, draw)
+}
+
+/// Runs figure `n` (1–8) and returns its summary.
+pub fn run(n: u8, ctx: &Ctx) -> Result<Summary> {
+    match n {
+        1 => periodic::fig1(ctx),
+        2 => periodic::fig2(ctx),
+        3 => surfaces::fig3(ctx),
+        4 => wavy_sphere::fig4(ctx),
+        5 => wavy_sphere::fig5(ctx),
+        6 => rough_sphere::fig6(ctx),
+        7 => rough_sphere::fig7(ctx),
+        8 => rough_sphere::fig8(ctx),
+        _ => anyhow::bail!("there is no figure {n} (figures are 1–8)"),
+    }
+}
+
+/// The approach path of a sphere pull-off in JKR units, `path = {...}` in `[quick]`/`[full]` of
+/// the sphere figures (4–8).
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PullOff {
+    /// Deepest approach below the mean surface, in units of (Rγ²/E*²)^(1/3) (REFERENCE §2: 6,
+    /// a contact of about 1.6 a_c).
+    pub load_depth: f64,
+    /// Number of load steps from the first touch.
+    pub load_steps: usize,
+    /// Retraction step, in units of (Rγ²/E*²)^(1/3).
+    pub unload_step: f64,
+    /// Retraction step while the force is still compressive (same units; default
+    /// `unload_step`): the pull-off lies in the tensile part, which uses `unload_step`.
+    #[serde(default)]
+    pub coarse_unload_step: Option<f64>,
+}
+
+impl PullOff {
+    /// The coarse retraction step of a sphere scene in length units.
+    pub fn coarse(&self, file: &SceneFile) -> Option<f64> {
+        let Geometry::Sphere { radius } = file.geometry else {
+            return None;
+        };
+        let ds = jkr_approach_scale(file.material.e_star, file.material.gamma, radius);
+        self.coarse_unload_step.map(|c| c * ds)
+    }
+}
+
+/// A sphere run's scene: `file` with the path `path` down to `load_depth` below the mean
+/// surface `offset` (h for a waviness, 0 for zero-mean roughness), element size `dx` and `n`
+/// elements per side; `n = None` sizes the free grid to hold the contact window of a roughness
+/// of height range `range` (tack-cli crops the grid to that window).
+pub fn sphere_scene(
+    mut file: SceneFile,
+    offset: f64,
+    range: f64,
+    dx: f64,
+    n: Option<usize>,
+    path: &PullOff,
+) -> Result<SceneFile> {
+    let Geometry::Sphere { radius } = file.geometry else {
+        anyhow::bail!("a sphere figure needs geometry.shape = \"sphere\"");
+    };
+    let (e, g) = (file.material.e_star, file.material.gamma);
+    let ds = jkr_approach_scale(e, g, radius);
+    let d_max = offset + path.load_depth * ds;
+    let n = n.unwrap_or_else(|| {
+        // contact_window: f ≤ d_max + range + sqrt(2πγℓ/E*), ℓ the window's half-diagonal.
+        let level = d_max + range;
+        let ell = (2.0 * radius * level).sqrt() * std::f64::consts::SQRT_2;
+        let reach = (2.0 * PI * g * ell / e).sqrt();
+        2 * ((2.0 * radius * (level + reach)).sqrt() / dx).ceil() as usize + 11
+    });
+    file.grid.n = Some(n);
+    (file.grid.nx, file.grid.ny, file.grid.length) = (None, None, None);
+    file.grid.dx = Some(dx);
+    let p = &mut file.protocol;
+    p.start = None;
+    p.max_approach = d_max;
+    p.load_step = (d_max + range) / path.load_steps.max(1) as f64;
+    p.unload_step = Some(path.unload_step * ds);
+    p.retract_to = None;
+    Ok(file)
+}
+
+/// The smooth sphere's JKR force–approach curve normalised by |F_JKR| and |d_JKR| (Eq. 7, 8),
+/// from the jump-off point (â³ = π/8) up to `x_max`.
+pub fn jkr_curve(x_max: f64) -> Vec<(f64, f64)> {
+    let (f, d) = (
+        jkr_pull_off_force(1.0, 1.0).abs(),
+        jkr_pull_off_approach(1.0, 1.0, 1.0).abs(),
+    );
+    let mut a = (PI / 8.0).cbrt();
+    let mut pts = Vec::new();
+    while pts.last().is_none_or(|&(x, _)| x < x_max) && pts.len() < 5000 {
+        pts.push((jkr_approach_hat(a) / d, jkr_force_hat(a) / f));
+        a += 0.005;
+    }
+    pts
+}
+
+/// Crops maps to the common bounding box of their non-zero cells, grown by `pad` cells (maps of
+/// one row of contact configurations share one frame).
+pub fn crop_maps(maps: Vec<crate::plot::Map>, pad: usize) -> Vec<crate::plot::Map> {
+    let (mut i0, mut i1, mut j0, mut j1) = (usize::MAX, 0, usize::MAX, 0);
+    for m in &maps {
+        for ((i, j), &v) in m.values.indexed_iter() {
+            if v != 0.0 {
+                (i0, i1, j0, j1) = (i0.min(i), i1.max(i + 1), j0.min(j), j1.max(j + 1));
+            }
+        }
+    }
+    if i1 == 0 {
+        return maps;
+    }
+    maps.into_iter()
+        .map(|mut m| {
+            let (nx, ny) = m.values.dim();
+            let (a0, a1) = (i0.saturating_sub(pad), (i1 + pad).min(nx));
+            let (b0, b1) = (j0.saturating_sub(pad), (j1 + pad).min(ny));
+            m.values = m.values.slice(ndarray::s![a0..a1, b0..b1]).to_owned();
+            m
+        })
+        .collect()
+}

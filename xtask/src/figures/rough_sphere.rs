@@ -1,0 +1,492 @@
+//! Figures 6–8: a sphere with seeded random roughness (L = R, q0 = 2π/L, q1 = π/Δx) pulled off
+//! a free half-space. Figure 7 runs every (H, α*, seed); Figures 6 and 8 read its runs
+//! (force–distance curves, contact configurations) and share them through the run cache.
+
+use std::sync::Arc;
+
+use anyhow::{Result, bail};
+use serde::Deserialize;
+use tack_analytics::{alpha_star, jkr_pull_off_approach, lambda_star};
+use tack_cli::scene::{Geometry, Roughness, SceneFile};
+use tack_geometry::{Boundary, Grid, RoughSpec, rough_surface};
+
+use super::{Ctx, PullOff, Summary, Table, crop_maps, sphere_scene, write_figure};
+use crate::engine::{Keep, RunOutput, RunSpec, run_all};
+use crate::plot::{Chart, Map, Series, Style, draw_chart, draw_maps};
+use crate::spec::scene;
+
+/// Figure 7's sweep, `[quick]`/`[full]` of `fig7.toml`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Fig7 {
+    /// Elements per side of the L = R grid (q1 = π/Δx follows).
+    grid_n: usize,
+    /// Hurst exponents H.
+    hurst: Vec<f64>,
+    /// Targets of the adhesion parameter α* (Eq. 11): h = sqrt(4γq1^(0.8H−1)/(πE*q0^(0.8H)))/α*.
+    alpha_star: Vec<f64>,
+    /// Seeds of the realizations.
+    seeds: Vec<u64>,
+    /// Gaussian fit (Eq. 12 form) to the mean points with α* ≤ this value.
+    fit_below: f64,
+    /// The approach path.
+    path: PullOff,
+}
+
+/// Figure 6's selection, `[quick]`/`[full]` of `fig6.toml`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Fig6 {
+    /// Hurst exponents shown (one panel each; must be among Figure 7's).
+    hurst: Vec<f64>,
+    /// α* values shown (must be among Figure 7's).
+    alpha_star: Vec<f64>,
+}
+
+/// Figure 8's selection, `[quick]`/`[full]` of `fig8.toml`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Fig8 {
+    /// Middle column: the roughness whose mean |F_ad/F_JKR| is closest to this (rough side).
+    middle: f64,
+    /// Right column: the least roughness whose mean |F_ad/F_JKR| is below this.
+    weak: f64,
+}
+
+/// One (H, α*) point of Figure 7: its runs over the seeds.
+struct Point {
+    hurst: f64,
+    alpha_star: f64,
+    h: f64,
+    runs: Vec<Arc<RunOutput>>,
+}
+
+impl Point {
+    fn ratios(&self) -> Vec<f64> {
+        self.runs.iter().map(|r| r.pull_off_ratio().abs()).collect()
+    }
+    fn mean_std(&self) -> (f64, f64) {
+        let v = self.ratios();
+        let n = v.len().max(1) as f64;
+        let mean = v.iter().sum::<f64>() / n;
+        let var = v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0).max(1.0);
+        (mean, var.sqrt())
+    }
+}
+
+/// The scene of one (H, α*, seed) on Figure 7's L = R grid and its rms height h (from Eq. 11
+/// with the grid's q0 = 2π/L, q1 = π/Δx), loaded `path.load_depth` below the highest point of
+/// the roughness so that the first step bonds a compact disc.
+fn rough_scene(
+    base: &SceneFile,
+    p: &Fig7,
+    hurst: f64,
+    a: f64,
+    seed: u64,
+) -> Result<(SceneFile, f64)> {
+    let Geometry::Sphere { radius } = base.geometry else {
+        bail!("figure 7 needs a sphere");
+    };
+    let (e, g) = (base.material.e_star, base.material.gamma);
+    let grid = Grid::square(p.grid_n, radius / p.grid_n as f64, Boundary::Free)?;
+    let band = RoughSpec::paper_defaults(grid, 1.0, hurst, seed);
+    let h = alpha_star(e, g, 1.0, hurst, band.q0, band.q1) / a;
+    let rough = rough_surface(grid, &RoughSpec { rms: h, ..band })?;
+    let (top, range) = (rough.max(), rough.max() - rough.min());
+    let mut f = base.clone();
+    f.roughness = Some(Roughness::Random {
+        h,
+        hurst,
+        q0: None,
+        q1: None,
+        seed,
+    });
+    Ok((
+        sphere_scene(f, top, range, grid.dx(), Some(p.grid_n), &p.path)?,
+        h,
+    ))
+}
+
+/// Figure 7's scene of one (H, α*, seed) in this mode (for Figure 3).
+pub fn scene_for(ctx: &Ctx, hurst: f64, a: f64, seed: u64) -> Result<SceneFile> {
+    let spec = ctx.spec(7)?;
+    Ok(rough_scene(&spec.scene()?, &spec.params()?, hurst, a, seed)?.0)
+}
+
+/// Every run of Figure 7 (in the order H, α*, seed), grouped into points; also |d_JKR|.
+fn points(ctx: &Ctx) -> Result<(Fig7, Vec<Point>, f64)> {
+    let spec = ctx.spec(7)?;
+    let p: Fig7 = spec.params()?;
+    let base = spec.scene()?;
+    let mut specs = Vec::new();
+    let mut meta = Vec::new();
+    for &hurst in &p.hurst {
+        for &a in &p.alpha_star {
+            let mut h = f64::NAN;
+            for &seed in &p.seeds {
+                let (file, rms) = rough_scene(&base, &p, hurst, a, seed)?;
+                h = rms;
+                specs.push(RunSpec {
+                    coarse_unload: p.path.coarse(&file),
+                    name: format!("H{hurst}_a{a:.3}_s{seed}"),
+                    scene: scene(file, &ctx.specs)?,
+                    keep: Keep {
+                        pull_off: true,
+                        last_contact: true,
+                        ..Keep::default()
+                    },
+                });
+            }
+            meta.push((hurst, a, h));
+        }
+    }
+    let runs = run_all("fig7", &specs, ctx.cache)?;
+    let pts = meta
+        .into_iter()
+        .zip(runs.chunks(p.seeds.len().max(1)))
+        .map(|((hurst, alpha_star, h), r)| Point {
+            hurst,
+            alpha_star,
+            h,
+            runs: r.to_vec(),
+        })
+        .collect();
+    let (e, g, radius) = match base.geometry {
+        Geometry::Sphere { radius } => (base.material.e_star, base.material.gamma, radius),
+        _ => bail!("figure 7 needs a sphere"),
+    };
+    Ok((p, pts, jkr_pull_off_approach(e, g, radius).abs()))
+}
+
+/// Least-squares fit of A·exp(−((x − c)/w)²) by damped Gauss–Newton from (1, 0.36, 0.12).
+pub fn fit_gaussian(pts: &[(f64, f64)]) -> (f64, f64, f64) {
+    let model = |p: [f64; 3], x: f64| p[0] * (-((x - p[1]) / p[2]).powi(2)).exp();
+    let cost = |p: [f64; 3]| {
+        pts.iter()
+            .map(|&(x, y)| (y - model(p, x)).powi(2))
+            .sum::<f64>()
+    };
+    let mut p = [1.0, 0.36, 0.12];
+    let mut mu = 1e-3;
+    for _ in 0..200 {
+        let (mut jtj, mut jtr) = ([[0.0; 3]; 3], [0.0; 3]);
+        for &(x, y) in pts {
+            let e = (-((x - p[1]) / p[2]).powi(2)).exp();
+            let u = (x - p[1]) / p[2];
+            let j = [e, p[0] * e * 2.0 * u / p[2], p[0] * e * 2.0 * u * u / p[2]];
+            let r = y - p[0] * e;
+            for a in 0..3 {
+                jtr[a] += j[a] * r;
+                for b in 0..3 {
+                    jtj[a][b] += j[a] * j[b];
+                }
+            }
+        }
+        for (a, row) in jtj.iter_mut().enumerate() {
+            row[a] *= 1.0 + mu;
+        }
+        let Some(step) = solve3(jtj, jtr) else { break };
+        let trial = [p[0] + step[0], p[1] + step[1], (p[2] + step[2]).abs()];
+        if cost(trial) < cost(p) {
+            let small = step.iter().map(|s| s.abs()).fold(0.0, f64::max) < 1e-12;
+            p = trial;
+            mu = (mu * 0.3).max(1e-12);
+            if small {
+                break;
+            }
+        } else {
+            mu *= 10.0;
+            if mu > 1e12 {
+                break;
+            }
+        }
+    }
+    (p[0], p[1], p[2])
+}
+
+/// Solves a 3×3 system by Cramer's rule; `None` if singular.
+fn solve3(m: [[f64; 3]; 3], r: [f64; 3]) -> Option<[f64; 3]> {
+    let det = |m: [[f64; 3]; 3]| {
+        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
+    };
+    let d = det(m);
+    if d.abs() < 1e-300 || !d.is_finite() {
+        return None;
+    }
+    let mut out = [0.0; 3];
+    for (c, o) in out.iter_mut().enumerate() {
+        let mut mc = m;
+        for row in 0..3 {
+            mc[row][c] = r[row];
+        }
+        *o = det(mc) / d;
+    }
+    Some(out)
+}
+
+/// Figure 7: mean ± standard deviation of |F_ad/F_JKR| over realizations against h (A) and
+/// against α* with Eq. 12 and the fitted Gaussian (B).
+pub fn fig7(ctx: &Ctx) -> Result<Summary> {
+    let spec = ctx.spec(7)?;
+    let (p, pts, d_jkr) = points(ctx)?;
+    let mut table = Table::new(
+        "# approach = alpha* (Eq. 11), force = mean |F_ad/F_JKR| over the seeds\n\
+         # area = its standard deviation, mean_pressure = Eq. 12 at alpha*, n_bonded = index of H",
+    );
+    let mut summary = Summary::new(
+        7,
+        "mean |F_ad/F_JKR| over realizations vs α*: Gaussian fit A·exp(−((α*−c)/w)²) vs Eq. 12",
+    );
+    let mut by_h = Chart {
+        title: "(A) adhesive force vs roughness".into(),
+        x_label: "rms roughness h / |d_JKR|".into(),
+        y_label: "|F_ad / F_JKR|".into(),
+        y_range: Some((0.0, 1.8)),
+        ..Chart::default()
+    };
+    let mut by_a = Chart {
+        title: "(B) adhesive force vs α*".into(),
+        x_label: "α* (Eq. 11)".into(),
+        y_label: "|F_ad / F_JKR|".into(),
+        y_range: Some((0.0, 1.8)),
+        ..Chart::default()
+    };
+    let mut fit_pts = Vec::new();
+    for (s, &hurst) in p.hurst.iter().enumerate() {
+        let (mut a_pts, mut h_pts, mut err) = (Vec::new(), Vec::new(), Vec::new());
+        for pt in pts.iter().filter(|q| q.hurst == hurst) {
+            let (mean, std) = pt.mean_std();
+            table.push(s, pt.alpha_star, mean, lambda_star(pt.alpha_star), std);
+            // Each H is drawn slightly shifted in α* so that the error bars stay apart.
+            let shift = (s as f64 - 0.5 * (p.hurst.len() as f64 - 1.0)) * 0.003;
+            a_pts.push((pt.alpha_star + shift, mean));
+            h_pts.push((pt.h / d_jkr, mean));
+            err.push(std);
+            if pt.alpha_star <= p.fit_below {
+                fit_pts.push((pt.alpha_star, mean));
+            }
+        }
+        let peak = a_pts.iter().map(|q| q.1).fold(0.0, f64::max);
+        summary.add(format!("H_{hurst}_max_ratio"), peak);
+        by_h.series.push(Series::new(
+            format!("H = {hurst}"),
+            h_pts,
+            Style::ErrorBars(err.clone()),
+            s,
+        ));
+        by_a.series.push(Series::new(
+            format!("H = {hurst}"),
+            a_pts,
+            Style::ErrorBars(err),
+            s,
+        ));
+    }
+    let (a, c, w) = fit_gaussian(&fit_pts);
+    summary.add_vs("fit_A", a, 1.023);
+    summary.add_vs("fit_c", c, 0.3619);
+    summary.add_vs("fit_w", w, 0.1188);
+    summary.add("fit_points", fit_pts.len() as f64);
+    let x_max = p.alpha_star.iter().copied().fold(0.0, f64::max) * 1.05;
+    let curve = |f: &dyn Fn(f64) -> f64| {
+        (0..=300)
+            .map(|i| i as f64 * x_max / 300.0)
+            .map(|x| (x, f(x)))
+            .collect()
+    };
+    by_a.series
+        .push(Series::new("Eq. 12", curve(&lambda_star), Style::Dashed, 7));
+    by_a.series.push(Series::new(
+        format!("fit: {a:.3}·exp(−((α*−{c:.3})/{w:.3})²)"),
+        curve(&|x| a * (-((x - c) / w).powi(2)).exp()),
+        Style::Line,
+        9,
+    ));
+    let runs: Vec<_> = pts.iter().flat_map(|q| q.runs.iter().cloned()).collect();
+    write_figure(ctx, &spec, &table, &summary, &runs, (1400, 600), |root| {
+        let (l, r) = root.split_horizontally(700);
+        draw_chart(&l, &by_h)?;
+        draw_chart(&r, &by_a)
+    })?;
+    Ok(summary)
+}
+
+/// Figure 6: force–distance curves of the first realization for several H and roughnesses.
+pub fn fig6(ctx: &Ctx) -> Result<Summary> {
+    let spec = ctx.spec(6)?;
+    let sel: Fig6 = spec.params()?;
+    let (_, pts, d_jkr) = points(ctx)?;
+    let mut table = Table::new(
+        "# approach = d/|d_JKR| (from the mean plane), force = F/|F_JKR|, every step of the first seed\n\
+         # area = alpha*, mean_pressure = NaN, n_bonded = index of the (H, alpha*) curve",
+    );
+    let mut summary = Summary::new(
+        6,
+        "force–distance curves (first realization); pull-off |F_ad/F_JKR| per curve",
+    );
+    let mut charts = Vec::new();
+    let mut runs = Vec::new();
+    let mut k = 0;
+    for &hurst in &sel.hurst {
+        let mut chart = Chart {
+            title: format!("H = {hurst}"),
+            x_label: "d / |d_JKR|".into(),
+            y_label: "F / |F_JKR|".into(),
+            y_range: Some((-1.8, 3.0)),
+            ..Chart::default()
+        };
+        for (c, &a) in sel.alpha_star.iter().enumerate() {
+            let Some(pt) = pts
+                .iter()
+                .find(|q| q.hurst == hurst && (q.alpha_star - a).abs() < 1e-12)
+            else {
+                bail!("fig6: H = {hurst}, α* = {a} is not among figure 7's points");
+            };
+            let r = &pt.runs[0];
+            let f = r.problem.references.f_jkr.unwrap_or(f64::NAN).abs();
+            let curve: Vec<(f64, f64)> = r
+                .path
+                .records
+                .iter()
+                .map(|s| (s.approach / d_jkr, s.force / f))
+                .collect();
+            for &(x, y) in &curve {
+                table.push(k, x, y, f64::NAN, a);
+            }
+            summary.add(format!("H_{hurst}_a_{a}_ratio"), r.pull_off_ratio().abs());
+            chart.series.push(Series::new(
+                format!("α* = {a} (h/|d_JKR| = {:.2})", pt.h / d_jkr),
+                curve,
+                Style::Line,
+                c,
+            ));
+            runs.push(r.clone());
+            k += 1;
+        }
+        chart.series.push(Series::new(
+            "JKR (smooth)",
+            super::jkr_curve(8.0),
+            Style::Dashed,
+            7,
+        ));
+        charts.push(chart);
+    }
+    let n = charts.len().max(1) as u32;
+    write_figure(
+        ctx,
+        &spec,
+        &table,
+        &summary,
+        &runs,
+        (560 * n, 560),
+        |root| {
+            for (area, chart) in root.split_evenly((1, n as usize)).iter().zip(&charts) {
+                draw_chart(area, chart)?;
+            }
+            Ok(())
+        },
+    )?;
+    Ok(summary)
+}
+
+/// Figure 8: contact configurations at pull-off of the first realization, for each H at the
+/// roughness of greatest force, at |F_ad/F_JKR| ≈ `middle` and below `weak`.
+pub fn fig8(ctx: &Ctx) -> Result<Summary> {
+    let spec = ctx.spec(8)?;
+    let sel: Fig8 = spec.params()?;
+    let (p, pts, d_jkr) = points(ctx)?;
+    let mut table = Table::new(
+        "# approach = h/|d_JKR| of the shown configuration, force = mean |F_ad/F_JKR| there\n\
+         # area = alpha*, mean_pressure = NaN, n_bonded = index of H (three rows each: max, middle, weak)",
+    );
+    let mut summary = Summary::new(
+        8,
+        "contact configurations at pull-off: chosen α* per H (max force, ≈ middle, < weak)",
+    );
+    let mut maps = Vec::new();
+    let mut runs = Vec::new();
+    for (s, &hurst) in p.hurst.iter().enumerate() {
+        let row: Vec<&Point> = pts.iter().filter(|q| q.hurst == hurst).collect();
+        let mean = |q: &Point| q.mean_std().0;
+        let Some(best) = row
+            .iter()
+            .copied()
+            .max_by(|a, b| mean(a).total_cmp(&mean(b)))
+        else {
+            continue;
+        };
+        // Rougher than the maximum: smaller α*.
+        let rough: Vec<&Point> = row
+            .iter()
+            .copied()
+            .filter(|q| q.alpha_star < best.alpha_star)
+            .collect();
+        let middle = rough.iter().copied().min_by(|a, b| {
+            (mean(a) - sel.middle)
+                .abs()
+                .total_cmp(&(mean(b) - sel.middle).abs())
+        });
+        let weak = rough
+            .iter()
+            .copied()
+            .filter(|q| mean(q) < sel.weak)
+            .max_by(|a, b| a.alpha_star.total_cmp(&b.alpha_star))
+            .or_else(|| {
+                rough
+                    .iter()
+                    .copied()
+                    .min_by(|a, b| a.alpha_star.total_cmp(&b.alpha_star))
+            });
+        let mut row_masks = Vec::new();
+        for (what, q) in [("max", Some(best)), ("middle", middle), ("weak", weak)] {
+            let Some(q) = q else { continue };
+            let r = &q.runs[0];
+            let step = r.pull_off_step();
+            summary.add(format!("H_{hurst}_{what}_alpha_star"), q.alpha_star);
+            summary.add(format!("H_{hurst}_{what}_ratio"), mean(q));
+            table.push(s, q.h / d_jkr, mean(q), f64::NAN, q.alpha_star);
+            if let Some(snap) = r.snapshot(step) {
+                row_masks.push(Map::mask(
+                    format!(
+                        "H = {hurst}, α* = {:.2}: |F/F_JKR| = {:.2}",
+                        q.alpha_star,
+                        r.pull_off_ratio().abs()
+                    ),
+                    &r.full_mask(snap),
+                ));
+            }
+            runs.push(r.clone());
+        }
+        maps.extend(crop_maps(row_masks, 3));
+    }
+    let rows = p.hurst.len().max(1) as u32;
+    write_figure(
+        ctx,
+        &spec,
+        &table,
+        &summary,
+        &runs,
+        (1200, 400 * rows),
+        |root| draw_maps(root, &maps, 3),
+    )?;
+    Ok(summary)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn gaussian_fit_recovers_parameters() {
+        let pts: Vec<(f64, f64)> = (0..20)
+            .map(|i| 0.1 + i as f64 * 0.02)
+            .map(|x| (x, 0.9 * (-((x - 0.3) / 0.1f64).powi(2)).exp()))
+            .collect();
+        let (a, c, w) = fit_gaussian(&pts);
+        assert!(
+            (a - 0.9).abs() < 1e-6 && (c - 0.3).abs() < 1e-6 && (w - 0.1).abs() < 1e-6,
+            "{a} {c} {w}"
+        );
+    }
+}
