@@ -97,3 +97,252 @@ pub fn jkr(args: &[String]) -> Result<()> {
     }
     Ok(())
 }
+
+/// One measured row of `cargo xtask bench`, kept for `results/bench.json`.
+struct Row {
+    table: &'static str,
+    fields: Vec<(&'static str, f64)>,
+    label: String,
+}
+
+fn json(rows: &[Row]) -> String {
+    let items: Vec<String> = rows
+        .iter()
+        .map(|r| {
+            let fields: Vec<String> = r
+                .fields
+                .iter()
+                .map(|(k, v)| {
+                    if v.is_finite() {
+                        format!("\"{k}\": {v}")
+                    } else {
+                        format!("\"{k}\": null")
+                    }
+                })
+                .collect();
+            format!(
+                "  {{\"table\": \"{}\", \"label\": \"{}\", {}}}",
+                r.table,
+                r.label,
+                fields.join(", ")
+            )
+        })
+        .collect();
+    format!("[\n{}\n]\n", items.join(",\n"))
+}
+
+/// Wall time of one pull-off path of a sphere + H = 0.5 roughness on an `n²` L = R grid.
+fn rough_sphere_path(n: usize, seed: u64, crop: bool, subgrid: bool) -> Result<(f64, f64, usize)> {
+    use tack_geometry::{RoughSpec, Sphere, Surface, rough_surface};
+    use tack_solver::{
+        AdhesiveOptions, AdhesiveSolver, ApproachPath, KAPPA, SnapshotRequest, contact_window,
+    };
+    let grid = Grid::square(n, 1.0 / n as f64, Boundary::Free)?;
+    let gamma = 2.83e-4; // a_c ≈ 0.1 R with E* = R = 1
+    let rough = rough_surface(grid, &RoughSpec::paper_defaults(grid, 5e-4, 0.5, seed))?;
+    let mut surface = Surface::from_shape(grid, &Sphere::new(1.0)?);
+    surface.add(&rough)?;
+    let d_max = 0.02;
+    if crop {
+        let range = rough.max() - rough.min();
+        if let Some(w) = contact_window(&surface, d_max, range, 1.0, gamma) {
+            surface = surface.window(&w)?;
+        }
+    }
+    let options = AdhesiveOptions {
+        bonded_subgrid: subgrid,
+        ..AdhesiveOptions::default()
+    };
+    let path = ApproachPath {
+        start: surface.min() + 0.002,
+        max_approach: d_max,
+        load_step: 0.002,
+        unload_step: 0.0005,
+        retract_to: None,
+        max_steps: 10_000,
+    };
+    let t = Instant::now();
+    let op = operator_for(*surface.grid(), 1.0)?;
+    let mut solver = AdhesiveSolver::new(op, &surface, gamma, KAPPA, options)?;
+    let r = solver.run_path(&path, &SnapshotRequest::None, &mut ())?;
+    Ok((
+        t.elapsed().as_secs_f64(),
+        r.pull_off_force(),
+        r.cg_iterations(),
+    ))
+}
+
+/// `cargo xtask bench [--full]`: every speed table, each timing a ratio measured in the same
+/// run; writes `results/bench.json`. `--full` adds a_c/Δx = 80 and the 1024² operator.
+pub fn all(args: &[String]) -> Result<()> {
+    let full = args.iter().any(|a| a == "--full");
+    let mut rows = Vec::new();
+
+    println!("1. operator application vs bare FFT round trip of the same padded size");
+    for n in if full {
+        vec![256usize, 512, 1024]
+    } else {
+        vec![256, 512]
+    } {
+        for boundary in [Boundary::Free, Boundary::Periodic] {
+            let grid = Grid::square(n, 1.0, boundary)?;
+            let mut op = operator_for(grid, 1.0)?;
+            let p = Array2::from_shape_fn((n, n), |(i, j)| ((i + 2 * j) % 5) as f64);
+            let mut u = Array2::zeros((n, n));
+            let t_op = median_time(|| op.apply(p.view(), u.view_mut()));
+            let m = if boundary == Boundary::Free {
+                tack_kernels::padded_size(n)
+            } else {
+                n
+            };
+            let t_fft = median_time(bare_fft_pair(m, m));
+            let label = format!("{n}² {boundary:?}");
+            println!(
+                "   {label:<16} apply {:8.3} ms  floor {:8.3} ms  ratio {:.2}",
+                t_op * 1e3,
+                t_fft * 1e3,
+                t_op / t_fft
+            );
+            rows.push(Row {
+                table: "operator",
+                label,
+                fields: vec![
+                    ("n", n as f64),
+                    ("apply_ms", t_op * 1e3),
+                    ("floor_ms", t_fft * 1e3),
+                    ("ratio", t_op / t_fft),
+                ],
+            });
+        }
+    }
+
+    println!("2. one CG iteration on a bonded disc (256² free grid, no sub-grid) vs the floor");
+    {
+        use tack_geometry::{Sphere, Surface};
+        use tack_solver::{AdhesiveOptions, AdhesiveSolver, KAPPA};
+        let n = 256;
+        let grid = Grid::square(n, 1.0 / n as f64, Boundary::Free)?;
+        let surface = Surface::from_shape(grid, &Sphere::new(1.0)?);
+        let m = tack_kernels::padded_size(n);
+        let t_fft = median_time(bare_fft_pair(m, m));
+        for pre in [false, true] {
+            let options = AdhesiveOptions {
+                preconditioned: pre,
+                bonded_subgrid: false,
+                ..AdhesiveOptions::default()
+            };
+            let op = operator_for(grid, 1.0)?;
+            let mut s = AdhesiveSolver::new(op, &surface, 0.0, KAPPA, options)?;
+            let t = Instant::now();
+            let rec = s.step(0.1)?;
+            let per_it = t.elapsed().as_secs_f64() / rec.cg_iterations.max(1) as f64;
+            let label = if pre { "preconditioned" } else { "plain" };
+            println!(
+                "   {label:<16} {:5} iterations, {:.3} ms per iteration = {:.2} × floor ({:.3} ms)",
+                rec.cg_iterations,
+                per_it * 1e3,
+                per_it / t_fft,
+                t_fft * 1e3
+            );
+            rows.push(Row {
+                table: "cg_iteration",
+                label: label.into(),
+                fields: vec![
+                    ("iterations", rec.cg_iterations as f64),
+                    ("ms_per_iteration", per_it * 1e3),
+                    ("ratio_to_floor", per_it / t_fft),
+                ],
+            });
+        }
+    }
+
+    println!("3. smooth-sphere approach-retract path (κ = 0.473201): speed against error");
+    let ratios: &[f64] = if full {
+        &[5.0, 10.0, 20.0, 40.0, 80.0]
+    } else {
+        &[5.0, 10.0, 20.0, 40.0]
+    };
+    for &ratio in ratios {
+        let t = Instant::now();
+        let run = tack_tests::JkrSphere::new(ratio, tack_solver::KAPPA).run();
+        let secs = t.elapsed().as_secs_f64();
+        println!(
+            "   a_c/Δx = {ratio:>4}: {:>6} CG iterations, {secs:8.2} s, pull-off error {:+.4}",
+            run.result.cg_iterations(),
+            run.pull_off_error
+        );
+        rows.push(Row {
+            table: "jkr",
+            label: format!("{ratio}"),
+            fields: vec![
+                ("ac_over_dx", ratio),
+                ("seconds", secs),
+                ("cg_iterations", run.result.cg_iterations() as f64),
+                ("pull_off_error", run.pull_off_error),
+            ],
+        });
+    }
+
+    println!("4. sphere + random roughness (H = 0.5, L = R) pull-off path: crop and sub-grid CG");
+    let n = if full { 512 } else { 256 };
+    let mut reference = None;
+    for (crop, sub) in [(false, false), (true, false), (false, true), (true, true)] {
+        let (secs, force, its) = rough_sphere_path(n, 1, crop, sub)?;
+        let base = *reference.get_or_insert(secs);
+        let label = format!("{n}² crop={crop} subgrid={sub}");
+        println!(
+            "   {label:<28} {secs:8.2} s  speed-up {:5.2}×  {its:>6} CG iterations  F_min {force:.6e}",
+            base / secs
+        );
+        rows.push(Row {
+            table: "rough_sphere",
+            label,
+            fields: vec![
+                ("seconds", secs),
+                ("speed_up", base / secs),
+                ("pull_off_force", force),
+            ],
+        });
+    }
+
+    println!("5. a Fig. 7 style sweep point: 15 realizations (128², H = 0.5), 1 vs 2 threads");
+    let mut one = 0.0;
+    for threads in [1usize, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()?;
+        let t = Instant::now();
+        let forces: Vec<f64> = pool.install(|| {
+            use rayon::prelude::*;
+            (0..15u64)
+                .into_par_iter()
+                .map(|seed| rough_sphere_path(128, seed, true, true).map(|r| r.1))
+                .collect::<Result<_>>()
+        })?;
+        let secs = t.elapsed().as_secs_f64();
+        if threads == 1 {
+            one = secs;
+        }
+        let mean = forces.iter().sum::<f64>() / forces.len() as f64;
+        println!(
+            "   {threads} thread(s): {secs:7.2} s  speed-up {:.2}×  mean F_min {mean:.6e}",
+            one / secs
+        );
+        rows.push(Row {
+            table: "sweep_point",
+            label: format!("{threads} threads"),
+            fields: vec![
+                ("threads", threads as f64),
+                ("seconds", secs),
+                ("speed_up", one / secs),
+                ("mean_pull_off", mean),
+            ],
+        });
+    }
+
+    std::fs::create_dir_all("results")?;
+    std::fs::write("results/bench.json.tmp", json(&rows))?;
+    std::fs::rename("results/bench.json.tmp", "results/bench.json")?;
+    println!("wrote results/bench.json");
+    Ok(())
+}

@@ -20,7 +20,10 @@ commands:
                           figN.svg, figN/<run>.h5 and REPORT.md to DIR (default: results)
   bench-kernels           time the elastic operators against a bare FFT pair of the same size
   bench-jkr [RATIOS...]   smooth-sphere approach-retract path: wall time, CG iterations and
-                          pull-off error at a_c/dx = 5 10 20 40 80 (or the ratios given)";
+                          pull-off error at a_c/dx = 5 10 20 40 80 (or the ratios given)
+  bench [--full]          every speed table (operator, CG iteration, JKR path, rough sphere
+                          with/without crop and sub-grid CG, 15-realization sweep point on 1
+                          and 2 threads); writes results/bench.json";
 
 fn main() -> Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -28,6 +31,7 @@ fn main() -> Result<()> {
         Some("reproduce") => reproduce::run(&args[1..]),
         Some("bench-kernels") => bench::kernels(),
         Some("bench-jkr") => bench::jkr(&args[1..]),
+        Some("bench") => bench::all(&args[1..]),
         Some("-h" | "--help") | None => {
             println!("{USAGE}");
             Ok(())
