@@ -17,7 +17,8 @@ commands:
                           the paper's Figures 1-8 (FIG: 1..8 or fig1..fig8, default all, plus
                           the non-adhesive validation tables) from data/figures/*.toml, in quick
                           mode (minutes) or --full mode (the paper's settings); writes figN.h5,
-                          figN.svg, figN/<run>.h5 and REPORT.md to DIR (default: results)
+                          figN.svg, figN/<run>.h5 and REPORT.md to DIR (default: results);
+                          --specs DIR reads the figure specs from elsewhere
   bench-kernels           time the elastic operators against a bare FFT pair of the same size
   bench-jkr [RATIOS...]   smooth-sphere approach-retract path: wall time, CG iterations and
                           pull-off error at a_c/dx = 5 10 20 40 80 (or the ratios given)
