@@ -31,6 +31,20 @@ fn bare_fft_pair(mx: usize, my: usize) -> impl FnMut() {
     move || fft.round_trip()
 }
 
+/// Median times (s) of one operator application on an `n²` grid and of the bare FFT round trip
+/// of its padded size.
+fn operator_vs_floor(n: usize, boundary: Boundary) -> Result<(f64, f64)> {
+    let mut op = operator_for(Grid::square(n, 1.0, boundary)?, 1.0)?;
+    let p = Array2::from_shape_fn((n, n), |(i, j)| ((i + 2 * j) % 5) as f64);
+    let mut u = Array2::zeros((n, n));
+    let t_op = median_time(|| op.apply(p.view(), u.view_mut()));
+    let m = match boundary {
+        Boundary::Free => tack_kernels::padded_size(n),
+        Boundary::Periodic => n,
+    };
+    Ok((t_op, median_time(bare_fft_pair(m, m))))
+}
+
 /// `cargo xtask bench-kernels`: operator application vs the bare FFT pair of its padded size.
 pub fn kernels() -> Result<()> {
     println!("operator application vs bare forward+inverse r2c FFT pair of the same padded size");
@@ -40,17 +54,7 @@ pub fn kernels() -> Result<()> {
     );
     for n in [256usize, 512, 1024] {
         for boundary in [Boundary::Free, Boundary::Periodic] {
-            let grid = Grid::square(n, 1.0, boundary)?;
-            let mut op = operator_for(grid, 1.0)?;
-            let p = Array2::from_shape_fn((n, n), |(i, j)| ((i + 2 * j) % 5) as f64);
-            let mut u = Array2::zeros((n, n));
-            let t_op = median_time(|| op.apply(p.view(), u.view_mut()));
-            let m = if boundary == Boundary::Free {
-                tack_kernels::padded_size(n)
-            } else {
-                n
-            };
-            let t_fft = median_time(bare_fft_pair(m, m));
+            let (t_op, t_fft) = operator_vs_floor(n, boundary)?;
             println!(
                 "{n:>6} {:>10} {:>12.3} {:>12.3} {:>8.2}",
                 format!("{boundary:?}").to_lowercase(),
@@ -185,17 +189,7 @@ pub fn all(args: &[String]) -> Result<()> {
         vec![256, 512]
     } {
         for boundary in [Boundary::Free, Boundary::Periodic] {
-            let grid = Grid::square(n, 1.0, boundary)?;
-            let mut op = operator_for(grid, 1.0)?;
-            let p = Array2::from_shape_fn((n, n), |(i, j)| ((i + 2 * j) % 5) as f64);
-            let mut u = Array2::zeros((n, n));
-            let t_op = median_time(|| op.apply(p.view(), u.view_mut()));
-            let m = if boundary == Boundary::Free {
-                tack_kernels::padded_size(n)
-            } else {
-                n
-            };
-            let t_fft = median_time(bare_fft_pair(m, m));
+            let (t_op, t_fft) = operator_vs_floor(n, boundary)?;
             let label = format!("{n}² {boundary:?}");
             println!(
                 "   {label:<16} apply {:8.3} ms  floor {:8.3} ms  ratio {:.2}",
