@@ -27,6 +27,7 @@ fn path(start: f64, max: f64, load: f64, unload: f64) -> ApproachPath {
         max_approach: max,
         load_step: load,
         unload_step: unload,
+        coarse_unload_step: None,
         retract_to: None,
         max_steps: 1_000_000,
     }
@@ -64,16 +65,18 @@ fn assert_admissible(s: &AdhesiveSolver, rec: &StepRecord, gap_tol: f64) {
 
 #[test]
 fn jkr_sphere_pull_off_converges_with_refinement() {
-    // a_c/Δx = 40 takes ~1 min in release; debug builds stop at 20.
+    // a_c/Δx = 40 takes ~15 s in release; debug builds stop at 20.
     let ratios: &[f64] = if cfg!(debug_assertions) {
         &[5.0, 10.0, 20.0]
     } else {
         &[5.0, 10.0, 20.0, 40.0]
     };
     let mut prev: Option<(f64, f64, f64)> = None;
+    let mut errors = Vec::new();
     for &ratio in ratios {
         let run = JkrSphere::new(ratio, KAPPA).run();
         let err = run.pull_off_error;
+        errors.push(err);
         let jump = run.last_contact_approach;
         let order = prev.map_or(f64::NAN, |(e, ..)| (e / err).log2());
         eprintln!(
@@ -104,6 +107,17 @@ fn jkr_sphere_pull_off_converges_with_refinement() {
     if !cfg!(debug_assertions) {
         assert!(err < 0.05, "pull-off error at a_c/Δx = 40 is {err}");
         assert!((jump + 1.609).abs() < 0.1, "jump-off at d̂ = {jump}");
+    }
+    // First order: Richardson over (N, N/2) cancels the leading term. Measured −0.33% at
+    // (20, 10) and +0.16% at (40, 20), against +6.9% and +3.5% without; 1% is the bar.
+    for k in 2..errors.len() {
+        let r = tack_solver::richardson_first_order(errors[k], errors[k - 1]);
+        eprintln!(
+            "Richardson a_c/Δx = {} + {}: pull-off error {r:+.4}",
+            ratios[k],
+            ratios[k - 1]
+        );
+        assert!(r.abs() < 0.01, "{r}");
     }
 }
 
@@ -145,8 +159,14 @@ fn kendall_flat_punch_pull_off_converges() {
             "Kendall a/Δx = {ratio}: pull-off error {err:+.4} (area-equivalent radius), {err_nominal:+.4} (nominal)"
         );
         assert!(r.all_converged());
-        errs.push(err.abs());
+        errs.push(err);
     }
+    // Richardson over (20, 10) must be no worse than the criterion alone at 20 (measured
+    // −0.22% against +0.23%): the extrapolation used for spheres does not hurt punches.
+    let r = tack_solver::richardson_first_order(errs[2], errs[1]);
+    eprintln!("Kendall Richardson a/Δx = 20 + 10: pull-off error {r:+.4}");
+    assert!(r.abs() < errs[2].abs() + 1e-3, "{r} vs {}", errs[2]);
+    let errs: Vec<f64> = errs.iter().map(|e| e.abs()).collect();
     // Measured: 4.6%, 0.68%, 0.23%, 0.56%. The staircase rim of the digitised disc leaves a
     // ±0.5% scatter once a/Δx ≥ 20, so "falling" is checked as: each of the fine resolutions
     // beats both coarse ones, and both are below 1%.
@@ -430,4 +450,67 @@ fn bonded_subgrid_cg_changes_nothing_but_the_cost() {
         );
     }
     assert!(full.pull_off_force() < 0.0);
+}
+
+/// Virtual crack closure on a discrete straight front: with `t_e` the tension of the front
+/// element and `g_f` the gap of the free element behind it, `t_e·g_f/2` is the energy release
+/// rate `G = K²/(2E*)` of the closed-form field, for fronts along the grid (a periodic strip,
+/// closed form `K = |p̄|·√(λ/tan ψ)`) and at 45° (a diagonal band of the same closed form): the
+/// ratio converges to 1 (second order). Kept as the record of why the crack-closure criterion
+/// was tried and why it was dropped: on the staircase fronts of a disc the same estimate is
+/// biased by configuration (see ARCHITECTURE.md, "Detachment criterion").
+#[test]
+fn crack_closure_product_is_the_energy_release_rate_on_straight_fronts() {
+    // (grid side, bonded width, 45°?)
+    let cases = [
+        (1024usize, 127usize, false),
+        (4096, 511, false),
+        (16384, 2047, false),
+        (256, 64, true),
+        (512, 128, true),
+    ];
+    let mut last = [f64::INFINITY; 2];
+    for (n, w, diagonal) in cases {
+        let dx = 1.0 / n as f64;
+        let eps = 1e-12;
+        let (grid, h, lambda) = if diagonal {
+            let grid = Grid::new(n, n, dx, Boundary::Periodic).unwrap();
+            let h =
+                Array2::from_shape_fn((n, n), |(i, j)| if (i + n - j) % n < w { 0.0 } else { eps });
+            (grid, h, dx * n as f64 / 2f64.sqrt())
+        } else {
+            let grid = Grid::new(n, 1, dx, Boundary::Periodic).unwrap();
+            let c = n / 2;
+            let h = Array2::from_shape_fn(
+                (n, 1),
+                |(i, _)| if i.abs_diff(c) <= w / 2 { 0.0 } else { eps },
+            );
+            (grid, h, 1.0)
+        };
+        let surface = Surface::new(grid, h).unwrap();
+        // Bond the band (it alone penetrates), then pull with a γ so large nothing detaches.
+        let mut s = solver_with(&surface, 1.0, 1e9, KAPPA);
+        let bonded = s.step(eps / 2.0).unwrap().n_bonded;
+        let rec = s.step(-1.0).unwrap();
+        assert!(rec.converged && rec.n_bonded == bonded);
+        let psi = PI * rec.n_bonded as f64 / (2.0 * grid.len() as f64);
+        let k = rec.mean_pressure.abs() * (lambda / psi.tan()).sqrt();
+        // Front element and the free element behind it.
+        let (front, behind) = if diagonal {
+            ([5, 5], [5, 6])
+        } else {
+            ([n / 2 + w / 2, 0], [n / 2 + w / 2 + 1, 0])
+        };
+        let (t, g) = (-s.pressure()[front], s.gap()[behind]);
+        let ratio = (t * g / 2.0) / (k * k / 2.0);
+        eprintln!(
+            "front {} width {w}/{n}: t·g/2 / G = {ratio:.5}",
+            if diagonal { "45°" } else { "0°" }
+        );
+        let err = (ratio - 1.0).abs();
+        let l = &mut last[diagonal as usize];
+        assert!(err < *l, "must converge to 1: {ratio}");
+        *l = err;
+    }
+    assert!(last[0] < 5e-4 && last[1] < 5e-3, "{last:?}");
 }

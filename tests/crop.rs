@@ -42,6 +42,7 @@ fn cropped_sphere_with_roughness_gives_the_same_curve() {
         max_approach: d_max,
         load_step: 0.002,
         unload_step: 0.0005,
+        coarse_unload_step: None,
         retract_to: None,
         max_steps: 10_000,
     };

@@ -15,6 +15,8 @@ pub struct JkrSphere {
     pub max_approach: f64,
     /// Dimensionless retraction step.
     pub unload_step: f64,
+    /// Dimensionless retraction step while the force is compressive (`None`: `unload_step`).
+    pub coarse_unload_step: Option<f64>,
 }
 
 /// Outcome of a smooth-sphere load–unload path.
@@ -41,6 +43,7 @@ impl JkrSphere {
             kappa,
             max_approach: 6.0,
             unload_step: 0.01,
+            coarse_unload_step: None,
         }
     }
 
@@ -53,13 +56,15 @@ impl JkrSphere {
         let grid = Grid::square(2 * half + 1, dx, Boundary::Free).unwrap();
         let surface = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
         let op = operator_for(grid, 1.0).unwrap();
-        let mut solver =
-            AdhesiveSolver::new(op, &surface, 1.0, self.kappa, AdhesiveOptions::default()).unwrap();
+        let options = AdhesiveOptions::default();
+
+        let mut solver = AdhesiveSolver::new(op, &surface, 1.0, self.kappa, options).unwrap();
         let path = ApproachPath {
             start: self.max_approach / 20.0,
             max_approach: self.max_approach,
             load_step: self.max_approach / 20.0,
             unload_step: self.unload_step,
+            coarse_unload_step: self.coarse_unload_step,
             retract_to: None,
             max_steps: 100_000,
         };

@@ -177,3 +177,45 @@ fn hertz_check_uses_independent_radius() {
     // Guard the test's own reference: the Hertz radius is sqrt(R d).
     assert!((hertz_contact_radius(2.0, 0.02) - 0.2).abs() < 1e-15);
 }
+
+/// Runs one solve with the crop and the coarse-to-fine start set as given.
+fn solve_with(surface: &Surface, d: f64, crop: bool, coarse: bool) -> tack_solver::ContactState {
+    let mut s = solver(*surface.grid(), surface, 1.0);
+    s.set_crop(crop);
+    s.set_coarse_start(coarse);
+    let st = s.solve(d).unwrap();
+    assert!(st.converged);
+    st
+}
+
+#[test]
+fn crop_and_coarse_start_change_nothing_but_the_cost() {
+    // Free Hertz sphere on a grid four times wider than the contact: the crop to {f < d} and the
+    // coarse-to-fine start solve the same problem; only round-off (tolerance 1e-10) differs.
+    let grid = Grid::square(128, 1.0 / 128.0, Boundary::Free).unwrap();
+    let sphere = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
+    // Periodic self-affine roughness, H = 0.8, about 7% contact.
+    let pgrid = Grid::square(128, 1.0 / 128.0, Boundary::Periodic).unwrap();
+    let rough = tack_geometry::rough_surface(
+        pgrid,
+        &tack_geometry::RoughSpec::paper_defaults(pgrid, 1e-3, 0.8, 3),
+    )
+    .unwrap();
+    let rough = Surface::new(pgrid, rough.heights().clone()).unwrap();
+    let d_rough = rough.min() + 0.6 * (rough.heights().mean().unwrap() - rough.min());
+    for (surface, d) in [(&sphere, 0.02), (&rough, d_rough)] {
+        let plain = solve_with(surface, d, false, false);
+        for (crop, coarse) in [(true, false), (false, true), (true, true)] {
+            let other = solve_with(surface, d, crop, coarse);
+            let rel = (other.force - plain.force).abs() / plain.force;
+            assert!(rel < 1e-8, "crop {crop} coarse {coarse}: {rel}");
+            assert_eq!(other.n_contact, plain.n_contact);
+            let gap = other
+                .gap
+                .iter()
+                .zip(&plain.gap)
+                .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+            assert!(gap < 1e-8 * d.abs().max(1e-3), "gap differs by {gap}");
+        }
+    }
+}

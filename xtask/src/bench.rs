@@ -67,43 +67,99 @@ pub fn kernels() -> Result<()> {
     Ok(())
 }
 
-/// `cargo xtask bench-jkr`: speed against error on the smooth JKR sphere (paper's criterion).
+/// One smooth-sphere path with the paper's criterion at `a_c/Δx = ratio`: (seconds, the run).
+/// Load to d̂ = 6 in 20 steps, retract in steps of 0.1 while the force is compressive (the
+/// pull-off is unchanged to all digits) and 0.01 once it is tensile.
+fn jkr_run(ratio: f64) -> (f64, tack_tests::JkrRun) {
+    let t = Instant::now();
+    let run = tack_tests::JkrSphere {
+        coarse_unload_step: Some(0.1),
+        ..tack_tests::JkrSphere::new(ratio, tack_solver::KAPPA)
+    }
+    .run();
+    (t.elapsed().as_secs_f64(), run)
+}
+
+/// `cargo xtask bench-jkr [RATIOS...]`: speed against error on the smooth JKR sphere with the
+/// paper's criterion, and the Richardson extrapolation of every pair `N`, `N/2` in the list.
 pub fn jkr(args: &[String]) -> Result<()> {
-    let ratios: Vec<f64> = if args.is_empty() {
+    let ratios: Vec<f64> = args
+        .iter()
+        .map(|a| {
+            a.parse()
+                .map_err(|_| anyhow::anyhow!("ratio `{a}` is not a number"))
+        })
+        .collect::<Result<_>>()?;
+    let ratios = if ratios.is_empty() {
         vec![5.0, 10.0, 20.0, 40.0, 80.0]
     } else {
-        args.iter()
-            .map(|a| {
-                a.parse()
-                    .map_err(|_| anyhow::anyhow!("ratio `{a}` is not a number"))
-            })
-            .collect::<Result<_>>()?
+        ratios
     };
+    jkr_table(&ratios);
+    Ok(())
+}
+
+/// Prints (and returns as rows) the speed-against-error table of the smooth sphere.
+fn jkr_table(ratios: &[f64]) -> Vec<Row> {
     println!(
-        "smooth sphere, free boundaries, κ = 0.473201, load to d̂ = 6, retract in steps of 0.01"
+        "smooth sphere, free boundaries, κ = 0.473201; load to d̂ = 6, retract by 0.1 while \
+         compressive, by 0.01 once tensile"
     );
     println!(
-        "{:>8} {:>8} {:>7} {:>10} {:>10} {:>12} {:>12}",
+        "{:>16} {:>8} {:>7} {:>10} {:>10} {:>12} {:>12}",
         "a_c/Δx", "grid", "steps", "CG iters", "time [s]", "F/F_JKR − 1", "jump-off d̂"
     );
-    for ratio in ratios {
-        let t = Instant::now();
-        let run = tack_tests::JkrSphere::new(ratio, tack_solver::KAPPA).run();
-        let secs = t.elapsed().as_secs_f64();
+    let mut rows = Vec::new();
+    let mut done: Vec<(f64, f64, f64)> = Vec::new();
+    for &ratio in ratios {
+        let (secs, run) = jkr_run(ratio);
         println!(
-            "{ratio:>8} {:>8} {:>7} {:>10} {secs:>10.2} {:>+12.4} {:>12.3}",
+            "{ratio:>16} {:>8} {:>7} {:>10} {secs:>10.2} {:>+12.4} {:>12.3}",
             format!("{}²", run.grid.nx()),
             run.result.records.len(),
             run.result.cg_iterations(),
             run.pull_off_error,
             run.last_contact_approach
         );
+        rows.push(Row {
+            table: "jkr",
+            label: format!("{ratio}"),
+            fields: vec![
+                ("ac_over_dx", ratio),
+                ("seconds", secs),
+                ("cg_iterations", run.result.cg_iterations() as f64),
+                ("pull_off_error", run.pull_off_error),
+            ],
+        });
+        done.push((ratio, secs, run.pull_off_error));
     }
-    Ok(())
+    for &(fine, t_fine, e_fine) in &done {
+        if let Some(&(_, t_coarse, e_coarse)) = done.iter().find(|c| c.0 * 2.0 == fine) {
+            let (secs, err) = (
+                t_fine + t_coarse,
+                tack_solver::richardson_first_order(e_fine, e_coarse),
+            );
+            let label = format!("Richardson {fine}+{}", fine / 2.0);
+            println!(
+                "{label:>16} {:>8} {:>7} {:>10} {secs:>10.2} {err:>+12.4}",
+                "", "", ""
+            );
+            rows.push(Row {
+                table: "jkr",
+                label,
+                fields: vec![
+                    ("ac_over_dx", fine),
+                    ("seconds", secs),
+                    ("pull_off_error", err),
+                ],
+            });
+        }
+    }
+    rows
 }
 
 /// One measured row of `cargo xtask bench`, kept for `results/bench.json`.
-struct Row {
+pub struct Row {
     table: &'static str,
     fields: Vec<(&'static str, f64)>,
     label: String,
@@ -162,6 +218,7 @@ fn rough_sphere_path(n: usize, seed: u64, crop: bool, subgrid: bool) -> Result<(
         max_approach: d_max,
         load_step: 0.002,
         unload_step: 0.0005,
+        coarse_unload_step: None,
         retract_to: None,
         max_steps: 10_000,
     };
@@ -250,32 +307,13 @@ pub fn all(args: &[String]) -> Result<()> {
         }
     }
 
-    println!("3. smooth-sphere approach-retract path (κ = 0.473201): speed against error");
+    println!("3. smooth-sphere approach-retract path: speed against error");
     let ratios: &[f64] = if full {
         &[5.0, 10.0, 20.0, 40.0, 80.0]
     } else {
         &[5.0, 10.0, 20.0, 40.0]
     };
-    for &ratio in ratios {
-        let t = Instant::now();
-        let run = tack_tests::JkrSphere::new(ratio, tack_solver::KAPPA).run();
-        let secs = t.elapsed().as_secs_f64();
-        println!(
-            "   a_c/Δx = {ratio:>4}: {:>6} CG iterations, {secs:8.2} s, pull-off error {:+.4}",
-            run.result.cg_iterations(),
-            run.pull_off_error
-        );
-        rows.push(Row {
-            table: "jkr",
-            label: format!("{ratio}"),
-            fields: vec![
-                ("ac_over_dx", ratio),
-                ("seconds", secs),
-                ("cg_iterations", run.result.cg_iterations() as f64),
-                ("pull_off_error", run.pull_off_error),
-            ],
-        });
-    }
+    rows.extend(jkr_table(ratios));
 
     println!("4. sphere + random roughness (H = 0.5, L = R) pull-off path: crop and sub-grid CG");
     let n = if full { 512 } else { 256 };
@@ -334,9 +372,142 @@ pub fn all(args: &[String]) -> Result<()> {
         });
     }
 
+    println!(
+        "6. non-adhesive contact, 1024²: rough periodic (H = 0.8, ~7% contact) and free Hertz"
+    );
+    rows.extend(contact(&["1024".to_string()])?);
+
     std::fs::create_dir_all("results")?;
     std::fs::write("results/bench.json.tmp", json(&rows))?;
     std::fs::rename("results/bench.json.tmp", "results/bench.json")?;
     println!("wrote results/bench.json");
     Ok(())
+}
+
+/// One non-adhesive solve from a cold start: (seconds, fine-grid iterations, area fraction,
+/// force, converged).
+fn contact_solve(
+    surface: &tack_geometry::Surface,
+    d: f64,
+    coarse: bool,
+    crop: bool,
+) -> Result<(f64, usize, f64, f64, bool)> {
+    use tack_solver::{ContactSolver, SolverOptions};
+    let grid = *surface.grid();
+    let t = Instant::now();
+    let mut s = ContactSolver::new(operator_for(grid, 1.0)?, surface, SolverOptions::default())?;
+    s.set_coarse_start(coarse);
+    s.set_crop(crop);
+    let st = s.solve(d)?;
+    Ok((
+        t.elapsed().as_secs_f64(),
+        st.iterations,
+        st.n_contact as f64 / grid.len() as f64,
+        st.force,
+        st.converged,
+    ))
+}
+
+/// `cargo xtask bench-contact [N]`: non-adhesive contact of an N² periodic self-affine surface
+/// (H = 0.8, q0 = 2π/L, q1 = π/Δx, about 7% contact) and an N² free-boundary Hertz contact
+/// (contact radius N/8 elements), each plain, with the coarse-to-fine start, and (Hertz)
+/// cropped to where contact can occur. Times include building the operator.
+pub fn contact(args: &[String]) -> Result<Vec<Row>> {
+    use tack_geometry::{RoughSpec, Sphere, Surface, rough_surface};
+    let n: usize = args.first().map_or(Ok(1024), |a| a.parse())?;
+    let mut rows = Vec::new();
+    // Rough periodic: find the approach of ~7% contact once (coarse-to-fine solves), then time.
+    let grid = Grid::square(n, 1.0 / n as f64, Boundary::Periodic)?;
+    let surface = Surface::new(
+        grid,
+        rough_surface(grid, &RoughSpec::paper_defaults(grid, 1e-3, 0.8, 7))?
+            .heights()
+            .clone(),
+    )?;
+    let (mut lo, mut hi) = (surface.min(), surface.heights().mean().unwrap_or(0.0));
+    let mut d = 0.5 * (lo + hi);
+    for _ in 0..30 {
+        d = 0.5 * (lo + hi);
+        let frac = contact_solve(&surface, d, true, true)?.2;
+        if (frac - 0.07).abs() < 0.002 {
+            break;
+        }
+        if frac < 0.07 { lo = d } else { hi = d }
+    }
+    let mut base = None;
+    for (label, coarse) in [("plain", false), ("coarse-to-fine", true)] {
+        let (secs, its, frac, force, ok) = contact_solve(&surface, d, coarse, false)?;
+        let b = *base.get_or_insert(secs);
+        println!(
+            "   rough {n}² periodic {label:<15} {secs:7.3} s {its:>5} iterations, contact {:.2}%, \
+             speed-up {:.2}×, force {force:.9e}{}",
+            100.0 * frac,
+            b / secs,
+            if ok { "" } else { " NOT CONVERGED" }
+        );
+        rows.push(Row {
+            table: "contact",
+            label: format!("rough {n}² periodic {label}"),
+            fields: vec![
+                ("n", n as f64),
+                ("seconds", secs),
+                ("iterations", its as f64),
+                ("contact_fraction", frac),
+                ("force", force),
+            ],
+        });
+    }
+    {
+        // The same problem as an active set (attach penetrating, release tensile elements)
+        // around the preconditioned CG of the adhesive solver with γ = 0.
+        use tack_solver::{AdhesiveOptions, AdhesiveSolver, KAPPA};
+        let t = Instant::now();
+        let op = operator_for(grid, 1.0)?;
+        let mut s = AdhesiveSolver::new(op, &surface, 0.0, KAPPA, AdhesiveOptions::default())?;
+        let rec = s.step(d)?;
+        let secs = t.elapsed().as_secs_f64();
+        println!(
+            "   rough {n}² periodic active-set PCG  {secs:7.3} s {:>5} iterations in {} rounds, \
+             contact {:.2}%, force {:.9e}{}",
+            rec.cg_iterations,
+            rec.active_set_iterations,
+            100.0 * rec.n_bonded as f64 / grid.len() as f64,
+            rec.force,
+            if rec.converged { "" } else { " NOT CONVERGED" }
+        );
+    }
+    // Free Hertz: R = 1, Δx = 1/n, contact radius a = n/8 elements: d = a²/R.
+    let grid = Grid::square(n, 1.0 / n as f64, Boundary::Free)?;
+    let surface = Surface::from_shape(grid, &Sphere::new(1.0)?);
+    let a: f64 = 0.125;
+    let d = a * a;
+    let hertz = 4.0 / 3.0 * a.powi(3);
+    let mut base = None;
+    for (label, coarse, crop) in [
+        ("plain", false, false),
+        ("coarse-to-fine", true, false),
+        ("cropped", false, true),
+        ("cropped + c2f", true, true),
+    ] {
+        let (secs, its, _, force, ok) = contact_solve(&surface, d, coarse, crop)?;
+        let b = *base.get_or_insert(secs);
+        println!(
+            "   Hertz {n}² free (a = n/8) {label:<15} {secs:7.3} s {its:>5} iterations, force \
+             error {:+.2e}, speed-up {:.2}×{}",
+            force / hertz - 1.0,
+            b / secs,
+            if ok { "" } else { " NOT CONVERGED" }
+        );
+        rows.push(Row {
+            table: "contact",
+            label: format!("Hertz {n}² free {label}"),
+            fields: vec![
+                ("n", n as f64),
+                ("seconds", secs),
+                ("iterations", its as f64),
+                ("force_error", force / hertz - 1.0),
+            ],
+        });
+    }
+    Ok(rows)
 }

@@ -1,21 +1,25 @@
-//! Running the figures' scenes: one helper that builds a tack-cli [`Problem`], crops a free grid
-//! to where contact can occur, walks the load–unload path keeping only the fields a figure asks
-//! for, and runs batches in parallel (rayon) with a per-process cache and a progress line per
-//! finished run.
+//! Running the scenes of the figures that are not sweeps (Figures 1, 2 and 4): one helper that
+//! builds a tack-cli [`Problem`], walks its load–unload path (`AdhesiveSolver::run_path`,
+//! coarse retraction included) on the crop window keeping only the fields a figure asks for,
+//! and runs batches in parallel (rayon) with a progress line per finished run. Figures 5–8 run
+//! through `tack_cli::sweep` instead (`crate::sweeps`).
 //!
 //! Determinism: every run is sequential; a batch is collected in input order, so the results
 //! are bit-identical for any thread count.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::BTreeMap;
 use std::path::Path;
+use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
 use anyhow::{Context, Result};
+use ndarray::Array2;
 use rayon::prelude::*;
 use tack_cli::{Problem, Scene};
-use tack_solver::{PathResult, Phase, Snapshot, StepRecord, count_clusters};
+use tack_solver::{
+    Observer, PathResult, Phase, Snapshot, SnapshotRequest, StepRecord, count_clusters,
+};
 
 /// Which pressure fields and bonded masks a run keeps (fields of all other steps are dropped).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -31,7 +35,7 @@ pub struct Keep {
     pub unload_every: Option<f64>,
 }
 
-/// One run: a scene plus what the engine needs beyond it.
+/// One run: a scene plus the fields to keep.
 #[derive(Debug, Clone)]
 pub struct RunSpec {
     /// File stem of the run's result file, unique within a figure.
@@ -40,19 +44,6 @@ pub struct RunSpec {
     pub scene: Scene,
     /// Fields to keep.
     pub keep: Keep,
-    /// Retraction step used instead of the scene's while the force is still compressive (the
-    /// pull-off lies in the tensile part, which always uses the scene's `unload_step`).
-    pub coarse_unload: Option<f64>,
-}
-
-impl RunSpec {
-    /// Identity of the run for the cache: the scene text and the fields kept.
-    fn key(&self) -> String {
-        format!(
-            "{}\n#keep {:?} coarse {:?}",
-            self.scene.text, self.keep, self.coarse_unload
-        )
-    }
 }
 
 /// What a run produced.
@@ -70,8 +61,6 @@ pub struct RunOutput {
     pub touched_edge: bool,
     /// Wall time of the solve in seconds.
     pub seconds: f64,
-    /// The retraction step used while the force was compressive, if not the scene's.
-    pub coarse_unload: Option<f64>,
 }
 
 impl RunOutput {
@@ -100,18 +89,6 @@ impl RunOutput {
             .min_by(|&a, &b| r[a].force.total_cmp(&r[b].force))
             .unwrap_or(0)
     }
-    /// A kept bonded mask placed on the full grid (snapshots are on the crop window).
-    pub fn full_mask(&self, s: &Snapshot) -> ndarray::Array2<bool> {
-        match &self.problem.window {
-            Some(w) => {
-                let mut m = ndarray::Array2::from_elem(self.problem.grid.shape(), false);
-                m.slice_mut(ndarray::s![w.i0..w.i1, w.j0..w.j1])
-                    .assign(&s.bonded);
-                m
-            }
-            None => s.bonded.clone(),
-        }
-    }
     /// The kept fields of step `k`, if any.
     pub fn snapshot(&self, k: usize) -> Option<&Snapshot> {
         self.path.snapshots.iter().find(|s| s.step == k)
@@ -123,7 +100,7 @@ impl RunOutput {
 pub fn run(spec: &RunSpec) -> Result<RunOutput> {
     let started = Instant::now();
     let problem = Problem::from_scene(&spec.scene).with_context(|| format!("run {}", spec.name))?;
-    let path = walk(&problem, spec.keep, spec.coarse_unload)?;
+    let path = walk(&problem, spec.keep)?;
     Ok(RunOutput {
         name: spec.name.clone(),
         scene: spec.scene.clone(),
@@ -131,124 +108,119 @@ pub fn run(spec: &RunSpec) -> Result<RunOutput> {
         problem,
         path,
         seconds: started.elapsed().as_secs_f64(),
-        coarse_unload: spec.coarse_unload,
     })
 }
 
-/// The load–unload path of `problem` (as `AdhesiveSolver::run_path`, retracting until nothing
-/// is bonded), keeping the fields `keep` asks for. Runs on the problem's crop window, if any; the kept fields
-/// are on the window.
-fn walk(problem: &Problem, keep: Keep, coarse: Option<f64>) -> Result<PathResult> {
+/// The load–unload path of `problem` (`AdhesiveSolver::run_path`, with the scene's coarse
+/// retraction), keeping the fields `keep` asks for. Runs on the problem's crop window, if any;
+/// the kept fields are on the window.
+fn walk(problem: &Problem, keep: Keep) -> Result<PathResult> {
     let mut solver = problem.solver(problem.window.as_ref())?;
-    let p = problem.path;
     let periodic = problem.grid.boundary() == tack_geometry::Boundary::Periodic;
-    let mut out = PathResult::default();
-    let mut kept: BTreeMap<usize, Snapshot> = BTreeMap::new();
-    let (mut best, mut prev, mut last): (Option<Snapshot>, Option<Snapshot>, Option<Snapshot>) =
-        (None, None, None);
-    let mut next_every = f64::INFINITY;
-    let mut broken = false;
-    let mut k = 0usize;
-    let mut unloading = false;
-    let (mut anchor, mut stride) = (p.max_approach, coarse.unwrap_or(p.unload_step));
-    loop {
-        if out.records.len() >= p.max_steps {
-            break;
-        }
-        let d = if unloading {
-            // Retract from `anchor` in steps of `stride`; switch to the scene's step
-            // (re-anchored at the last approach) once the force is no longer compressive.
-            if stride != p.unload_step && out.records.last().is_some_and(|r| r.force <= 0.0) {
-                (anchor, stride, k) = (
-                    out.records.last().map_or(anchor, |r| r.approach),
-                    p.unload_step,
-                    1,
-                );
-            }
-            anchor - k as f64 * stride
-        } else {
-            (p.start + k as f64 * p.load_step).min(p.max_approach)
-        };
-        let rec = solver.step(d)?;
-        let step = out.records.len();
-        let phase = if unloading {
-            Phase::Unload
-        } else {
-            Phase::Load
-        };
-        let snap = || Snapshot {
-            step,
-            pressure: solver.pressure().clone(),
-            bonded: solver.bonded().clone(),
-        };
-        if keep.pull_off
-            && best
-                .as_ref()
-                .is_none_or(|b| rec.force < out.records[b.step].force)
-        {
-            best = Some(snap());
-        }
-        if unloading {
-            if keep.unload_every.is_some() && d <= next_every {
-                kept.insert(step, snap());
-                next_every = d - keep.unload_every.unwrap_or(0.0);
-            }
-            if keep.break_up
-                && !broken
-                && rec.n_clusters > 1
-                && let Some(pr) = prev
-                    .take()
-                    .filter(|s| count_clusters(&s.bonded, periodic) == 1)
-            {
-                kept.insert(pr.step, pr);
-                kept.insert(step, snap());
-                broken = true;
-            }
-            if keep.last_contact && rec.n_bonded > 0 {
-                last = Some(snap());
-            }
-            if keep.break_up {
-                prev = Some(snap());
-            }
-        }
-        out.records.push(rec);
-        out.phases.push(phase);
-        if unloading && rec.n_bonded == 0 {
-            out.completed = true;
-            break;
-        }
-        if !unloading && d >= p.max_approach {
-            unloading = true;
-            next_every = p.max_approach;
-            k = 0;
-        }
-        k += 1;
-    }
-    for s in [best, last].into_iter().flatten() {
-        kept.insert(s.step, s);
-    }
-    out.snapshots = kept.into_values().collect();
+    let mut keeper = Keeper::new(keep, periodic, problem.path.max_approach);
+    let mut out = solver.run_path(&problem.path, &SnapshotRequest::None, &mut keeper)?;
+    out.snapshots = keeper.into_snapshots();
     Ok(out)
 }
 
-/// Runs a batch in parallel, reusing runs already made by this process; prints one line per
-/// finished run (`[label k/n] name: ...`). Results come back in the order of `specs`.
-pub fn run_all(label: &str, specs: &[RunSpec], cache: &Cache) -> Result<Vec<Arc<RunOutput>>> {
+/// Selects the fields of [`Keep`] as the path runs.
+struct Keeper {
+    keep: Keep,
+    periodic: bool,
+    kept: BTreeMap<usize, Snapshot>,
+    /// The least force so far and its fields.
+    best: Option<(f64, Snapshot)>,
+    /// The previous unload step (break-up detection).
+    prev: Option<Snapshot>,
+    /// The latest unload step with a bonded element.
+    last: Option<Snapshot>,
+    /// Approach at or below which the next `unload_every` field is kept.
+    next_every: f64,
+    broken: bool,
+}
+
+impl Keeper {
+    fn new(keep: Keep, periodic: bool, max_approach: f64) -> Self {
+        Self {
+            keep,
+            periodic,
+            kept: BTreeMap::new(),
+            best: None,
+            prev: None,
+            last: None,
+            next_every: max_approach,
+            broken: false,
+        }
+    }
+
+    /// The kept fields in step order.
+    fn into_snapshots(mut self) -> Vec<Snapshot> {
+        for s in [self.best.map(|b| b.1), self.last].into_iter().flatten() {
+            self.kept.insert(s.step, s);
+        }
+        self.kept.into_values().collect()
+    }
+}
+
+impl Observer for Keeper {
+    fn on_fields(
+        &mut self,
+        step: usize,
+        phase: Phase,
+        rec: &StepRecord,
+        pressure: &Array2<f64>,
+        bonded: &Array2<bool>,
+    ) {
+        let snap = || Snapshot {
+            step,
+            pressure: pressure.clone(),
+            bonded: bonded.clone(),
+        };
+        let keep = self.keep;
+        if keep.pull_off && self.best.as_ref().is_none_or(|b| rec.force < b.0) {
+            self.best = Some((rec.force, snap()));
+        }
+        if phase != Phase::Unload {
+            return;
+        }
+        if let Some(every) = keep.unload_every
+            && rec.approach <= self.next_every
+        {
+            self.kept.insert(step, snap());
+            self.next_every = rec.approach - every;
+        }
+        if keep.break_up
+            && !self.broken
+            && rec.n_clusters > 1
+            && let Some(pr) = self
+                .prev
+                .take()
+                .filter(|s| count_clusters(&s.bonded, self.periodic) == 1)
+        {
+            self.kept.insert(pr.step, pr);
+            self.kept.insert(step, snap());
+            self.broken = true;
+        }
+        if keep.last_contact && rec.n_bonded > 0 {
+            self.last = Some(snap());
+        }
+        if keep.break_up {
+            self.prev = Some(snap());
+        }
+    }
+}
+
+/// Runs a batch in parallel; prints one line per finished run (`[label k/n] name: ...`).
+/// Results come back in the order of `specs`.
+pub fn run_all(label: &str, specs: &[RunSpec]) -> Result<Vec<Arc<RunOutput>>> {
     let done = AtomicUsize::new(0);
     let n = specs.len();
     specs
         .par_iter()
         .map(|spec| {
-            let key = spec.key();
-            if let Some(hit) = cache.get(&key) {
-                let k = done.fetch_add(1, Ordering::Relaxed) + 1;
-                println!("  [{label} {k}/{n}] {}: reused", spec.name);
-                return Ok(hit);
-            }
             let out = Arc::new(run(spec)?);
             let k = done.fetch_add(1, Ordering::Relaxed) + 1;
             println!("  [{label} {k}/{n}] {}", describe(&out));
-            cache.put(key, out.clone());
             Ok(out)
         })
         .collect()
@@ -283,38 +255,17 @@ fn describe(r: &RunOutput) -> String {
     s
 }
 
-/// Runs already made by this process, keyed by scene text and kept fields.
-#[derive(Default)]
-pub struct Cache(Mutex<HashMap<String, Arc<RunOutput>>>);
-
-impl Cache {
-    fn get(&self, key: &str) -> Option<Arc<RunOutput>> {
-        self.0.lock().ok()?.get(key).cloned()
-    }
-    fn put(&self, key: String, value: Arc<RunOutput>) {
-        if let Ok(mut m) = self.0.lock() {
-            m.insert(key, value);
-        }
-    }
-}
-
 /// Writes one run's result file (tack-io layout, written atomically) to `dir/<name>.h5`, with
 /// the snapshots placed on the full grid as `tack run` writes them.
 /// Of the kept fields, only the pull-off step, the last contact and the steps in `shown` are
 /// written (the others served the figure's selection).
 pub fn write_run(dir: &Path, r: &RunOutput, shown: &[usize]) -> Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
-    let mut prov = tack_cli::provenance::provenance(
+    let prov = tack_cli::provenance::provenance(
         &r.scene,
         &r.problem,
         tack_cli::provenance::command_line(),
     );
-    if let Some(c) = r.coarse_unload {
-        prov.scene += &format!(
-            "\n# cargo xtask reproduce: retraction in steps of {c:e} while the force was \
-             compressive, then protocol.unload_step\n"
-        );
-    }
     let last = r.path.records.iter().rposition(|s| s.n_bonded > 0);
     let keep = |k: usize| k == r.pull_off_step() || Some(k) == last || shown.contains(&k);
     let mut path = r.path.clone();

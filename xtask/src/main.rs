@@ -6,6 +6,7 @@ mod figures;
 mod plot;
 mod reproduce;
 mod spec;
+mod sweeps;
 mod validation;
 
 use anyhow::{Result, bail};
@@ -18,10 +19,15 @@ commands:
                           the non-adhesive validation tables) from data/figures/*.toml, in quick
                           mode (minutes) or --full mode (the paper's settings); writes figN.h5,
                           figN.svg, figN/<run>.h5 and REPORT.md to DIR (default: results);
+                          Figures 5 and 7 (read by 6 and 8) run as tack sweeps in
+                          DIR/figN/sweep-quick|full/, which a rerun resumes (delete
+                          them to recompute after a solver change);
                           --specs DIR reads the figure specs from elsewhere
   bench-kernels           time the elastic operators against a bare FFT pair of the same size
   bench-jkr [RATIOS...]   smooth-sphere approach-retract path: wall time, CG iterations and
                           pull-off error at a_c/dx = 5 10 20 40 80 (or the ratios given)
+  bench-contact [N]        non-adhesive contact: N² periodic rough surface (H = 0.8, ~7%
+                          contact) and N² free Hertz, plain / coarse-to-fine / cropped
   bench [--full]          every speed table (operator, CG iteration, JKR path, rough sphere
                           with/without crop and sub-grid CG, 15-realization sweep point on 1
                           and 2 threads); writes results/bench.json";
@@ -32,6 +38,7 @@ fn main() -> Result<()> {
         Some("reproduce") => reproduce::run(&args[1..]),
         Some("bench-kernels") => bench::kernels(),
         Some("bench-jkr") => bench::jkr(&args[1..]),
+        Some("bench-contact") => bench::contact(&args[1..]).map(|_| ()),
         Some("bench") => bench::all(&args[1..]),
         Some("-h" | "--help") | None => {
             println!("{USAGE}");

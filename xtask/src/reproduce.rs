@@ -1,6 +1,8 @@
 //! `cargo xtask reproduce [FIG...] [--full] [--out DIR] [--threads N]`: regenerates the paper's
 //! Figures 1–8 from the specs in `data/figures/` and the non-adhesive validation tables, and
 //! writes `DIR/REPORT.md` (plots, measured deviations, wall times) and `DIR/validation.md`.
+//! Figures 5 and 7 (and 6, 8, which read 7) run as tack sweeps in `DIR/figN/sweep-<mode>/`: a
+//! rerun resumes them, skipping the points already complete.
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -8,7 +10,6 @@ use std::time::Instant;
 
 use anyhow::{Context, Result};
 
-use crate::engine::Cache;
 use crate::figures::{self, Ctx, Summary};
 use crate::validation;
 
@@ -23,7 +24,7 @@ pub struct Options {
     pub full: bool,
     /// Output directory.
     pub out: PathBuf,
-    /// Worker threads for independent runs.
+    /// Worker threads for independent runs (engine batches and figure sweeps).
     pub threads: usize,
     /// Directory of the figure specs.
     pub specs: PathBuf,
@@ -97,16 +98,15 @@ pub struct Done {
     pub seconds: f64,
 }
 
-/// Runs the selected figures in order (runs inside a figure in parallel on the current rayon
-/// pool) and returns their summaries.
+/// Runs the selected figures in order (engine runs inside a figure in parallel on the current
+/// rayon pool, figure sweeps on `o.threads` threads) and returns their summaries.
 pub fn figures(o: &Options) -> Result<Vec<Done>> {
     std::fs::create_dir_all(&o.out).with_context(|| format!("creating {}", o.out.display()))?;
-    let cache = Cache::default();
     let ctx = Ctx {
         specs: o.specs.clone(),
         out: o.out.clone(),
         full: o.full,
-        cache: &cache,
+        threads: o.threads,
     };
     let mut done = Vec::new();
     for &n in &o.figures {
@@ -158,11 +158,12 @@ pub fn run(args: &[String]) -> Result<()> {
         let n = d.summary.figure;
         let _ = write!(
             report,
-            "## Figure {n}: {}\n\n![fig{n}](fig{n}.svg)\n\n{}\n\n{}\nData: `fig{n}.h5`, runs in \
-             `fig{n}/`. Wall time {:.1} s.\n\n",
+            "## Figure {n}: {}\n\n![fig{n}](fig{n}.svg)\n\n{}\n\n{}\nData: `fig{n}.h5`, {}. \
+             Wall time {:.1} s.\n\n",
             d.title,
             d.summary.compared,
             d.summary.markdown(),
+            figures::runs_location(n, o.full),
             d.seconds
         );
     }

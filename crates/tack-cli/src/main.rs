@@ -157,7 +157,7 @@ fn execute(command: Command) -> anyhow::Result<()> {
             let p = Problem::from_scene(&loaded)?;
             println!(
                 "{}: ok\n  grid {} x {}, dx = {}\n  first touch at d = {}; path d = {} → {} \
-                 (load step {}, unload step {})",
+                 (load step {}, unload step {}{})",
                 scene.display(),
                 p.grid.nx(),
                 p.grid.ny(),
@@ -166,7 +166,13 @@ fn execute(command: Command) -> anyhow::Result<()> {
                 num(p.path.start),
                 num(p.path.max_approach),
                 num(p.path.load_step),
-                num(p.path.unload_step)
+                num(p.path.unload_step),
+                p.path
+                    .coarse_unload_step
+                    .map_or_else(String::new, |c| format!(
+                        ", {} while the force is compressive",
+                        num(c)
+                    ))
             );
         }
         Command::Sweep {

@@ -186,6 +186,7 @@ impl Problem {
             max_approach: p.max_approach,
             load_step: p.load_step,
             unload_step: p.unload_step.unwrap_or(p.load_step),
+            coarse_unload_step: p.coarse_unload_step,
             retract_to: p.retract_to,
             max_steps: p.max_steps.unwrap_or(DEFAULT_MAX_STEPS),
         };
@@ -641,6 +642,39 @@ load_step = 0.05
     }
 
     #[test]
+    fn coarse_retraction_and_pull_off_snapshots_reach_the_solver() {
+        let sets = [
+            "protocol.coarse_unload_step=0.2",
+            "protocol.unload_step=0.01",
+            "output.snapshots=\"pull_off\"",
+            "grid.n=128",
+        ];
+        let p = build(SPHERE, &sets).unwrap();
+        assert_eq!(p.path.coarse_unload_step, Some(0.2));
+        assert_eq!(p.snapshots, SnapshotRequest::PullOff);
+        assert!(p.window.is_some(), "the test wants a cropped run");
+        let path = crate::run::solve(&p, &mut ()).unwrap();
+        let r = &path.records;
+        // Retraction from 0.5 by 0.2 while compressive, then by 0.01.
+        let first = path
+            .phases
+            .iter()
+            .position(|ph| *ph == tack_solver::Phase::Unload);
+        assert_eq!(r[first.unwrap()].approach, 0.5 - 0.2);
+        let pull_off = (0..r.len())
+            .min_by(|&a, &b| r[a].force.total_cmp(&r[b].force))
+            .unwrap();
+        let last = r.iter().rposition(|s| s.n_bonded > 0).unwrap();
+        let steps: Vec<usize> = path.snapshots.iter().map(|s| s.step).collect();
+        assert_eq!(steps, [pull_off, last]);
+        // On the full grid, as the result file stores them.
+        for s in &path.snapshots {
+            assert_eq!(s.bonded.dim(), p.grid.shape());
+            assert_eq!(s.bonded.iter().filter(|&&b| b).count(), r[s.step].n_bonded);
+        }
+    }
+
+    #[test]
     fn field_errors_name_the_field_and_range() {
         assert!(
             err(&["material.e_star=-1"])
@@ -657,6 +691,11 @@ load_step = 0.05
         assert!(err(&["solver.kappa=-1"]).contains("solver.kappa = -1"));
         assert!(err(&["protocol.load_step=0"]).contains("protocol.load_step = 0"));
         assert!(err(&["protocol.retract_to=1"]).contains("protocol.retract_to = 1"));
+        assert!(
+            err(&["protocol.coarse_unload_step=0"]).contains(
+                "protocol.coarse_unload_step = 0 is invalid: must be a finite number > 0"
+            )
+        );
     }
 
     #[test]

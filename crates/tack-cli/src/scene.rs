@@ -276,6 +276,10 @@ pub struct Protocol {
     /// Approach decrement while retracting (> 0); default `load_step`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub unload_step: Option<f64>,
+    /// Approach decrement while retracting and the force is still compressive (> 0); default
+    /// `unload_step` throughout (see `tack_solver::ApproachPath::coarse_unload_step`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub coarse_unload_step: Option<f64>,
     /// Stop retracting below this approach; default: retract until nothing is bonded.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub retract_to: Option<f64>,
@@ -308,7 +312,7 @@ impl Default for OutputSpec {
     }
 }
 
-/// `output.snapshots`: `"none"`, `"all"`, `{ every = k }` or `{ steps = [i, ...] }`.
+/// `output.snapshots`: `"none"`, `"all"`, `"pull_off"`, `{ every = k }` or `{ steps = [i, ...] }`.
 #[derive(Debug, Clone, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(try_from = "toml::Value", into = "toml::Value")]
 pub enum Snapshots {
@@ -321,10 +325,12 @@ pub enum Snapshots {
     Every(usize),
     /// The listed step indices.
     Steps(Vec<usize>),
+    /// The pull-off step (least force) and the last step with a bonded element.
+    PullOff,
 }
 
-const SNAPSHOTS_ALLOWED: &str =
-    "\"none\", \"all\", { every = k } with k ≥ 1, or { steps = [i, ...] } with indices ≥ 0";
+const SNAPSHOTS_ALLOWED: &str = "\"none\", \"all\", \"pull_off\", { every = k } with k ≥ 1, or \
+                                 { steps = [i, ...] } with indices ≥ 0";
 
 impl TryFrom<toml::Value> for Snapshots {
     type Error = String;
@@ -339,6 +345,7 @@ impl TryFrom<toml::Value> for Snapshots {
         match &value {
             toml::Value::String(s) if s == "none" => Ok(Self::None),
             toml::Value::String(s) if s == "all" => Ok(Self::All),
+            toml::Value::String(s) if s == "pull_off" => Ok(Self::PullOff),
             toml::Value::Table(t) if t.len() == 1 => {
                 if let Some(every) = t.get("every") {
                     match every.as_integer() {
@@ -374,6 +381,7 @@ impl From<Snapshots> for toml::Value {
         match s {
             Snapshots::None => toml::Value::String("none".into()),
             Snapshots::All => toml::Value::String("all".into()),
+            Snapshots::PullOff => toml::Value::String("pull_off".into()),
             Snapshots::Every(k) => table("every", toml::Value::Integer(k as i64)),
             Snapshots::Steps(steps) => table(
                 "steps",
@@ -395,6 +403,7 @@ impl From<&Snapshots> for tack_solver::SnapshotRequest {
             Snapshots::All => Self::All,
             Snapshots::Every(k) => Self::Every(*k),
             Snapshots::Steps(v) => Self::Steps(v.clone()),
+            Snapshots::PullOff => Self::PullOff,
         }
     }
 }
@@ -584,11 +593,20 @@ load_step = 0.05
             ("\"none\"", Snapshots::None),
             ("{ every = 3 }", Snapshots::Every(3)),
             ("{ steps = [0, 4] }", Snapshots::Steps(vec![0, 4])),
+            ("\"pull_off\"", Snapshots::PullOff),
         ] {
             let s = parse(&format!("{MINIMAL}[output]\nsnapshots = {text}\n")).unwrap();
             assert_eq!(s.file.output.snapshots, want, "{text}");
+            let again = Scene::from_file(s.file.clone(), ".").unwrap();
+            assert_eq!(again.file.output.snapshots, want, "{text} round trip");
         }
-        for text in ["\"some\"", "{ every = 0 }", "{ steps = [-1] }", "3"] {
+        for text in [
+            "\"some\"",
+            "\"pull-off\"",
+            "{ every = 0 }",
+            "{ steps = [-1] }",
+            "3",
+        ] {
             let e = parse(&format!("{MINIMAL}[output]\nsnapshots = {text}\n"))
                 .unwrap_err()
                 .to_string();

@@ -1,18 +1,19 @@
-//! Parameter sweeps: a base scene, the scene fields to vary (lists or ranges, combined as a
-//! Cartesian product in file order) and the summary quantities to collect; running the points
-//! of a sweep, or of one shard of it, in parallel into a directory of result files that a rerun
-//! resumes.
+//! Parameter sweeps: a base scene, the scene fields to vary (lists or ranges, and zipped
+//! entries that set several fields together, combined as a Cartesian product in file order)
+//! and the summary quantities to collect; running the points of a sweep, or of one shard of it,
+//! in parallel into a directory of result files that a rerun resumes.
 //!
 //! `docs/sweeps.md` documents the file format and the output directory; [`crate::merge`]
 //! gathers the directory into one table.
 //!
 //! # Order of the points
 //!
-//! The fields of `[vary]` are taken in the order they are written in the file (recovered from
+//! The entries of `[vary]` are taken in the order they are written in the file (recovered from
 //! the parser's spans, so it does not depend on how the `toml` crate orders its tables). Point
-//! indices run over the Cartesian product with the first field outermost and the last field
-//! fastest: with `a = [1, 2]` then `b = [10, 20, 30]`, point 0 is (1, 10), point 1 is (1, 20),
-//! point 3 is (2, 10).
+//! indices run over the Cartesian product of the entries with the first entry outermost and the
+//! last fastest: with `a = [1, 2]` then `b = [10, 20, 30]`, point 0 is (1, 10), point 1 is
+//! (1, 20), point 3 is (2, 10). A zipped entry (`"c, d" = [[1, 5], [2, 6]]`) is one factor of
+//! the product: its rows, in order, each set all of its fields.
 
 use std::collections::HashMap;
 use std::fmt;
@@ -111,6 +112,10 @@ pub struct Axis {
     pub field: String,
     /// Its values (at least one).
     pub values: Vec<toml::Value>,
+    /// Index of the `[vary]` entry the field belongs to, in file order. A plain entry has one
+    /// field; the fields of a zipped entry share the index, have the same number of values and
+    /// take them together (value `k` of each at row `k`).
+    pub entry: usize,
 }
 
 /// A parsed, validated sweep.
@@ -127,10 +132,13 @@ pub struct Sweep {
     /// Directory that relative paths in the scene (`roughness.path`) resolve against: the base
     /// scene file's directory, or the sweep file's for an inline `[scene]`.
     pub base_dir: PathBuf,
-    /// The varied fields, first = outermost loop.
+    /// The varied fields, in file order (the fields of a zipped entry in the order its key
+    /// names them); the product runs over their entries, the first entry outermost.
     pub axes: Vec<Axis>,
     /// The summary quantities to collect (names from [`SUMMARY_QUANTITIES`]).
     pub collect: Vec<String>,
+    /// The number of values of each `[vary]` entry, in file order.
+    entry_lengths: Vec<usize>,
     base_table: toml::Table,
 }
 
@@ -247,10 +255,16 @@ impl Sweep {
         })?;
 
         let axes = axes(text, &file.vary).map_err(invalid)?;
-        let mut len: usize = 1;
+        let mut entry_lengths: Vec<usize> = Vec::new();
         for axis in &axes {
+            if axis.entry == entry_lengths.len() {
+                entry_lengths.push(axis.values.len());
+            }
+        }
+        let mut len: usize = 1;
+        for &n in &entry_lengths {
             len = len
-                .checked_mul(axis.values.len())
+                .checked_mul(n)
                 .filter(|&n| n <= MAX_POINTS)
                 .ok_or_else(|| {
                     invalid(format!(
@@ -281,6 +295,7 @@ impl Sweep {
             base_dir,
             axes,
             collect,
+            entry_lengths,
             base_table,
         };
         // The first point must fit the scene schema: this catches a misspelt field in [vary]
@@ -295,9 +310,10 @@ impl Sweep {
         Ok(sweep)
     }
 
-    /// Number of points: the product of the axes' lengths.
+    /// Number of points: the product of the `[vary]` entries' lengths (a zipped entry counts
+    /// its rows once).
     pub fn len(&self) -> usize {
-        self.axes.iter().map(|a| a.values.len()).product()
+        self.entry_lengths.iter().product()
     }
 
     /// Whether the sweep has no points (never: every axis has a value).
@@ -305,22 +321,31 @@ impl Sweep {
         self.len() == 0
     }
 
-    /// The value of every axis at point `index` (first axis outermost, last fastest).
-    pub fn point_values(&self, index: usize) -> Vec<(&str, &toml::Value)> {
+    /// The position of point `index` in every `[vary]` entry (first entry outermost, last
+    /// fastest): the value index of a plain entry, the row of a zipped one.
+    pub fn entry_indices(&self, index: usize) -> Vec<usize> {
         let mut rest = index;
-        let mut values: Vec<(&str, &toml::Value)> = self
-            .axes
+        let mut at: Vec<usize> = self
+            .entry_lengths
             .iter()
             .rev()
-            .map(|axis| {
-                let n = axis.values.len();
-                let v = &axis.values[rest % n];
+            .map(|&n| {
+                let k = rest % n;
                 rest /= n;
-                (axis.field.as_str(), v)
+                k
             })
             .collect();
-        values.reverse();
-        values
+        at.reverse();
+        at
+    }
+
+    /// The value of every varied field at point `index`, in the order of [`Sweep::axes`].
+    pub fn point_values(&self, index: usize) -> Vec<(&str, &toml::Value)> {
+        let at = self.entry_indices(index);
+        self.axes
+            .iter()
+            .map(|axis| (axis.field.as_str(), &axis.values[at[axis.entry]]))
+            .collect()
     }
 
     /// `field = value, ...` of point `index`, for messages.
@@ -366,15 +391,101 @@ fn axes(text: &str, vary: &toml::Table) -> Result<Vec<Axis>, String> {
     let positions = vary_positions(text);
     leaves.sort_by_key(|(path, _)| positions.get(path).copied().unwrap_or(usize::MAX));
     let mut axes: Vec<Axis> = Vec::new();
-    for (path, spec) in leaves {
-        let field = path.join(".");
-        if axes.iter().any(|a| a.field == field) {
-            return Err(format!("vary.{field} is given twice"));
+    for (entry, (path, spec)) in leaves.into_iter().enumerate() {
+        let zipped = path.iter().any(|part| part.contains(','));
+        let new: Vec<Axis> = if zipped {
+            let [key] = path.as_slice() else {
+                return Err(format!(
+                    "vary.{}: a zipped entry must be one quoted key directly under [vary] that \
+                     names every field, e.g. \"roughness.h, roughness.seed\" = [[0.1, 1], [0.2, 2]]",
+                    path.join(".")
+                ));
+            };
+            let fields: Vec<String> = key.split(',').map(|f| f.trim().to_owned()).collect();
+            let values = expand_zipped(&fields, spec)?;
+            fields
+                .into_iter()
+                .zip(values)
+                .map(|(field, values)| Axis {
+                    field,
+                    values,
+                    entry,
+                })
+                .collect()
+        } else {
+            let field = path.join(".");
+            let values = expand(&field, spec)?;
+            vec![Axis {
+                field,
+                values,
+                entry,
+            }]
+        };
+        for axis in new {
+            if axes.iter().any(|a| a.field == axis.field) {
+                return Err(format!("vary.{} is given twice", axis.field));
+            }
+            axes.push(axis);
         }
-        let values = expand(&field, spec)?;
-        axes.push(Axis { field, values });
     }
     Ok(axes)
+}
+
+/// The values of each field of a zipped entry (`"a, b" = [[a0, b0], [a1, b1], ...]`): one row
+/// per point of the entry, one value per field in each row.
+fn expand_zipped(fields: &[String], spec: &toml::Value) -> Result<Vec<Vec<toml::Value>>, String> {
+    let name = format!("vary.\"{}\"", fields.join(", "));
+    if let Some(k) = fields.iter().position(|f| f.is_empty()) {
+        return Err(format!(
+            "{name}: field {} of the zipped entry is empty: name the fields separated by commas, \
+             e.g. \"roughness.h, roughness.seed\"",
+            k + 1
+        ));
+    }
+    let form = format!(
+        "a list of rows with one value per field ({}), e.g. [[{}], ...]",
+        fields.join(", "),
+        fields
+            .iter()
+            .map(|f| format!("{}0", f.rsplit('.').next().unwrap_or(f)))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    let rows = match spec {
+        toml::Value::Array(rows) if rows.is_empty() => {
+            return Err(format!("{name} = []: give at least one row"));
+        }
+        toml::Value::Array(rows) => rows,
+        other => return Err(format!("{name} = {other} is invalid: must be {form}")),
+    };
+    let mut columns: Vec<Vec<toml::Value>> = vec![Vec::with_capacity(rows.len()); fields.len()];
+    for (k, row) in rows.iter().enumerate() {
+        match row {
+            toml::Value::Array(values) if values.len() == fields.len() => {
+                for (column, value) in columns.iter_mut().zip(values) {
+                    column.push(value.clone());
+                }
+            }
+            toml::Value::Array(values) => {
+                return Err(format!(
+                    "{name}: row {k} has {} values but the entry names {} fields ({}): every row \
+                     needs one value per field, in that order",
+                    values.len(),
+                    fields.len(),
+                    fields.join(", ")
+                ));
+            }
+            other => {
+                return Err(format!(
+                    "{name}: row {k} = {other} is invalid: must be a list of {} values, one per \
+                     field ({})",
+                    fields.len(),
+                    fields.join(", ")
+                ));
+            }
+        }
+    }
+    Ok(columns)
 }
 
 /// Whether a `[vary]` value is a range table (has `from`) rather than a nested key.
@@ -1159,6 +1270,115 @@ load_step = 0.15
             e.contains("collect: `pull_off` is not a summary quantity"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn zipped_entries_are_one_factor_of_the_product_in_file_order() {
+        let s = sweep(
+            "material.gamma = [0.1, 0.2]\n\
+             \"geometry.radius, protocol.max_approach, grid.n\" = [\n\
+               [7.0, 2.5, 22],  # row 0\n\
+               [8.0, 3.0, 24],\n\
+               [9.0, 3.5, 26],\n\
+             ]\n\
+             protocol.load_step = [0.1, 0.15]",
+        )
+        .unwrap();
+        let fields: Vec<_> = s.axes.iter().map(|a| a.field.as_str()).collect();
+        assert_eq!(
+            fields,
+            [
+                "material.gamma",
+                "geometry.radius",
+                "protocol.max_approach",
+                "grid.n",
+                "protocol.load_step"
+            ]
+        );
+        let entries: Vec<_> = s.axes.iter().map(|a| a.entry).collect();
+        assert_eq!(entries, [0, 1, 1, 1, 2]);
+        // 2 × 3 × 2 points: gamma outermost, the zipped rows in the middle, load_step fastest.
+        assert_eq!(s.len(), 12);
+        assert_eq!(s.entry_indices(7), [1, 0, 1]);
+        assert_eq!(
+            s.label(7),
+            "material.gamma = 0.2, geometry.radius = 7.0, protocol.max_approach = 2.5, \
+             grid.n = 22, protocol.load_step = 0.15"
+        );
+        for i in 0..s.len() {
+            let scene = s.point_scene(i).unwrap().file;
+            let (g, row, load) = (i / 6, i / 2 % 3, i % 2);
+            assert_eq!(scene.material.gamma, [0.1, 0.2][g], "point {i}");
+            assert_eq!(
+                scene.geometry,
+                crate::scene::Geometry::Sphere {
+                    radius: [7.0, 8.0, 9.0][row]
+                },
+                "point {i}"
+            );
+            assert_eq!(
+                scene.protocol.max_approach,
+                [2.5, 3.0, 3.5][row],
+                "point {i}"
+            );
+            assert_eq!(scene.grid.n, Some([22, 24, 26][row]), "point {i}");
+            assert_eq!(scene.protocol.load_step, [0.1, 0.15][load], "point {i}");
+            // Fields outside [vary] are the base scene's.
+            assert_eq!(scene.grid.dx, Some(0.6));
+        }
+        // A zipped entry alone (spaces after the commas are optional).
+        let s = sweep("\"material.gamma,material.e_star\" = [[0.1, 1.0], [0.2, 2.0]]").unwrap();
+        assert_eq!(s.len(), 2);
+        let scene = s.point_scene(1).unwrap().file;
+        assert_eq!((scene.material.gamma, scene.material.e_star), (0.2, 2.0));
+    }
+
+    #[test]
+    fn bad_zipped_entries_name_the_file_and_the_fields() {
+        for (vary, want) in [
+            (
+                "\"material.gamma, geometry.radius\" = [[0.1, 7.0], [0.2]]",
+                "vary.\"material.gamma, geometry.radius\": row 1 has 1 values but the entry \
+                 names 2 fields (material.gamma, geometry.radius)",
+            ),
+            (
+                "\"material.gamma, geometry.radius\" = [[0.1, 7.0, 3]]",
+                "row 0 has 3 values but the entry names 2 fields",
+            ),
+            (
+                "\"material.gamma, geometry.radius\" = [0.1, 0.2]",
+                "vary.\"material.gamma, geometry.radius\": row 0 = 0.1 is invalid: must be a \
+                 list of 2 values",
+            ),
+            (
+                "\"material.gamma, geometry.radius\" = []",
+                "vary.\"material.gamma, geometry.radius\" = []: give at least one row",
+            ),
+            (
+                "\"material.gamma, geometry.radius\" = { from = 0.1, to = 0.2, steps = 2 }",
+                "is invalid: must be a list of rows with one value per field",
+            ),
+            (
+                "\"material.gamma, \" = [[0.1, 0.2]]",
+                "field 2 of the zipped entry is empty",
+            ),
+            (
+                "material.\"gamma, e_star\" = [[0.1, 1.0]]",
+                "a zipped entry must be one quoted key directly under [vary]",
+            ),
+            (
+                "material.gamma = [0.1]\n\"geometry.radius, material.gamma\" = [[7.0, 0.2]]",
+                "vary.material.gamma is given twice",
+            ),
+            (
+                "\"material.gamma, material.gama\" = [[0.1, 0.2]]",
+                "unknown field `gama`",
+            ),
+        ] {
+            let e = sweep(vary).unwrap_err().to_string();
+            assert!(e.contains(want), "{vary}: {e}");
+            assert!(e.starts_with("sweep `mem.toml`: "), "{e}");
+        }
     }
 
     #[test]

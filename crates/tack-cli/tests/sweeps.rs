@@ -1,7 +1,8 @@
 //! Parameter sweeps end to end with the built `tack` binary: sharded runs in separate processes
 //! merge to the same table as one process, bit for bit; a killed sweep resumes without rerunning
 //! completed points and merges to the same table; failing points are recorded and reported while
-//! the others complete; bad sweep files and arguments fail with clear messages.
+//! the others complete; bad sweep files and arguments fail with clear messages; a zipped entry
+//! sets its fields together and merges to one column per field.
 
 mod common;
 
@@ -495,4 +496,70 @@ fn example_sweeps_are_valid_at_every_point_and_the_jkr_example_runs() {
     assert_eq!(name, "pull_off_ratio");
     // a_c/dx between 4 and 7 here: the discrete criterion overshoots F_JKR by 20-50%.
     assert!(ratio.iter().all(|r| (1.0..1.6).contains(r)), "{ratio:?}");
+}
+
+#[test]
+fn zipped_sweep_runs_and_merges_every_field_as_a_column() {
+    let scratch = Scratch::new("sweep-zipped");
+    // 3 rows of (radius, gamma) × 2 load steps = 6 points, the zipped entry outermost.
+    let vary = "\"geometry.radius, material.gamma\" = [\n  [7.0, 0.08],\n  [8.0, 0.1],\n  \
+                [9.0, 0.12],\n]\nprotocol.load_step = [0.15, 0.2]";
+    let sweep = write_sweep(&scratch.0, 0.02, vary);
+    let dir = scratch.join("out");
+    let (stdout, _) = assert_ok(
+        &run(&["sweep", s(&sweep), "-o", s(&dir), "--quiet"]),
+        "zipped sweep",
+    );
+    assert!(stdout.contains("6 of 6 points"), "{stdout}");
+    let t = merge(&dir, &scratch.join("zipped.h5"));
+    let fields: Vec<&str> = t.parameters.iter().map(|(f, _)| f.as_str()).collect();
+    assert_eq!(
+        fields,
+        ["geometry.radius", "material.gamma", "protocol.load_step"]
+    );
+    let column = |k: usize| match &t.parameters[k].1 {
+        ParameterColumn::Float(v) => v.clone(),
+        other => panic!("{other:?}"),
+    };
+    assert_eq!(column(0), [7.0, 7.0, 8.0, 8.0, 9.0, 9.0]);
+    assert_eq!(column(1), [0.08, 0.08, 0.1, 0.1, 0.12, 0.12]);
+    assert_eq!(column(2), [0.15, 0.2, 0.15, 0.2, 0.15, 0.2]);
+    // Each point's result records its row, and was run with it: F_JKR = −(3/2)πγR.
+    let (pull_off, ratio) = (&t.results[0].1, &t.results[1].1);
+    for k in 0..6 {
+        let scene = tack_io::read_result(&dir.join(format!("points/{k:05}.h5")))
+            .expect("point file")
+            .provenance
+            .scene;
+        let parsed = tack_cli::Scene::parse(&scene, ".", &[]).expect("recorded scene");
+        let (r, g) = (column(0)[k], column(1)[k]);
+        assert_eq!(
+            parsed.file.geometry,
+            tack_cli::scene::Geometry::Sphere { radius: r }
+        );
+        assert_eq!(parsed.file.material.gamma, g);
+        assert_eq!(parsed.file.protocol.load_step, column(2)[k]);
+        let f_jkr = -1.5 * std::f64::consts::PI * g * r;
+        assert!(
+            pull_off[k] < 0.0 && (pull_off[k] / ratio[k] / f_jkr - 1.0).abs() < 1e-12,
+            "point {k}: {} / {} vs {f_jkr}",
+            pull_off[k],
+            ratio[k]
+        );
+    }
+    // The same rows with one value missing: rejected before anything runs, naming the fields.
+    let bad = scratch.join("bad.toml");
+    std::fs::write(
+        &bad,
+        "version = 1\nscene = \"base.toml\"\n[vary]\n\"geometry.radius, material.gamma\" = \
+         [[7.0, 0.08], [8.0]]\n",
+    )
+    .expect("bad sweep");
+    let other = scratch.join("other");
+    assert_fails(
+        &["sweep", s(&bad), "-o", s(&other)],
+        "vary.\"geometry.radius, material.gamma\": row 1 has 1 values but the entry names 2 \
+         fields (geometry.radius, material.gamma)",
+    );
+    assert!(!other.exists());
 }

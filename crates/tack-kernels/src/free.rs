@@ -19,8 +19,10 @@ pub struct FreeOperator {
     e_star: f64,
     /// Kernel spectrum (real: the kernel is even), in the transform's layout.
     kernel_hat: Vec<f64>,
-    precond_hat: Vec<f64>,
     fft: Fft2,
+    /// The preconditioner's spectrum on its own, unpadded transform grid.
+    precond_hat: Vec<f64>,
+    precond_fft: Fft2,
 }
 
 impl FreeOperator {
@@ -30,33 +32,42 @@ impl FreeOperator {
         let (nx, ny) = grid.shape();
         let (mx, my) = (padded_size(nx), padded_size(ny));
         let dx = grid.dx();
-        let offset = |i: usize, n: usize, m: usize| -> Option<f64> {
+        // |offset| in elements of padded index i, or None in the zero band.
+        let offset = |i: usize, n: usize, m: usize| -> Option<usize> {
             if i < n {
-                Some(i as f64)
+                Some(i)
             } else if i > m - n {
-                Some(i as f64 - m as f64)
+                Some(m - i)
             } else {
                 None
             }
         };
+        // Love's coefficient is even in both offsets: evaluate one quadrant, mirror it.
+        let quadrant = Array2::from_shape_fn((nx, ny), |(i, j)| {
+            love_rectangle(i as f64 * dx, j as f64 * dx, dx / 2.0, dx / 2.0) / e_star
+        });
         let kernel = Array2::from_shape_fn((mx, my), |(i, j)| {
             match (offset(i, nx, mx), offset(j, ny, my)) {
-                (Some(ox), Some(oy)) => {
-                    love_rectangle(ox * dx, oy * dx, dx / 2.0, dx / 2.0) / e_star
-                }
+                (Some(ox), Some(oy)) => quadrant[[ox, oy]],
                 _ => 0.0,
             }
         });
         let mut fft = Fft2::new(mx, my);
         let spectrum = fft.transform(kernel.view()).mapv(|c| c.re);
         let kernel_hat = fft.prepare_kernel(&spectrum);
-        let precond_hat = fft.prepare_kernel(&stiffness_spectrum(mx, my, dx, e_star));
+        // The preconditioner is only an approximate inverse, so it needs no zero padding: a
+        // periodic spectral stiffness on the smallest fast size ≥ n costs about a quarter of
+        // the operator's padded transform pair (`cargo xtask bench`, CG iteration table).
+        let (px, py) = (fast_size(nx), fast_size(ny));
+        let precond_fft = Fft2::new(px, py);
+        let precond_hat = precond_fft.prepare_kernel(&stiffness_spectrum(px, py, dx, e_star));
         Ok(Self {
             grid,
             e_star,
             kernel_hat,
-            precond_hat,
             fft,
+            precond_hat,
+            precond_fft,
         })
     }
 }
@@ -72,7 +83,8 @@ impl ElasticOperator for FreeOperator {
         self.fft.convolve(pressure, &self.kernel_hat, displacement);
     }
     fn precondition(&mut self, displacement: ArrayView2<f64>, pressure: ArrayViewMut2<f64>) {
-        self.fft.convolve(displacement, &self.precond_hat, pressure);
+        self.precond_fft
+            .convolve(displacement, &self.precond_hat, pressure);
     }
     fn self_compliance(&self) -> f64 {
         SELF_COMPLIANCE * self.grid.dx() / self.e_star
@@ -81,6 +93,11 @@ impl ElasticOperator for FreeOperator {
 
 /// Smallest even `m ≥ 2n − 1` whose prime factors are 2, 3 and 5 (fast FFT sizes).
 pub fn padded_size(n: usize) -> usize {
+    fast_size((2 * n).max(2) - 1)
+}
+
+/// Smallest even `m ≥ n` (and ≥ 2) whose prime factors are 2, 3 and 5.
+pub fn fast_size(n: usize) -> usize {
     let smooth = |mut m: usize| {
         for p in [2, 3, 5] {
             while m % p == 0 {
@@ -89,7 +106,7 @@ pub fn padded_size(n: usize) -> usize {
         }
         m == 1
     };
-    let mut m = (2 * n - 1).max(2);
+    let mut m = n.max(2);
     while m % 2 == 1 || !smooth(m) {
         m += 1;
     }

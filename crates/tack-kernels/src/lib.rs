@@ -11,7 +11,7 @@ mod free;
 mod love;
 mod periodic;
 
-pub use free::{FreeOperator, padded_size};
+pub use free::{FreeOperator, fast_size, padded_size};
 pub use love::{MEAN_SELF_COMPLIANCE, SELF_COMPLIANCE, love_rectangle};
 pub use periodic::PeriodicOperator;
 

@@ -378,7 +378,8 @@ impl AdhesiveSolver {
 
     /// The sub-grid to solve on: the bonded set's bounding box, grown to the largest size with
     /// the same FFT length (so few distinct sub-operators are built), or `None` when the grid is
-    /// periodic, sub-grids are switched off, or the box would not be much smaller than the grid.
+    /// periodic, sub-grids are switched off, or the box's transform would not be clearly
+    /// cheaper than the grid's.
     fn bonded_window(&self) -> Option<Window> {
         let grid = self.op.grid();
         if grid.boundary() != Boundary::Free || !self.options.bonded_subgrid {
@@ -401,7 +402,13 @@ impl AdhesiveSolver {
         };
         let (i0, i1) = grow(i0, i1, nx);
         let (j0, j1) = grow(j0, j1, ny);
-        let small = 2 * (i1 - i0) * (j1 - j0) < nx * ny;
+        // A sub-grid solve adds one full-grid product per round; with several CG iterations per
+        // round it pays once its transform is clearly cheaper than the full grid's.
+        let cost = |a: usize, b: usize| {
+            let m = (padded_size(a) * padded_size(b)) as f64;
+            m * m.ln()
+        };
+        let small = cost(i1 - i0, j1 - j0) < SUBGRID_COST_RATIO * cost(nx, ny);
         small.then_some(Window { i0, i1, j0, j1 })
     }
 
@@ -433,6 +440,9 @@ impl AdhesiveSolver {
         }
     }
 }
+
+/// A sub-grid is used when its transform costs less than this fraction of the full grid's.
+const SUBGRID_COST_RATIO: f64 = 0.8;
 
 /// Deterministic fingerprint of a bonded set (for cycle detection within one step).
 fn hash_mask(mask: &Array2<bool>) -> u64 {

@@ -63,9 +63,10 @@ pub(crate) fn pcg(
     let target = (options.tolerance * scale).powi(2) * n_c as f64;
     let max_it = options.max_iterations;
     let mut it = 0;
+    // The true residual is recomputed from `K p` at every (re)start; inside the loop `disp` is
+    // carried along (`disp += α K s`), so a converged solve needs no further product.
+    op.apply(pressure.view(), w.disp.view_mut());
     loop {
-        // (Re)start from the true residual r = (d − f − K p)_C.
-        op.apply(pressure.view(), w.disp.view_mut());
         let mut rr = 0.0;
         Zip::from(&mut w.resid)
             .and(&heights)
@@ -100,10 +101,12 @@ pub(crate) fn pcg(
             let mut rr_new = 0.0;
             Zip::from(&mut pressure)
                 .and(&mut w.resid)
+                .and(&mut w.disp)
                 .and(&w.dir)
                 .and(&w.kdir)
                 .and(&bonded)
-                .for_each(|p, r, &s, &q, &b| {
+                .for_each(|p, r, u, &s, &q, &b| {
+                    *u += alpha * q;
                     if b {
                         *p += alpha * s;
                         *r -= alpha * q;
@@ -119,9 +122,19 @@ pub(crate) fn pcg(
             Zip::from(&mut w.dir)
                 .and(&w.zres)
                 .for_each(|s, &z| *s = z + beta * *s);
+            if it % REFRESH == 0 {
+                // Long runs: refresh `K p` so round-off in the carried product cannot build up.
+                op.apply(pressure.view(), w.disp.view_mut());
+            }
+        }
+        if it >= max_it {
+            op.apply(pressure.view(), w.disp.view_mut());
         }
     }
 }
+
+/// Iterations between refreshes of the carried product `K p` in long solves.
+const REFRESH: usize = 200;
 
 /// `z = P_C M r` (or `z = r` without preconditioning); returns `r·z`.
 fn precondition(

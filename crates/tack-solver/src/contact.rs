@@ -1,9 +1,10 @@
 //! Non-adhesive frictionless contact by constrained conjugate gradients (Polonsky & Keer 1999)
-//! in its gap-controlled form: prescribed approach, pressures ≥ 0, zero gap in contact.
+//! in its gap-controlled form: prescribed approach, pressures ≥ 0, zero gap in contact; with a
+//! coarse-to-fine start and, on free grids, iterations confined to where contact can occur.
 
-use ndarray::{Array2, Zip};
-use tack_geometry::{Boundary, Surface};
-use tack_kernels::ElasticOperator;
+use ndarray::{Array2, Zip, s};
+use tack_geometry::{Boundary, Grid, Surface, Window};
+use tack_kernels::{ElasticOperator, operator_for};
 
 use crate::{ContactState, SolverError, SolverOptions};
 
@@ -18,7 +19,15 @@ pub struct ContactSolver {
     gap: Array2<f64>,
     dir: Array2<f64>,
     kdir: Array2<f64>,
+    coarse_start: bool,
+    crop: bool,
 }
+
+/// Iterations between recomputations of `K p` from scratch (bounds round-off in the update).
+const REFRESH: usize = 50;
+
+/// Coarse-to-fine starts stop coarsening below this many elements per side.
+const COARSEST: usize = 32;
 
 impl ContactSolver {
     /// A solver for `surface` pressed against the half-space described by `op`.
@@ -45,7 +54,26 @@ impl ContactSolver {
             gap: z.clone(),
             dir: z.clone(),
             kdir: z,
+            coarse_start: false,
+            crop: true,
         })
+    }
+
+    /// Cold starts (no element in contact yet) begin from the solution on a grid coarsened
+    /// 2 × 2 (recursively, down to about 32 elements per side; grids with an odd side are not
+    /// coarsened), prolonged by injection. The converged answer is the same problem's; only
+    /// the iteration count changes. Off by default: the fine-grid iterations are dominated by
+    /// settling the contact set, so the saving is small (`cargo xtask bench-contact`: 276 → 234
+    /// iterations on a 1024² periodic H = 0.8 surface at 7% contact).
+    pub fn set_coarse_start(&mut self, on: bool) {
+        self.coarse_start = on;
+    }
+
+    /// Free grids: iterate only on the bounding box of the elements with `f < d` (no other
+    /// element can touch: compressive pressures only push the surface away), then compute the
+    /// full-grid gap with one product. Exact (the same linear problem). On by default.
+    pub fn set_crop(&mut self, on: bool) {
+        self.crop = on;
     }
 
     /// Equilibrium at approach `d` (finite), warm-started from the previous solve.
@@ -70,8 +98,88 @@ impl ContactSolver {
             return Ok(self.full_contact(approach));
         }
         let scale = approach - fmin;
+        if let Some(w) = self.crop_window(approach) {
+            return self.solve_cropped(approach, &w);
+        }
+        if self.coarse_start && !self.pressure.iter().any(|&p| p > 0.0) {
+            self.start_from_coarse(approach)?;
+        }
         let (iterations, residual, converged) = self.iterate(approach, scale);
         Ok(self.state(approach, iterations, residual, converged, false))
+    }
+
+    /// The bounding box of `{f < d}` when cropping pays (free grid, box under half the grid).
+    fn crop_window(&self, d: f64) -> Option<Window> {
+        let grid = self.op.grid();
+        if !self.crop || grid.boundary() != Boundary::Free {
+            return None;
+        }
+        let (mut i0, mut i1, mut j0, mut j1) = (usize::MAX, 0, usize::MAX, 0);
+        for ((i, j), &f) in self.heights.indexed_iter() {
+            if f < d {
+                (i0, i1, j0, j1) = (i0.min(i), i1.max(i + 1), j0.min(j), j1.max(j + 1));
+            }
+        }
+        let (nx, ny) = grid.shape();
+        (i1 > 0 && 2 * (i1 - i0) * (j1 - j0) < nx * ny).then_some(Window { i0, i1, j0, j1 })
+    }
+
+    /// Solves on the window `w` (warm-started from the current pressure there), then puts the
+    /// pressure back and computes the full-grid gap.
+    fn solve_cropped(&mut self, d: f64, w: &Window) -> Result<ContactState, SolverError> {
+        let grid = *self.op.grid();
+        let sub_grid = Grid::new(w.i1 - w.i0, w.j1 - w.j0, grid.dx(), Boundary::Free)
+            .expect("a window of a valid grid is a valid grid");
+        let block = s![w.i0..w.i1, w.j0..w.j1];
+        let surface = Surface::new(sub_grid, self.heights.slice(block).to_owned())
+            .expect("finite heights of a valid surface");
+        let op = operator_for(sub_grid, self.op.e_star()).expect("validated modulus");
+        let mut sub = ContactSolver::new(op, &surface, self.options)?;
+        sub.coarse_start = self.coarse_start;
+        sub.crop = false;
+        sub.pressure.assign(&self.pressure.slice(block));
+        let st = sub.solve(d)?;
+        self.pressure.fill(0.0);
+        self.pressure.slice_mut(block).assign(&sub.pressure);
+        self.op.apply(self.pressure.view(), self.disp.view_mut());
+        Zip::from(&mut self.gap)
+            .and(&self.heights)
+            .and(&self.disp)
+            .for_each(|g, &f, &u| *g = f - d + u);
+        Ok(self.state(d, st.iterations, st.residual, st.converged, false))
+    }
+
+    /// Fills `pressure` with the prolonged solution of the 2 × 2-coarsened problem, if the grid
+    /// can be coarsened.
+    fn start_from_coarse(&mut self, d: f64) -> Result<(), SolverError> {
+        let grid = *self.op.grid();
+        let (nx, ny) = grid.shape();
+        if nx % 2 == 1 || ny % 2 == 1 || nx.min(ny) < 2 * COARSEST {
+            return Ok(());
+        }
+        let coarse_grid = Grid::new(nx / 2, ny / 2, 2.0 * grid.dx(), grid.boundary())
+            .expect("a coarsened valid grid is valid");
+        let heights = Array2::from_shape_fn((nx / 2, ny / 2), |(i, j)| {
+            0.25 * (self.heights[[2 * i, 2 * j]]
+                + self.heights[[2 * i + 1, 2 * j]]
+                + self.heights[[2 * i, 2 * j + 1]]
+                + self.heights[[2 * i + 1, 2 * j + 1]])
+        });
+        let surface = Surface::new(coarse_grid, heights).expect("finite heights");
+        let op = operator_for(coarse_grid, self.op.e_star()).expect("validated modulus");
+        // The coarse answer only seeds the fine iterations: a looser tolerance suffices.
+        let options = SolverOptions {
+            tolerance: self.options.tolerance.max(1e-6),
+            ..self.options
+        };
+        let mut coarse = ContactSolver::new(op, &surface, options)?;
+        coarse.crop = false;
+        let st = coarse.solve(d)?;
+        if st.full_contact {
+            return Ok(());
+        }
+        self.pressure = Array2::from_shape_fn((nx, ny), |(i, j)| coarse.pressure[[i / 2, j / 2]]);
+        Ok(())
     }
 
     /// The constrained CG iterations; returns (iterations, relative residual, converged).
@@ -87,8 +195,13 @@ impl ContactSolver {
         let (mut delta, mut g_old) = (0.0, 1.0);
         self.dir.fill(0.0);
         let mut residual = f64::INFINITY;
+        // `disp = K p` is recomputed only after a projection (an element clipped to p = 0 or a
+        // penetrating one added); otherwise p moved along t and `disp −= τ K t` is exact.
+        let mut fresh = false;
         for it in 0..=self.options.max_iterations {
-            self.op.apply(self.pressure.view(), self.disp.view_mut());
+            if !fresh || it % REFRESH == 0 {
+                self.op.apply(self.pressure.view(), self.disp.view_mut());
+            }
             Zip::from(&mut self.gap)
                 .and(&self.heights)
                 .and(&self.disp)
@@ -136,13 +249,15 @@ impl ContactSolver {
                     }
                 });
             let tau = num / den;
-            let mut overlap = false;
+            let (mut overlap, mut clipped) = (false, false);
             Zip::from(&mut self.pressure)
                 .and(&self.gap)
                 .and(&self.dir)
                 .for_each(|p, &g, &t| {
                     if *p > 0.0 {
-                        *p = (*p - tau * t).max(0.0);
+                        let q = *p - tau * t;
+                        clipped |= q < 0.0;
+                        *p = q.max(0.0);
                     } else if g < 0.0 {
                         // Penetrating element outside the contact set joins it (PK step 7).
                         *p = -tau * g;
@@ -150,6 +265,12 @@ impl ContactSolver {
                     }
                 });
             delta = if overlap { 0.0 } else { 1.0 };
+            fresh = !overlap && !clipped;
+            if fresh {
+                Zip::from(&mut self.disp)
+                    .and(&self.kdir)
+                    .for_each(|u, &k| *u -= tau * k);
+            }
         }
         (self.options.max_iterations, residual, false)
     }

@@ -12,6 +12,7 @@ mod cg;
 mod clusters;
 mod contact;
 mod crop;
+mod extrapolate;
 mod options;
 mod path;
 mod state;
@@ -20,6 +21,7 @@ pub use adhesive::{AdhesiveOptions, AdhesiveSolver, KAPPA, KAPPA_LINE, StepRecor
 pub use clusters::count_clusters;
 pub use contact::ContactSolver;
 pub use crop::{contact_window, touches_edge};
+pub use extrapolate::richardson_first_order;
 pub use options::{SolverError, SolverOptions};
 pub use path::{ApproachPath, Observer, PathResult, Phase, Snapshot, SnapshotRequest};
 pub use state::ContactState;

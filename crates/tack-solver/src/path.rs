@@ -1,5 +1,6 @@
-//! Approach paths: load to a maximum approach, then retract until the contact is lost,
-//! recording every step and, on request, pressure fields and bonded masks.
+//! Approach paths: load to a maximum approach, then retract until the contact is lost
+//! (optionally in coarse steps while the force is still compressive), recording every step and,
+//! on request, pressure fields and bonded masks.
 
 use ndarray::Array2;
 
@@ -16,6 +17,12 @@ pub struct ApproachPath {
     pub load_step: f64,
     /// Approach decrement while retracting (> 0).
     pub unload_step: f64,
+    /// Approach decrement used instead of `unload_step` while the force is still compressive
+    /// (> 0); `None`: `unload_step` throughout. The retraction steps back from `max_approach` by
+    /// this step; once a step's force is ≤ 0 the path re-anchors at that step's approach `d₀`
+    /// and continues at `d₀ − k·unload_step`, k = 1, 2, … (the pull-off lies in the tensile
+    /// part). A coarse step that jumps over the whole tensile part misses the pull-off.
+    pub coarse_unload_step: Option<f64>,
     /// Stop retracting below this approach; `None`: retract until no element is bonded.
     pub retract_to: Option<f64>,
     /// Cap on the total number of steps (a path always terminates).
@@ -47,6 +54,11 @@ impl ApproachPath {
             if !(v.is_finite() && v > 0.0) {
                 return bad(field, v, "a finite number > 0");
             }
+        }
+        if let Some(c) = self.coarse_unload_step
+            && !(c.is_finite() && c > 0.0)
+        {
+            return bad("protocol.coarse_unload_step", c, "a finite number > 0");
         }
         if self.max_approach < self.start {
             return bad(
@@ -84,6 +96,18 @@ pub enum Phase {
 pub trait Observer {
     /// Called after every step with its index and record.
     fn on_step(&mut self, _index: usize, _phase: Phase, _record: &StepRecord) {}
+    /// Called after every step, before [`Observer::on_step`], with the step's pressure field
+    /// and bonded mask (on the grid the solver runs on), for observers that select fields by
+    /// rules of their own. Clone what you keep.
+    fn on_fields(
+        &mut self,
+        _index: usize,
+        _phase: Phase,
+        _record: &StepRecord,
+        _pressure: &Array2<f64>,
+        _bonded: &Array2<bool>,
+    ) {
+    }
 }
 
 impl Observer for () {}
@@ -100,16 +124,77 @@ pub enum SnapshotRequest {
     Every(usize),
     /// The listed step indices.
     Steps(Vec<usize>),
+    /// The pull-off step (the least force of the path, the first one on ties; periodic
+    /// full-contact steps left out, as in [`PathResult::pull_off_force`]) and the last step
+    /// that still has a bonded element (one snapshot when they coincide).
+    PullOff,
 }
 
 impl SnapshotRequest {
+    /// Whether step `step` is kept by a rule that needs no look at the path (`PullOff` decides
+    /// as the path goes, see [`Keeper`]).
     fn wants(&self, step: usize) -> bool {
         match self {
-            Self::None => false,
+            Self::None | Self::PullOff => false,
             Self::All => true,
             Self::Every(k) => step % (*k).max(1) == 0,
             Self::Steps(s) => s.contains(&step),
         }
+    }
+}
+
+/// The fields of [`SnapshotRequest::PullOff`] while the path runs: the least force so far
+/// (fields cloned only when a new minimum is found) and the latest step with a bonded element
+/// (copied into buffers allocated once).
+#[derive(Default)]
+struct Keeper {
+    pull_off: Option<(f64, Snapshot)>,
+    last_contact: Option<Snapshot>,
+}
+
+impl Keeper {
+    fn observe(&mut self, step: usize, record: &StepRecord, solver: &AdhesiveSolver) {
+        if !record.full_contact
+            && self
+                .pull_off
+                .as_ref()
+                .is_none_or(|(force, _)| record.force < *force)
+        {
+            let snap = Snapshot {
+                step,
+                pressure: solver.pressure().clone(),
+                bonded: solver.bonded().clone(),
+            };
+            self.pull_off = Some((record.force, snap));
+        }
+        if record.n_bonded > 0 {
+            match &mut self.last_contact {
+                Some(s) => {
+                    s.step = step;
+                    s.pressure.assign(solver.pressure());
+                    s.bonded.assign(solver.bonded());
+                }
+                None => {
+                    self.last_contact = Some(Snapshot {
+                        step,
+                        pressure: solver.pressure().clone(),
+                        bonded: solver.bonded().clone(),
+                    });
+                }
+            }
+        }
+    }
+
+    /// The kept snapshots in step order, one per step.
+    fn into_snapshots(self) -> Vec<Snapshot> {
+        let mut out: Vec<Snapshot> = self.pull_off.map(|(_, s)| s).into_iter().collect();
+        if let Some(last) = self.last_contact
+            && out.first().is_none_or(|p| p.step != last.step)
+        {
+            out.push(last);
+        }
+        out.sort_by_key(|s| s.step);
+        out
     }
 }
 
@@ -168,28 +253,45 @@ impl AdhesiveSolver {
     ) -> Result<PathResult, SolverError> {
         path.validate()?;
         let mut out = PathResult::default();
+        let mut keeper = (*snapshots == SnapshotRequest::PullOff).then(Keeper::default);
         let mut k = 0usize;
         loop {
             let d = (path.start + k as f64 * path.load_step).min(path.max_approach);
-            self.record_step(d, Phase::Load, snapshots, observer, &mut out)?;
+            self.record_step(d, Phase::Load, snapshots, &mut keeper, observer, &mut out)?;
             if d >= path.max_approach || out.records.len() >= path.max_steps {
                 break;
             }
             k += 1;
         }
+        // Retract from `anchor` in steps of `stride`: the coarse step while the force is
+        // compressive, then the unload step from the approach where it stopped being so.
+        let (mut anchor, mut stride) = (
+            path.max_approach,
+            path.coarse_unload_step.unwrap_or(path.unload_step),
+        );
         let mut k = 1usize;
         while out.records.len() < path.max_steps {
-            let d = path.max_approach - k as f64 * path.unload_step;
+            if stride != path.unload_step
+                && let Some(last) = out.records.last()
+                && last.force <= 0.0
+            {
+                (anchor, stride, k) = (last.approach, path.unload_step, 1);
+            }
+            let d = anchor - k as f64 * stride;
             if path.retract_to.is_some_and(|r| d < r) {
                 out.completed = true;
                 break;
             }
-            let rec = self.record_step(d, Phase::Unload, snapshots, observer, &mut out)?;
+            let rec =
+                self.record_step(d, Phase::Unload, snapshots, &mut keeper, observer, &mut out)?;
             if rec.n_bonded == 0 && path.retract_to.is_none() {
                 out.completed = true;
                 break;
             }
             k += 1;
+        }
+        if let Some(keeper) = keeper {
+            out.snapshots = keeper.into_snapshots();
         }
         Ok(out)
     }
@@ -199,6 +301,7 @@ impl AdhesiveSolver {
         d: f64,
         phase: Phase,
         snapshots: &SnapshotRequest,
+        keeper: &mut Option<Keeper>,
         observer: &mut dyn Observer,
         out: &mut PathResult,
     ) -> Result<StepRecord, SolverError> {
@@ -211,9 +314,212 @@ impl AdhesiveSolver {
                 bonded: self.bonded().clone(),
             });
         }
+        if let Some(keeper) = keeper {
+            keeper.observe(index, &rec, self);
+        }
+        observer.on_fields(index, phase, &rec, self.pressure(), self.bonded());
         observer.on_step(index, phase, &rec);
         out.records.push(rec);
         out.phases.push(phase);
         Ok(rec)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::AdhesiveOptions;
+    use tack_geometry::{Boundary, Grid, Sphere, Surface};
+
+    /// A smooth adhesive sphere in JKR units (R = E* = γ = 1) on a small free grid, a_c/Δx ≈ 4.
+    fn sphere_solver() -> AdhesiveSolver {
+        let dx = 0.38;
+        let grid = Grid::square(19, dx, Boundary::Free).unwrap();
+        let surface = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
+        let op = tack_kernels::operator_for(grid, 1.0).unwrap();
+        AdhesiveSolver::new(op, &surface, 1.0, crate::KAPPA, AdhesiveOptions::default()).unwrap()
+    }
+
+    const COARSE: f64 = 1.0;
+
+    fn path(coarse: Option<f64>) -> ApproachPath {
+        ApproachPath {
+            start: 1.0,
+            max_approach: 6.0,
+            load_step: 1.0,
+            unload_step: 0.05,
+            coarse_unload_step: coarse,
+            retract_to: None,
+            max_steps: 10_000,
+        }
+    }
+
+    fn unload_approaches(r: &PathResult) -> Vec<f64> {
+        r.records
+            .iter()
+            .zip(&r.phases)
+            .filter(|(_, p)| **p == Phase::Unload)
+            .map(|(s, _)| s.approach)
+            .collect()
+    }
+
+    #[test]
+    fn coarse_retraction_switches_to_the_unload_step_once_the_force_is_tensile() {
+        let fine = sphere_solver()
+            .run_path(&path(None), &SnapshotRequest::None, &mut ())
+            .unwrap();
+        let coarse = sphere_solver()
+            .run_path(&path(Some(COARSE)), &SnapshotRequest::None, &mut ())
+            .unwrap();
+        assert!(fine.completed && coarse.completed);
+        // Without a coarse step: d = max − k·unload_step, bit for bit.
+        for (k, d) in unload_approaches(&fine).into_iter().enumerate() {
+            assert_eq!(d.to_bits(), (6.0 - (k + 1) as f64 * 0.05).to_bits());
+        }
+        // With one: d = max − k·COARSE until a force ≤ 0, then d₀ − k·0.05 from that step's d₀.
+        let first_unload = coarse
+            .phases
+            .iter()
+            .position(|p| *p == Phase::Unload)
+            .unwrap();
+        let records = &coarse.records;
+        let (mut anchor, mut stride, mut k, mut switched_at) = (6.0, COARSE, 1, None);
+        for i in first_unload..records.len() {
+            let previous = &records[i - 1];
+            if stride == COARSE && previous.force <= 0.0 {
+                (anchor, stride, k, switched_at) = (previous.approach, 0.05, 1, Some(i));
+            }
+            let want: f64 = anchor - k as f64 * stride;
+            assert_eq!(records[i].approach.to_bits(), want.to_bits(), "step {i}");
+            k += 1;
+        }
+        let switched_at = switched_at.expect("the retraction never became tensile");
+        // The coarse part is compressive except its last step, and far shorter than the fine one.
+        assert!(switched_at > first_unload + 1, "no compressive coarse step");
+        assert!(
+            records[first_unload..switched_at - 1]
+                .iter()
+                .all(|r| r.force > 0.0)
+        );
+        assert!(records[switched_at - 1].force <= 0.0);
+        assert!(switched_at - first_unload < 10);
+        assert!(coarse.records.len() < fine.records.len());
+        // The pull-off lies in the tensile part: both paths find it, within the resolution of the
+        // unload step (the coarse path's compressive contact is pinned as the fine one's).
+        let (a, b) = (fine.pull_off_force(), coarse.pull_off_force());
+        assert!(a < 0.0 && (a - b).abs() < 0.02 * a.abs(), "{a} vs {b}");
+    }
+
+    #[test]
+    fn coarse_retraction_respects_retract_to_and_max_steps() {
+        let p = ApproachPath {
+            retract_to: Some(3.5),
+            ..path(Some(COARSE))
+        };
+        let r = sphere_solver()
+            .run_path(&p, &SnapshotRequest::None, &mut ())
+            .unwrap();
+        assert!(r.completed);
+        assert_eq!(unload_approaches(&r), [5.0, 4.0]);
+        let p = ApproachPath {
+            max_steps: 8,
+            ..path(Some(COARSE))
+        };
+        let r = sphere_solver()
+            .run_path(&p, &SnapshotRequest::None, &mut ())
+            .unwrap();
+        assert!(!r.completed);
+        assert_eq!(r.records.len(), 8);
+    }
+
+    #[test]
+    fn bad_coarse_unload_step_names_the_field() {
+        for bad in [0.0, -0.1, f64::NAN, f64::INFINITY] {
+            let e = path(Some(bad)).validate().unwrap_err().to_string();
+            assert!(
+                e.starts_with("protocol.coarse_unload_step = ")
+                    && e.ends_with("is invalid: must be a finite number > 0"),
+                "{e}"
+            );
+            let run = sphere_solver().run_path(&path(Some(bad)), &SnapshotRequest::None, &mut ());
+            assert!(run.is_err());
+        }
+        assert!(path(Some(1e-3)).validate().is_ok());
+    }
+
+    #[test]
+    fn pull_off_snapshots_are_the_least_force_and_the_last_contact() {
+        let p = path(Some(COARSE));
+        let all = sphere_solver()
+            .run_path(&p, &SnapshotRequest::All, &mut ())
+            .unwrap();
+        let kept = sphere_solver()
+            .run_path(&p, &SnapshotRequest::PullOff, &mut ())
+            .unwrap();
+        assert_eq!(all.records, kept.records);
+        let r = &all.records;
+        let pull_off = (0..r.len())
+            .min_by(|&a, &b| r[a].force.total_cmp(&r[b].force))
+            .unwrap();
+        let last = r.iter().rposition(|s| s.n_bonded > 0).unwrap();
+        assert!(
+            pull_off < last && last + 1 == r.len() - 1,
+            "{pull_off} {last}"
+        );
+        assert_eq!(r[pull_off].force, all.pull_off_force());
+        let steps: Vec<usize> = kept.snapshots.iter().map(|s| s.step).collect();
+        assert_eq!(steps, [pull_off, last]);
+        for s in &kept.snapshots {
+            assert_eq!(s, &all.snapshots[s.step], "step {}", s.step);
+        }
+        assert!(kept.snapshots[1].bonded.iter().any(|&b| b));
+
+        // A path cut off while bonded keeps its last step; one snapshot when the two coincide.
+        let short = ApproachPath { max_steps: 8, ..p };
+        let kept = sphere_solver()
+            .run_path(&short, &SnapshotRequest::PullOff, &mut ())
+            .unwrap();
+        let r = &kept.records;
+        let least = (0..r.len())
+            .min_by(|&a, &b| r[a].force.total_cmp(&r[b].force))
+            .unwrap();
+        let steps: Vec<usize> = kept.snapshots.iter().map(|s| s.step).collect();
+        if least == r.len() - 1 {
+            assert_eq!(steps, [least]);
+        } else {
+            assert_eq!(steps, [least, r.len() - 1]);
+        }
+    }
+
+    #[test]
+    fn observers_see_every_step_with_its_fields() {
+        #[derive(Default)]
+        struct Seen(Vec<(usize, usize, bool)>);
+        impl Observer for Seen {
+            fn on_fields(
+                &mut self,
+                index: usize,
+                _: Phase,
+                record: &StepRecord,
+                pressure: &Array2<f64>,
+                bonded: &Array2<bool>,
+            ) {
+                let n = bonded.iter().filter(|&&b| b).count();
+                assert_eq!(n, record.n_bonded);
+                assert_eq!(pressure.dim(), bonded.dim());
+                self.0.push((index, n, false));
+            }
+            fn on_step(&mut self, index: usize, _: Phase, _: &StepRecord) {
+                let last = self.0.last_mut().expect("on_fields comes first");
+                assert_eq!(last.0, index);
+                last.2 = true;
+            }
+        }
+        let mut seen = Seen::default();
+        let r = sphere_solver()
+            .run_path(&path(Some(COARSE)), &SnapshotRequest::None, &mut seen)
+            .unwrap();
+        assert_eq!(seen.0.len(), r.records.len());
+        assert!(seen.0.iter().enumerate().all(|(k, s)| s.0 == k && s.2));
     }
 }

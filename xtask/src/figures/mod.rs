@@ -1,5 +1,8 @@
 //! The paper's Figures 1–8: each builds its runs from its spec, runs them, and writes
-//! `figN.h5`, `figN.svg`, the runs' result files under `figN/` and a [`Summary`].
+//! `figN.h5`, `figN.svg`, the runs' result files under `figN/` and a [`Summary`]. Figures 1, 2
+//! and 4 run through the engine (`figN/<run>.h5`); Figures 5 and 7 are tack sweeps whose point
+//! files stay in `figN/sweep-<mode>/` (resumed by a rerun); Figures 6 and 8 read Figure 7's sweep
+//! and copy the point files they show to `figN/<run>.h5`.
 //!
 //! `figN.h5` uses the tack-io layout for the figure's collected table, one entry per plotted
 //! point: `/curve/approach` = abscissa, `/curve/force` = ordinate, `/curve/mean_pressure` =
@@ -15,7 +18,7 @@ mod wavy_sphere;
 
 use std::f64::consts::PI;
 use std::fmt::Write as _;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use anyhow::{Context, Result};
@@ -25,23 +28,23 @@ use tack_analytics::{
 };
 use tack_cli::scene::{Geometry, SceneFile};
 
-use crate::engine::{Cache, RunOutput, write_run};
+use crate::engine::{RunOutput, write_run};
 use crate::plot::{Area, svg};
 use crate::spec::FigureSpec;
 
-/// Where a figure reads its spec and writes its outputs, and the shared run cache.
-pub struct Ctx<'a> {
+/// Where a figure reads its spec and writes its outputs, and how many runs go at once.
+pub struct Ctx {
     /// Directory of the figure specs (`data/figures`).
     pub specs: PathBuf,
     /// Output directory (`results`).
     pub out: PathBuf,
     /// Full mode (the paper's settings).
     pub full: bool,
-    /// Runs already made by this process.
-    pub cache: &'a Cache,
+    /// Worker threads of the figure sweeps (the engine runs on the current rayon pool).
+    pub threads: usize,
 }
 
-impl Ctx<'_> {
+impl Ctx {
     /// The spec of figure `n` in this mode.
     pub fn spec(&self, n: u8) -> Result<FigureSpec> {
         FigureSpec::load(&self.specs, n, self.full)
@@ -175,33 +178,77 @@ impl Table {
     }
 }
 
+/// The run files of a figure.
+pub enum RunFiles<'a> {
+    /// Engine runs: written to `figN/<name>.h5` (`figN/` is emptied first), with the fields of
+    /// their pull-off step, last contact and the steps in `table.shown`.
+    Engine(&'a [Arc<RunOutput>]),
+    /// The runs are the point files of the figure's sweep in `figN/sweep-<mode>/`: nothing is
+    /// written, and the result files an older layout left directly in `figN/` are removed.
+    Sweep,
+    /// Point files of another figure's sweep, copied to `figN/<name>.h5` (`figN/` is emptied
+    /// first).
+    Copies(Vec<(String, PathBuf)>),
+}
+
+/// Removes `dir` and everything in it, if it exists.
+fn clear_dir(dir: &Path) -> Result<()> {
+    if dir.is_dir() {
+        std::fs::remove_dir_all(dir).with_context(|| format!("clearing {}", dir.display()))?;
+    }
+    Ok(())
+}
+
 /// Writes a figure's outputs: `figN.h5` (table + summary), `figN.svg` (drawn by `draw` on a
-/// canvas of `size` pixels) and every run's result file under `figN/`, with the fields of its
-/// pull-off step, its last contact and the steps in `table.shown` (`figN/` is emptied first).
+/// canvas of `size` pixels) and the run files under `figN/` (see [`RunFiles`]).
 pub fn write_figure(
     ctx: &Ctx,
     spec: &FigureSpec,
     table: &Table,
     summary: &Summary,
-    runs: &[Arc<RunOutput>],
+    runs: RunFiles,
     size: (u32, u32),
     draw: impl FnOnce(&Area) -> Result<()>,
 ) -> Result<()> {
     let n = spec.figure;
     std::fs::create_dir_all(&ctx.out)?;
     let dir = ctx.out.join(format!("fig{n}"));
-    // The run directory holds exactly this invocation's runs.
-    if dir.is_dir() {
-        std::fs::remove_dir_all(&dir).with_context(|| format!("clearing {}", dir.display()))?;
-    }
-    for r in runs {
-        let steps: Vec<usize> = table
-            .shown
-            .iter()
-            .filter(|(name, _)| *name == r.name)
-            .map(|&(_, k)| k)
-            .collect();
-        write_run(&dir, r, &steps)?;
+    match runs {
+        RunFiles::Engine(runs) => {
+            // The run directory holds exactly this invocation's runs.
+            clear_dir(&dir)?;
+            for r in runs {
+                let steps: Vec<usize> = table
+                    .shown
+                    .iter()
+                    .filter(|(name, _)| *name == r.name)
+                    .map(|&(_, k)| k)
+                    .collect();
+                write_run(&dir, r, &steps)?;
+            }
+        }
+        RunFiles::Sweep => {
+            // Keep the sweep directories (both modes); drop run files of the engine layout.
+            for entry in std::fs::read_dir(&dir)
+                .with_context(|| format!("listing {}", dir.display()))?
+                .filter_map(Result::ok)
+            {
+                let path = entry.path();
+                if path.is_file() && path.extension().is_some_and(|e| e == "h5") {
+                    std::fs::remove_file(&path)
+                        .with_context(|| format!("removing {}", path.display()))?;
+                }
+            }
+        }
+        RunFiles::Copies(files) => {
+            clear_dir(&dir)?;
+            std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
+            for (name, from) in files {
+                let to = dir.join(format!("{name}.h5"));
+                std::fs::copy(&from, &to)
+                    .with_context(|| format!("copying {} to {}", from.display(), to.display()))?;
+            }
+        }
     }
     let zeros = vec![0u64; table.x.len()];
     let mut extra = std::collections::BTreeMap::new();
@@ -252,6 +299,22 @@ pub fn write_figure(
     svg(&ctx.out.join(format!("fig{n}.svg")), size, draw)
 }
 
+/// Where the REPORT says figure `n`'s runs are (relative to the output directory).
+pub fn runs_location(n: u8, full: bool) -> String {
+    let mode = if full { "full" } else { "quick" };
+    match n {
+        5 | 7 => format!(
+            "runs in `fig{n}/sweep-{mode}/` (a `tack sweep` directory, one result file per \
+             point in `points/`; `tack merge fig{n}/sweep-{mode} -o table.h5` gathers their \
+             summaries)"
+        ),
+        6 | 8 => {
+            format!("the runs shown copied to `fig{n}/` from Figure 7's sweep `fig7/sweep-{mode}/`")
+        }
+        _ => format!("runs in `fig{n}/`"),
+    }
+}
+
 /// Runs figure `n` (1–8) and returns its summary.
 pub fn run(n: u8, ctx: &Ctx) -> Result<Summary> {
     match n {
@@ -280,20 +343,10 @@ pub struct PullOff {
     /// Retraction step, in units of (Rγ²/E*²)^(1/3).
     pub unload_step: f64,
     /// Retraction step while the force is still compressive (same units; default
-    /// `unload_step`): the pull-off lies in the tensile part, which uses `unload_step`.
+    /// `unload_step`): the pull-off lies in the tensile part, which uses `unload_step`
+    /// (`protocol.coarse_unload_step` of the scenes).
     #[serde(default)]
     pub coarse_unload_step: Option<f64>,
-}
-
-impl PullOff {
-    /// The coarse retraction step of a sphere scene in length units.
-    pub fn coarse(&self, file: &SceneFile) -> Option<f64> {
-        let Geometry::Sphere { radius } = file.geometry else {
-            return None;
-        };
-        let ds = jkr_approach_scale(file.material.e_star, file.material.gamma, radius);
-        self.coarse_unload_step.map(|c| c * ds)
-    }
 }
 
 /// A sphere run's scene: `file` with the path `path` down to `load_depth` below the mean
@@ -329,6 +382,7 @@ pub fn sphere_scene(
     p.max_approach = d_max;
     p.load_step = (d_max + range) / path.load_steps.max(1) as f64;
     p.unload_step = Some(path.unload_step * ds);
+    p.coarse_unload_step = path.coarse_unload_step.map(|c| c * ds);
     p.retract_to = None;
     Ok(file)
 }

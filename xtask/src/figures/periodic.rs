@@ -12,7 +12,7 @@ use tack_analytics::{
 use tack_cli::scene::Roughness;
 use tack_solver::{Phase, count_clusters};
 
-use super::{Ctx, Summary, Table, write_figure};
+use super::{Ctx, RunFiles, Summary, Table, write_figure};
 use crate::engine::{Keep, RunOutput, RunSpec, run_all};
 use crate::plot::{Chart, Map, Series, Style, draw_chart, draw_maps};
 use crate::spec::{FigureSpec, scene};
@@ -31,12 +31,7 @@ struct Params {
 }
 
 /// The runs of a periodic waviness figure: one per α, γ = α²π²h²E*/(2λ).
-fn runs(
-    ctx: &Ctx,
-    spec: &FigureSpec,
-    params: &Params,
-    keep: Keep,
-) -> Result<Vec<std::sync::Arc<RunOutput>>> {
+fn runs(spec: &FigureSpec, params: &Params, keep: Keep) -> Result<Vec<std::sync::Arc<RunOutput>>> {
     let base = spec.scene()?;
     let (h, lambda) = match base.roughness {
         Some(Roughness::Waviness1d { h, lambda } | Roughness::Waviness2d { h, lambda }) => {
@@ -55,11 +50,10 @@ fn runs(
                 name: format!("alpha{alpha:.2}"),
                 scene: scene(file, spec.dir())?,
                 keep,
-                coarse_unload: None,
             })
         })
         .collect::<Result<Vec<_>>>()?;
-    run_all(&format!("fig{}", spec.figure), &specs, ctx.cache)
+    run_all(&format!("fig{}", spec.figure), &specs)
 }
 
 /// Unload states at the tip of a saw tooth (the next step has fewer bonded elements: the front
@@ -78,7 +72,7 @@ fn griffith_states(r: &RunOutput) -> impl Iterator<Item = usize> + '_ {
 pub fn fig1(ctx: &Ctx) -> Result<Summary> {
     let spec = ctx.spec(1)?;
     let params: Params = spec.params()?;
-    let runs = runs(ctx, &spec, &params, Keep::default())?;
+    let runs = runs(&spec, &params, Keep::default())?;
     let mut table = Table::new(
         "# approach = psi = pi a/lambda (a = n_bonded dx/2) of a Griffith state (unload, tip of a saw tooth)\n\
          # force = mean pressure / p*_1D\n# mean_pressure = Eq. 2 at psi\n# area = 0\n# n_bonded = index of alpha in the spec",
@@ -135,9 +129,15 @@ pub fn fig1(ctx: &Ctx) -> Result<Summary> {
         let pts = pts.into_iter().step_by(every).collect();
         chart.series.push(Series::new("", pts, Style::Points, s));
     }
-    write_figure(ctx, &spec, &table, &summary, &runs, (800, 600), |root| {
-        draw_chart(root, &chart)
-    })?;
+    write_figure(
+        ctx,
+        &spec,
+        &table,
+        &summary,
+        RunFiles::Engine(&runs),
+        (800, 600),
+        |root| draw_chart(root, &chart),
+    )?;
     Ok(summary)
 }
 
@@ -160,7 +160,7 @@ pub fn fig2(ctx: &Ctx) -> Result<Summary> {
         unload_every: Some(h / 10.0),
         ..Keep::default()
     };
-    let runs = runs(ctx, &spec, &params, keep)?;
+    let runs = runs(&spec, &params, keep)?;
     let mut table = Table::new(
         "# approach = pi a*/lambda, a* = sqrt(A/pi), every unload step\n# force = mean pressure / p*_2D\n\
          # mean_pressure = Eq. 5 at psi_b where a hole exists (NaN otherwise)\n# area = psi_b = pi b/lambda, b = sqrt((lambda^2 - A)/(2 pi)) (two holes per cell)\n\
@@ -326,12 +326,20 @@ pub fn fig2(ctx: &Ctx) -> Result<Summary> {
         summary.add("detail_holes_before_break_up", 0.0);
     }
     table.shown = shown;
-    write_figure(ctx, &spec, &table, &summary, &runs, (1400, 900), |root| {
-        let (top, bottom) = root.split_vertically(600);
-        let (a, b) = top.split_horizontally(700);
-        draw_chart(&a, &chart)?;
-        draw_chart(&b, &detail_chart)?;
-        draw_maps(&bottom, &maps, maps.len().max(1))
-    })?;
+    write_figure(
+        ctx,
+        &spec,
+        &table,
+        &summary,
+        RunFiles::Engine(&runs),
+        (1400, 900),
+        |root| {
+            let (top, bottom) = root.split_vertically(600);
+            let (a, b) = top.split_horizontally(700);
+            draw_chart(&a, &chart)?;
+            draw_chart(&b, &detail_chart)?;
+            draw_maps(&bottom, &maps, maps.len().max(1))
+        },
+    )?;
     Ok(summary)
 }

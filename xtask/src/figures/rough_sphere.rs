@@ -1,19 +1,17 @@
 //! Figures 6–8: a sphere with seeded random roughness (L = R, q0 = 2π/L, q1 = π/Δx) pulled off
-//! a free half-space. Figure 7 runs every (H, α*, seed); Figures 6 and 8 read its runs
-//! (force–distance curves, contact configurations) and share them through the run cache.
-
-use std::sync::Arc;
+//! a free half-space. Figure 7 runs every (H, α*, seed) as one tack sweep
+//! (`OUT/fig7/sweep-<mode>/`, resumable); Figures 6 and 8 read its point files (force–distance
+//! curves of the first seed, contact configurations at pull-off of the first seed).
 
 use anyhow::{Result, bail};
 use serde::Deserialize;
 use tack_analytics::{alpha_star, jkr_pull_off_approach, lambda_star};
-use tack_cli::scene::{Geometry, Roughness, SceneFile};
+use tack_cli::scene::{Geometry, Roughness, SceneFile, Snapshots};
 use tack_geometry::{Boundary, Grid, RoughSpec, rough_surface};
 
-use super::{Ctx, PullOff, Summary, Table, crop_maps, sphere_scene, write_figure};
-use crate::engine::{Keep, RunOutput, RunSpec, run_all};
+use super::{Ctx, PullOff, RunFiles, Summary, Table, crop_maps, sphere_scene, write_figure};
 use crate::plot::{Chart, Map, Series, Style, draw_chart, draw_maps};
-use crate::spec::scene;
+use crate::sweeps::{FigureSweep, PointRun, PointScene};
 
 /// Figure 7's sweep, `[quick]`/`[full]` of `fig7.toml`.
 #[derive(Debug, Deserialize)]
@@ -53,17 +51,24 @@ struct Fig8 {
     weak: f64,
 }
 
+/// One run of Figure 7: a point of its sweep.
+struct Run {
+    /// `H<hurst>_a<alpha*>_s<seed>`, the name of copies in `fig6/`, `fig8/`.
+    name: String,
+    run: PointRun,
+}
+
 /// One (H, α*) point of Figure 7: its runs over the seeds.
 struct Point {
     hurst: f64,
     alpha_star: f64,
     h: f64,
-    runs: Vec<Arc<RunOutput>>,
+    runs: Vec<Run>,
 }
 
 impl Point {
     fn ratios(&self) -> Vec<f64> {
-        self.runs.iter().map(|r| r.pull_off_ratio().abs()).collect()
+        self.runs.iter().map(|r| r.run.ratio()).collect()
     }
     fn mean_std(&self) -> (f64, f64) {
         let v = self.ratios();
@@ -113,42 +118,52 @@ pub fn scene_for(ctx: &Ctx, hurst: f64, a: f64, seed: u64) -> Result<SceneFile> 
     Ok(rough_scene(&spec.scene()?, &spec.params()?, hurst, a, seed)?.0)
 }
 
-/// Every run of Figure 7 (in the order H, α*, seed), grouped into points; also |d_JKR|.
+/// Figure 7's sweep, run (or resumed) and read back: every (H, α*, seed) in the order H, α*,
+/// seed, grouped into points; also |d_JKR|. The first seed of every
+/// (H, α*) stores the pull-off and last-contact fields (`output.snapshots = "pull_off"`), the
+/// others only their curves.
 fn points(ctx: &Ctx) -> Result<(Fig7, Vec<Point>, f64)> {
     let spec = ctx.spec(7)?;
     let p: Fig7 = spec.params()?;
     let base = spec.scene()?;
-    let mut specs = Vec::new();
-    let mut meta = Vec::new();
+    let (mut scenes, mut names, mut meta) = (Vec::new(), Vec::new(), Vec::new());
     for &hurst in &p.hurst {
         for &a in &p.alpha_star {
             let mut h = f64::NAN;
-            for &seed in &p.seeds {
-                let (file, rms) = rough_scene(&base, &p, hurst, a, seed)?;
+            for (k, &seed) in p.seeds.iter().enumerate() {
+                let (mut file, rms) = rough_scene(&base, &p, hurst, a, seed)?;
                 h = rms;
-                specs.push(RunSpec {
-                    coarse_unload: p.path.coarse(&file),
-                    name: format!("H{hurst}_a{a:.3}_s{seed}"),
-                    scene: scene(file, &ctx.specs)?,
-                    keep: Keep {
-                        pull_off: true,
-                        last_contact: true,
-                        ..Keep::default()
-                    },
+                if k == 0 {
+                    file.output.snapshots = Snapshots::PullOff;
+                }
+                scenes.push(PointScene {
+                    note: format!("H = {hurst}, α* = {a}, seed {seed}"),
+                    scene: file,
                 });
+                names.push(format!("H{hurst}_a{a:.3}_s{seed}"));
             }
             meta.push((hurst, a, h));
         }
     }
-    let runs = run_all("fig7", &specs, ctx.cache)?;
+    let sweep = FigureSweep::new(
+        &ctx.out,
+        7,
+        ctx.full,
+        "rough spheres, every (H, α*, seed)",
+        &["pull_off_force", "pull_off_ratio", "alpha_star"],
+        scenes,
+    )?;
+    let mut runs = names
+        .into_iter()
+        .zip(sweep.run(ctx.threads)?)
+        .map(|(name, run)| Run { name, run });
     let pts = meta
         .into_iter()
-        .zip(runs.chunks(p.seeds.len().max(1)))
-        .map(|((hurst, alpha_star, h), r)| Point {
+        .map(|(hurst, alpha_star, h)| Point {
             hurst,
             alpha_star,
             h,
-            runs: r.to_vec(),
+            runs: runs.by_ref().take(p.seeds.len()).collect(),
         })
         .collect();
     let (e, g, radius) = match base.geometry {
@@ -303,12 +318,19 @@ pub fn fig7(ctx: &Ctx) -> Result<Summary> {
         Style::Line,
         9,
     ));
-    let runs: Vec<_> = pts.iter().flat_map(|q| q.runs.iter().cloned()).collect();
-    write_figure(ctx, &spec, &table, &summary, &runs, (1400, 600), |root| {
-        let (l, r) = root.split_horizontally(700);
-        draw_chart(&l, &by_h)?;
-        draw_chart(&r, &by_a)
-    })?;
+    write_figure(
+        ctx,
+        &spec,
+        &table,
+        &summary,
+        RunFiles::Sweep,
+        (1400, 600),
+        |root| {
+            let (l, r) = root.split_horizontally(700);
+            draw_chart(&l, &by_h)?;
+            draw_chart(&r, &by_a)
+        },
+    )?;
     Ok(summary)
 }
 
@@ -344,24 +366,25 @@ pub fn fig6(ctx: &Ctx) -> Result<Summary> {
                 bail!("fig6: H = {hurst}, α* = {a} is not among figure 7's points");
             };
             let r = &pt.runs[0];
-            let f = r.problem.references.f_jkr.unwrap_or(f64::NAN).abs();
-            let curve: Vec<(f64, f64)> = r
-                .path
-                .records
+            let steps = &r.run.result.curve;
+            let f = r.run.result.summary.f_jkr.abs();
+            let curve: Vec<(f64, f64)> = steps
+                .approach
                 .iter()
-                .map(|s| (s.approach / d_jkr, s.force / f))
+                .zip(&steps.force)
+                .map(|(d, force)| (d / d_jkr, force / f))
                 .collect();
             for &(x, y) in &curve {
                 table.push(k, x, y, f64::NAN, a);
             }
-            summary.add(format!("H_{hurst}_a_{a}_ratio"), r.pull_off_ratio().abs());
+            summary.add(format!("H_{hurst}_a_{a}_ratio"), r.run.ratio());
             chart.series.push(Series::new(
                 format!("α* = {a} (h/|d_JKR| = {:.2})", pt.h / d_jkr),
                 curve,
                 Style::Line,
                 c,
             ));
-            runs.push(r.clone());
+            runs.push((r.name.clone(), r.run.file.clone()));
             k += 1;
         }
         chart.series.push(Series::new(
@@ -378,7 +401,7 @@ pub fn fig6(ctx: &Ctx) -> Result<Summary> {
         &spec,
         &table,
         &summary,
-        &runs,
+        RunFiles::Copies(runs),
         (560 * n, 560),
         |root| {
             for (area, chart) in root.split_evenly((1, n as usize)).iter().zip(&charts) {
@@ -442,21 +465,25 @@ pub fn fig8(ctx: &Ctx) -> Result<Summary> {
         for (what, q) in [("max", Some(best)), ("middle", middle), ("weak", weak)] {
             let Some(q) = q else { continue };
             let r = &q.runs[0];
-            let step = r.pull_off_step();
+            let step = r.run.pull_off_step();
             summary.add(format!("H_{hurst}_{what}_alpha_star"), q.alpha_star);
             summary.add(format!("H_{hurst}_{what}_ratio"), mean(q));
             table.push(s, q.h / d_jkr, mean(q), f64::NAN, q.alpha_star);
-            if let Some(snap) = r.snapshot(step) {
-                row_masks.push(Map::mask(
-                    format!(
-                        "H = {hurst}, α* = {:.2}: |F/F_JKR| = {:.2}",
-                        q.alpha_star,
-                        r.pull_off_ratio().abs()
-                    ),
-                    &r.full_mask(snap),
-                ));
-            }
-            runs.push(r.clone());
+            let Some(snap) = r.run.snapshot(step) else {
+                bail!(
+                    "fig8: {} has no fields at its pull-off step {step}",
+                    r.run.file.display()
+                );
+            };
+            row_masks.push(Map::mask(
+                format!(
+                    "H = {hurst}, α* = {:.2}: |F/F_JKR| = {:.2}",
+                    q.alpha_star,
+                    r.run.ratio()
+                ),
+                &snap.bonded,
+            ));
+            runs.push((r.name.clone(), r.run.file.clone()));
         }
         maps.extend(crop_maps(row_masks, 3));
     }
@@ -466,7 +493,7 @@ pub fn fig8(ctx: &Ctx) -> Result<Summary> {
         &spec,
         &table,
         &summary,
-        &runs,
+        RunFiles::Copies(runs),
         (1200, 400 * rows),
         |root| draw_maps(root, &maps, 3),
     )?;

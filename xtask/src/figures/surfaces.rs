@@ -7,7 +7,7 @@ use tack_analytics::{jkr_pull_off_approach, jkr_pull_off_radius};
 use tack_cli::Problem;
 use tack_cli::scene::{Geometry, SceneFile};
 
-use super::{Ctx, Summary, Table, rough_sphere, wavy_sphere, write_figure};
+use super::{Ctx, RunFiles, Summary, Table, rough_sphere, wavy_sphere, write_figure};
 use crate::plot::{Chart, Map, Series, Style, draw_chart, draw_maps};
 use crate::spec::scene;
 
@@ -137,11 +137,19 @@ pub fn fig3(ctx: &Ctx) -> Result<Summary> {
             &rmap,
         ),
     ];
-    write_figure(ctx, &spec, &table, &summary, &[], (1500, 500), |root| {
-        let (maps_area, right) = root.split_horizontally(1000);
-        draw_maps(&maps_area, &maps, 2)?;
-        draw_chart(&right, &chart)
-    })?;
+    write_figure(
+        ctx,
+        &spec,
+        &table,
+        &summary,
+        RunFiles::Engine(&[]),
+        (1500, 500),
+        |root| {
+            let (maps_area, right) = root.split_horizontally(1000);
+            draw_maps(&maps_area, &maps, 2)?;
+            draw_chart(&right, &chart)
+        },
+    )?;
     // After write_figure, which empties fig3/.
     let dir = ctx.out.join("fig3");
     std::fs::create_dir_all(&dir)?;

@@ -1,6 +1,8 @@
 //! Figures 4 and 5: a sphere with 2D waviness (Eq. 6) pulled off a free half-space:
-//! force–approach curves and the pull-off force against the amplitude (Fig. 4), and against
-//! Johnson's parameter for several materials and geometries with Eq. 9 overlaid (Fig. 5).
+//! force–approach curves and the pull-off force against the amplitude (Fig. 4, run by the
+//! engine, which keeps contact configurations along the pull-off), and against Johnson's
+//! parameter for several materials and geometries with Eq. 9 overlaid (Fig. 5, one tack sweep
+//! in `OUT/fig5/sweep-<mode>/`, resumable).
 
 use std::f64::consts::PI;
 use std::sync::Arc;
@@ -11,10 +13,13 @@ use tack_analytics::{jkr_pull_off_approach, johnson_alpha, lambda_fit};
 use tack_cli::Scene;
 use tack_cli::scene::{Geometry, Roughness, SceneFile};
 
-use super::{Ctx, PullOff, Summary, Table, crop_maps, jkr_curve, sphere_scene, write_figure};
+use super::{
+    Ctx, PullOff, RunFiles, Summary, Table, crop_maps, jkr_curve, sphere_scene, write_figure,
+};
 use crate::engine::{Keep, RunOutput, RunSpec, run_all};
 use crate::plot::{Chart, Map, Series, Style, draw_chart, draw_maps};
 use crate::spec::scene;
+use crate::sweeps::{FigureSweep, PointScene};
 
 /// Figure 4's sweep, `[quick]`/`[full]` of `fig4.toml`; Figure 5 reuses its resolution and path.
 #[derive(Debug, Deserialize)]
@@ -84,17 +89,11 @@ pub fn scene_for(ctx: &Ctx, alpha: f64) -> Result<SceneFile> {
     wavy_scene(&spec.scene()?, alpha, &spec.params()?)
 }
 
-/// One run per α on the sphere-with-waviness scene `base`; the same fields are kept for every
-/// run so that Figures 4 and 5 share runs.
-fn runs(
-    ctx: &Ctx,
-    label: &str,
-    base: &SceneFile,
-    alphas: &[f64],
-    p: &Fig4,
-    tag: &str,
-) -> Result<Vec<Arc<RunOutput>>> {
-    let specs = alphas
+/// Figure 4's runs: one per α, keeping the pull-off, the last contact and the unload steps
+/// every 0.25 (Rγ²/E*²)^(1/3) for the contact configurations.
+fn runs(ctx: &Ctx, base: &SceneFile, p: &Fig4) -> Result<Vec<Arc<RunOutput>>> {
+    let specs = p
+        .alphas
         .iter()
         .map(|&alpha| {
             let file = wavy_scene(base, alpha, p)?;
@@ -104,8 +103,7 @@ fn runs(
                 radius(&file),
             );
             Ok(RunSpec {
-                coarse_unload: p.path.coarse(&file),
-                name: format!("{tag}alpha{alpha:.3}"),
+                name: format!("alpha{alpha:.3}"),
                 scene: scene(file, &ctx.specs)?,
                 keep: Keep {
                     pull_off: true,
@@ -116,7 +114,7 @@ fn runs(
             })
         })
         .collect::<Result<Vec<_>>>()?;
-    run_all(label, &specs, ctx.cache)
+    run_all("fig4", &specs)
 }
 
 fn radius(file: &SceneFile) -> f64 {
@@ -126,13 +124,13 @@ fn radius(file: &SceneFile) -> f64 {
     }
 }
 
-/// Amplitude h, wavelength λ and Johnson's α of a run.
-fn wave(r: &RunOutput) -> (f64, f64, f64) {
-    match r.scene.file.roughness {
+/// Amplitude h, wavelength λ and Johnson's α of a scene.
+fn wave(file: &SceneFile) -> (f64, f64, f64) {
+    match file.roughness {
         Some(Roughness::Waviness2d { h, lambda }) => (
             h,
             lambda,
-            johnson_alpha(r.problem.e_star, r.problem.gamma, h, lambda),
+            johnson_alpha(file.material.e_star, file.material.gamma, h, lambda),
         ),
         _ => (f64::NAN, f64::NAN, f64::NAN),
     }
@@ -154,7 +152,7 @@ pub fn fig4(ctx: &Ctx) -> Result<Summary> {
     let spec = ctx.spec(4)?;
     let p: Fig4 = spec.params()?;
     let base = spec.scene()?;
-    let runs = runs(ctx, "fig4", &base, &p.alphas, &p, "")?;
+    let runs = runs(ctx, &base, &p)?;
     let mut table = Table::new(
         "# approach = h/lambda, force = |F_ad/F_JKR| (most tensile force over Eq. 7)\n\
          # mean_pressure = Lambda(alpha) (Eq. 9), area = alpha (Eq. 3), n_bonded = run index",
@@ -179,7 +177,7 @@ pub fn fig4(ctx: &Ctx) -> Result<Summary> {
     let mut pts = Vec::new();
     let mut x_max: f64 = 0.0;
     for (k, r) in runs.iter().enumerate() {
-        let (h, lambda, alpha) = wave(r);
+        let (h, lambda, alpha) = wave(&r.scene.file);
         let ratio = r.pull_off_ratio().abs();
         table.push(k, h / lambda, ratio, lambda_fit(alpha), alpha);
         summary.add_vs(format!("alpha_{alpha:.3}_ratio"), ratio, lambda_fit(alpha));
@@ -204,7 +202,9 @@ pub fn fig4(ctx: &Ctx) -> Result<Summary> {
     let best = pts.iter().map(|p| p.1).fold(0.0, f64::max);
     summary.add_vs("max_enhancement", best, 1.7);
     // Eq. 9 against h/λ (h = h0·α0/α at the runs' γ, λ, E*), one series per branch.
-    let (h0, lambda, a0) = runs.first().map_or((1.0, 1.0, 1.0), |r| wave(r));
+    let (h0, lambda, a0) = runs
+        .first()
+        .map_or((1.0, 1.0, 1.0), |r| wave(&r.scene.file));
     let h_max = pts.iter().map(|q| q.0).fold(0.0, f64::max) * lambda * 1.05;
     let branch = |upper: bool| -> Vec<(f64, f64)> {
         (1..=400)
@@ -262,7 +262,7 @@ pub fn fig4(ctx: &Ctx) -> Result<Summary> {
             ("after pull-off", near(0.5 * (d_po + d_last))),
             ("last contact", last),
         ];
-        let (h, _, _) = wave(r);
+        let (h, _, _) = wave(&r.scene.file);
         let curve = normalised_curve(r, h);
         let row: Vec<Map> = picks
             .into_iter()
@@ -285,7 +285,7 @@ pub fn fig4(ctx: &Ctx) -> Result<Summary> {
         &spec,
         &table,
         &summary,
-        &runs,
+        RunFiles::Engine(&runs),
         (1400, 600 + 260 * rows),
         |root| {
             let (top, bottom) = root.split_vertically(600);
@@ -298,7 +298,9 @@ pub fn fig4(ctx: &Ctx) -> Result<Summary> {
     Ok(summary)
 }
 
-/// Figure 5: |F_ad/F_JKR| against α for several (E*, γ, R, λ), with Eq. 9.
+/// Figure 5: |F_ad/F_JKR| against α for several (E*, γ, R, λ), with Eq. 9. Every (combination,
+/// α) is a point of one sweep (Figure 4's scene with the combination's overrides, resolution
+/// and path), storing no fields: only the pull-off force is needed.
 pub fn fig5(ctx: &Ctx) -> Result<Summary> {
     let spec = ctx.spec(5)?;
     let p: Fig5 = spec.params()?;
@@ -306,21 +308,44 @@ pub fn fig5(ctx: &Ctx) -> Result<Summary> {
     let p4: Fig4 = spec4.params()?;
     let base4 = spec4.scene()?;
     let text = toml::to_string(&base4)?;
-    let mut all = Vec::new();
-    let mut groups = Vec::new();
-    for (c, combo) in p.combos.iter().enumerate() {
+    let (mut points, mut files) = (Vec::new(), Vec::new());
+    for combo in &p.combos {
         let base = Scene::parse(&text, &ctx.specs, &combo.set)
             .with_context(|| format!("fig5 combo `{}`", combo.label))?
             .file;
-        let tag = if combo.set.is_empty() {
-            String::new()
-        } else {
-            format!("c{c}_")
-        };
-        let runs = runs(ctx, "fig5", &base, &p.alphas, &p4, &tag)?;
-        groups.push((combo, runs.clone()));
-        all.extend(runs);
+        for &alpha in &p.alphas {
+            let mut file = wavy_scene(&base, alpha, &p4)?;
+            file.output.surface = false;
+            points.push(PointScene {
+                note: format!("{}, α = {alpha}", combo.label),
+                scene: file.clone(),
+            });
+            files.push(file);
+        }
     }
+    let sweep = FigureSweep::new(
+        &ctx.out,
+        5,
+        ctx.full,
+        "spheres with 2D waviness, every (combination, α)",
+        &["pull_off_force", "pull_off_ratio", "johnson_alpha"],
+        points,
+    )?;
+    // (α, |F_ad/F_JKR|, λ, R) of every point, grouped by combination.
+    let results: Vec<(f64, f64, f64, f64)> = sweep
+        .run(ctx.threads)?
+        .iter()
+        .zip(&files)
+        .map(|(r, file)| {
+            let (_, lambda, alpha) = wave(file);
+            (alpha, r.ratio(), lambda, radius(file))
+        })
+        .collect();
+    let groups: Vec<_> = p
+        .combos
+        .iter()
+        .zip(results.chunks(p.alphas.len().max(1)))
+        .collect();
     let mut table = Table::new(
         "# approach = alpha (Eq. 3), force = |F_ad/F_JKR|, mean_pressure = Lambda(alpha) (Eq. 9)\n\
          # area = lambda/R, n_bonded = combination index",
@@ -337,11 +362,11 @@ pub fn fig5(ctx: &Ctx) -> Result<Summary> {
     };
     let (mut sq, mut sq_small, mut n_small) = (0.0, 0.0, 0);
     let mut best: f64 = 0.0;
+    let mut all = 0;
     for (c, (combo, runs)) in groups.iter().enumerate() {
         let (mut pts, mut raw) = (Vec::new(), Vec::new());
-        for r in runs {
-            let (_, lambda, alpha) = wave(r);
-            let ratio = r.pull_off_ratio().abs();
+        for &(alpha, ratio, lambda, big_r) in runs.iter() {
+            all += 1;
             let dev = ratio - lambda_fit(alpha);
             sq += dev * dev;
             if alpha < 0.24 {
@@ -349,13 +374,7 @@ pub fn fig5(ctx: &Ctx) -> Result<Summary> {
                 n_small += 1;
             }
             best = best.max(ratio);
-            table.push(
-                c,
-                alpha,
-                ratio,
-                lambda_fit(alpha),
-                lambda / radius(&r.scene.file),
-            );
+            table.push(c, alpha, ratio, lambda_fit(alpha), lambda / big_r);
             // Combinations are drawn slightly shifted in α so that coinciding points stay visible.
             let shift = (c as f64 - 0.5 * (groups.len() as f64 - 1.0)) * 0.006;
             pts.push((alpha + shift, ratio));
@@ -373,7 +392,7 @@ pub fn fig5(ctx: &Ctx) -> Result<Summary> {
             .series
             .push(Series::new(combo.label.clone(), pts, Style::Points, c));
     }
-    let n = all.len().max(1) as f64;
+    let n = all.max(1) as f64;
     summary.add("rms_dev", (sq / n).sqrt());
     summary.add(
         "rms_dev_alpha_below_0.24",
@@ -396,10 +415,18 @@ pub fn fig5(ctx: &Ctx) -> Result<Summary> {
     zoom.title = "(B) small Johnson parameter".into();
     zoom.x_range = Some((0.0, 0.3));
     zoom.y_range = Some((0.0, 0.5));
-    write_figure(ctx, &spec, &table, &summary, &all, (1400, 600), |root| {
-        let (a, b) = root.split_horizontally(800);
-        draw_chart(&a, &chart)?;
-        draw_chart(&b, &zoom)
-    })?;
+    write_figure(
+        ctx,
+        &spec,
+        &table,
+        &summary,
+        RunFiles::Sweep,
+        (1400, 600),
+        |root| {
+            let (a, b) = root.split_horizontally(800);
+            draw_chart(&a, &chart)?;
+            draw_chart(&b, &zoom)
+        },
+    )?;
     Ok(summary)
 }
