@@ -219,3 +219,26 @@ fn crop_and_coarse_start_change_nothing_but_the_cost() {
         }
     }
 }
+
+#[test]
+fn cropped_solves_along_a_load_sequence_match_the_plain_ones() {
+    // The cropped sub-problem is reused while the window is unchanged and rebuilt when it
+    // changes; warm starts carry over either way.
+    let grid = Grid::square(96, 1.0 / 96.0, Boundary::Free).unwrap();
+    let surface = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
+    let mut cropped = solver(grid, &surface, 1.0);
+    let mut plain = solver(grid, &surface, 1.0);
+    plain.set_crop(false);
+    for d in [0.01, 0.01, 0.02, 0.015, 0.015, 0.0, 0.02] {
+        let (a, b) = (cropped.solve(d).unwrap(), plain.solve(d).unwrap());
+        assert!(a.converged && b.converged);
+        assert_eq!(a.n_contact, b.n_contact, "d = {d}");
+        let scale = b.force.abs().max(1e-12);
+        assert!(
+            (a.force - b.force).abs() < 1e-8 * scale,
+            "d = {d}: {} vs {}",
+            a.force,
+            b.force
+        );
+    }
+}

@@ -21,6 +21,8 @@ pub struct ContactSolver {
     kdir: Array2<f64>,
     coarse_start: bool,
     crop: bool,
+    /// The cropped sub-problem of the last solve, reused while the window stays the same.
+    sub: Option<(Window, Box<ContactSolver>)>,
 }
 
 /// Iterations between recomputations of `K p` from scratch (bounds round-off in the update).
@@ -56,6 +58,7 @@ impl ContactSolver {
             kdir: z,
             coarse_start: false,
             crop: true,
+            sub: None,
         })
     }
 
@@ -127,20 +130,27 @@ impl ContactSolver {
     /// Solves on the window `w` (warm-started from the current pressure there), then puts the
     /// pressure back and computes the full-grid gap.
     fn solve_cropped(&mut self, d: f64, w: &Window) -> Result<ContactState, SolverError> {
-        let grid = *self.op.grid();
-        let sub_grid = Grid::new(w.i1 - w.i0, w.j1 - w.j0, grid.dx(), Boundary::Free)
-            .expect("a window of a valid grid is a valid grid");
         let block = s![w.i0..w.i1, w.j0..w.j1];
-        let surface = Surface::new(sub_grid, self.heights.slice(block).to_owned())
-            .expect("finite heights of a valid surface");
-        let op = operator_for(sub_grid, self.op.e_star()).expect("validated modulus");
-        let mut sub = ContactSolver::new(op, &surface, self.options)?;
+        let mut sub = match self.sub.take() {
+            Some((win, sub)) if win == *w => sub,
+            _ => {
+                let grid = *self.op.grid();
+                let sub_grid = Grid::new(w.i1 - w.i0, w.j1 - w.j0, grid.dx(), Boundary::Free)
+                    .expect("a window of a valid grid is a valid grid");
+                let surface = Surface::new(sub_grid, self.heights.slice(block).to_owned())
+                    .expect("finite heights of a valid surface");
+                let op = operator_for(sub_grid, self.op.e_star()).expect("validated modulus");
+                let mut sub = Box::new(ContactSolver::new(op, &surface, self.options)?);
+                sub.crop = false;
+                sub
+            }
+        };
         sub.coarse_start = self.coarse_start;
-        sub.crop = false;
         sub.pressure.assign(&self.pressure.slice(block));
         let st = sub.solve(d)?;
         self.pressure.fill(0.0);
         self.pressure.slice_mut(block).assign(&sub.pressure);
+        self.sub = Some((*w, sub));
         self.op.apply(self.pressure.view(), self.disp.view_mut());
         Zip::from(&mut self.gap)
             .and(&self.heights)
@@ -227,7 +237,7 @@ impl ContactSolver {
                 Zip::from(&mut self.pressure)
                     .and(&self.heights)
                     .for_each(|p, &f| *p = (d - f).max(0.0) / w0);
-                delta = 0.0;
+                (delta, fresh) = (0.0, false);
                 continue;
             }
             let ratio = delta * g_sum / g_old;
