@@ -44,6 +44,11 @@ enum Command {
         /// (value parsed as TOML, else taken as a string). Repeatable.
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
+        /// Also run on a grid of twice the element size and record the Richardson extrapolation
+        /// 2·F(Δx) − F(2Δx) of the pull-off force (`/summary` `pull_off_force_richardson`);
+        /// for geometries that do not depend on the grid (not random roughness, not height maps).
+        #[arg(long)]
+        richardson: bool,
     },
     /// Write only the generated surface (heights and dx) of a scene to an HDF5 file.
     Surface {
@@ -127,10 +132,12 @@ fn execute(command: Command) -> anyhow::Result<()> {
             output,
             quiet,
             set,
+            richardson,
         } => {
             let options = RunOptions {
                 quiet,
                 command_line: None,
+                richardson,
             };
             let (scene, outcome) = run::run_scene(&scene, &set, &output, &options)?;
             print!("{}", run::report(&scene, &outcome, Some(&output)));

@@ -986,6 +986,7 @@ fn run_point(sweep: &Sweep, dir: &Path, index: usize, command_line: &str) -> Poi
         let options = RunOptions {
             quiet: true,
             command_line: Some(format!("{command_line} [point {index}]")),
+            richardson: false,
         };
         run::run_loaded(&scene, &h5, &options)?;
         Ok(())
