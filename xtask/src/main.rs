@@ -14,14 +14,14 @@ use anyhow::{Result, bail};
 const USAGE: &str = "usage: cargo xtask <command>
 
 commands:
-  reproduce [FIG...] [--full] [--out DIR] [--threads N]
+  reproduce [FIG...] [--full] [--fresh] [--out DIR] [--threads N]
                           the paper's Figures 1-8 (FIG: 1..8 or fig1..fig8, default all, plus
                           the non-adhesive validation tables) from data/figures/*.toml, in quick
                           mode (minutes) or --full mode (the paper's settings); writes figN.h5,
                           figN.svg, figN/<run>.h5 and REPORT.md to DIR (default: results);
                           Figures 5 and 7 (read by 6 and 8) run as tack sweeps in
-                          DIR/figN/sweep-quick|full/, which a rerun resumes (delete
-                          them to recompute after a solver change);
+                          DIR/figN/sweep-quick|full/, which a rerun resumes (--fresh
+                          recomputes them, e.g. after a solver change);
                           --specs DIR reads the figure specs from elsewhere
   bench-kernels           time the elastic operators against a bare FFT pair of the same size
   bench-jkr [RATIOS...]   smooth-sphere approach-retract path: wall time, CG iterations and

@@ -28,6 +28,9 @@ pub struct Options {
     pub threads: usize,
     /// Directory of the figure specs.
     pub specs: PathBuf,
+    /// Recompute the sweep points of Figures 5 and 7 instead of resuming (after a solver
+    /// change: points are recognised by their scene text only).
+    pub fresh: bool,
 }
 
 impl Options {
@@ -40,11 +43,13 @@ impl Options {
             out: PathBuf::from("results"),
             threads: std::thread::available_parallelism().map_or(1, |n| n.get()),
             specs: default_specs(),
+            fresh: false,
         };
         let mut it = args.iter();
         while let Some(a) = it.next() {
             match a.as_str() {
                 "--full" => o.full = true,
+                "--fresh" => o.fresh = true,
                 "--out" => o.out = it.next().context("--out needs a directory")?.into(),
                 "--specs" => o.specs = it.next().context("--specs needs a directory")?.into(),
                 "--threads" => {
@@ -66,7 +71,7 @@ impl Options {
                         .with_context(|| {
                             format!(
                                 "unknown argument `{fig}` (allowed: 1..8 or fig1..fig8, \
-                                 validation, --full, --out DIR, --threads N, --specs DIR)"
+                                 validation, --full, --fresh, --out DIR, --threads N, --specs DIR)"
                             )
                         })?;
                     if !o.figures.contains(&n) {
@@ -108,6 +113,16 @@ pub fn figures(o: &Options) -> Result<Vec<Done>> {
         full: o.full,
         threads: o.threads,
     };
+    if o.fresh {
+        for n in [5u8, 7] {
+            let dir = crate::sweeps::sweep_dir(&o.out, n, o.full);
+            if o.figures.contains(&n) && dir.exists() {
+                println!("--fresh: removing {}", dir.display());
+                std::fs::remove_dir_all(&dir)
+                    .with_context(|| format!("removing {}", dir.display()))?;
+            }
+        }
+    }
     let mut done = Vec::new();
     for &n in &o.figures {
         println!("fig{n} ({} mode)", if o.full { "full" } else { "quick" });
@@ -205,6 +220,8 @@ mod tests {
         assert!(o.validation);
         assert!(Options::parse(&["9".into()]).is_err());
         assert!(Options::parse(&["--threads".into(), "0".into()]).is_err());
+        assert!(Options::parse(&["--fresh".into()]).unwrap().fresh);
+        assert!(!Options::parse(&[]).unwrap().fresh);
     }
 
     /// Quick mode of every figure; the rounded summaries are insta snapshots
