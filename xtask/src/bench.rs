@@ -316,26 +316,7 @@ pub fn all(args: &[String]) -> Result<()> {
     rows.extend(jkr_table(ratios));
 
     println!("4. sphere + random roughness (H = 0.5, L = R) pull-off path: crop and sub-grid CG");
-    let n = if full { 512 } else { 256 };
-    let mut reference = None;
-    for (crop, sub) in [(false, false), (true, false), (false, true), (true, true)] {
-        let (secs, force, its) = rough_sphere_path(n, 1, crop, sub)?;
-        let base = *reference.get_or_insert(secs);
-        let label = format!("{n}² crop={crop} subgrid={sub}");
-        println!(
-            "   {label:<28} {secs:8.2} s  speed-up {:5.2}×  {its:>6} CG iterations  F_min {force:.6e}",
-            base / secs
-        );
-        rows.push(Row {
-            table: "rough_sphere",
-            label,
-            fields: vec![
-                ("seconds", secs),
-                ("speed_up", base / secs),
-                ("pull_off_force", force),
-            ],
-        });
-    }
+    rows.extend(rough_table(if full { 512 } else { 256 })?);
 
     println!("5. a Fig. 7 style sweep point: 15 realizations (128², H = 0.5), 1 vs 2 threads");
     let mut one = 0.0;
@@ -510,4 +491,39 @@ pub fn contact(args: &[String]) -> Result<Vec<Row>> {
         });
     }
     Ok(rows)
+}
+
+/// The crop / sub-grid table of a sphere + H = 0.5 roughness pull-off on an `n²` L = R grid.
+fn rough_table(n: usize) -> Result<Vec<Row>> {
+    let mut rows = Vec::new();
+    let mut reference = None;
+    for (crop, sub) in [(false, false), (true, false), (false, true), (true, true)] {
+        let (secs, force, its) = rough_sphere_path(n, 1, crop, sub)?;
+        let base = *reference.get_or_insert(secs);
+        let label = format!("{n}² crop={crop} subgrid={sub}");
+        println!(
+            "   {label:<28} {secs:8.2} s  speed-up {:5.2}×  {its:>6} CG iterations  F_min {force:.6e}",
+            base / secs
+        );
+        rows.push(Row {
+            table: "rough_sphere",
+            label,
+            fields: vec![
+                ("seconds", secs),
+                ("speed_up", base / secs),
+                ("pull_off_force", force),
+            ],
+        });
+    }
+
+    Ok(rows)
+}
+
+/// `cargo xtask bench-rough [N]`: the crop / sub-grid table alone (default N = 512).
+pub fn rough(args: &[String]) -> Result<()> {
+    let n: usize = args.first().map_or(Ok(512), |a| a.parse())?;
+    println!(
+        "sphere + random roughness (H = 0.5, L = R) pull-off path on {n}²: crop and sub-grid CG"
+    );
+    rough_table(n).map(|_| ())
 }

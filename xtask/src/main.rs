@@ -28,6 +28,8 @@ commands:
                           pull-off error at a_c/dx = 5 10 20 40 80 (or the ratios given)
   bench-contact [N]        non-adhesive contact: N² periodic rough surface (H = 0.8, ~7%
                           contact) and N² free Hertz, plain / coarse-to-fine / cropped
+  bench-rough [N]          sphere + H = 0.5 roughness pull-off on an N² L = R grid (default
+                          512): plain, cropped, sub-grid CG, both
   bench [--full]          every speed table (operator, CG iteration, JKR path, rough sphere
                           with/without crop and sub-grid CG, 15-realization sweep point on 1
                           and 2 threads); writes results/bench.json";
@@ -39,6 +41,7 @@ fn main() -> Result<()> {
         Some("bench-kernels") => bench::kernels(),
         Some("bench-jkr") => bench::jkr(&args[1..]),
         Some("bench-contact") => bench::contact(&args[1..]).map(|_| ()),
+        Some("bench-rough") => bench::rough(&args[1..]),
         Some("bench") => bench::all(&args[1..]),
         Some("-h" | "--help") | None => {
             println!("{USAGE}");
