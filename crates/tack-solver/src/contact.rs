@@ -12,7 +12,7 @@ use crate::{ContactState, SolverError, SolverOptions};
 /// the operator, scratch and the previous pressure as a warm start.
 pub struct ContactSolver {
     op: Box<dyn ElasticOperator>,
-    heights: Array2<f64>,
+    surface: Surface,
     options: SolverOptions,
     pressure: Array2<f64>,
     disp: Array2<f64>,
@@ -49,7 +49,7 @@ impl ContactSolver {
         let z = Array2::zeros(shape);
         Ok(Self {
             op,
-            heights: surface.heights().clone(),
+            surface: surface.clone(),
             options,
             pressure: z.clone(),
             disp: z.clone(),
@@ -72,7 +72,7 @@ impl ContactSolver {
         self.coarse_start = on;
     }
 
-    /// Free grids: iterate only on the bounding box of the elements with `f < d` (no other
+    /// Free grids: iterate only on the bounding box of the elements with `f ≤ d` (no other
     /// element can touch: compressive pressures only push the surface away), then compute the
     /// full-grid gap with one product. Exact (the same linear problem). On by default.
     pub fn set_crop(&mut self, on: bool) {
@@ -89,12 +89,13 @@ impl ContactSolver {
             });
         }
         let grid = *self.op.grid();
-        let fmin = self.heights.iter().copied().fold(f64::INFINITY, f64::min);
-        let fmean = self.heights.mean().unwrap_or(0.0);
+        let fmin = self.surface.min();
+        let fmean = self.surface.heights().mean().unwrap_or(0.0);
         if approach <= fmin {
             // Nothing touches: p = 0 is the exact solution.
             self.pressure.fill(0.0);
-            self.gap.assign(&self.heights.mapv(|f| f - approach));
+            self.gap
+                .assign(&self.surface.heights().mapv(|f| f - approach));
             return Ok(self.state(approach, 0, 0.0, true, false));
         }
         if grid.boundary() == Boundary::Periodic && approach >= fmean {
@@ -111,20 +112,15 @@ impl ContactSolver {
         Ok(self.state(approach, iterations, residual, converged, false))
     }
 
-    /// The bounding box of `{f < d}` when cropping pays (free grid, box under half the grid).
+    /// The bounding box of `{f ≤ d}` when cropping pays (free grid, box under half the grid).
     fn crop_window(&self, d: f64) -> Option<Window> {
         let grid = self.op.grid();
         if !self.crop || grid.boundary() != Boundary::Free {
             return None;
         }
-        let (mut i0, mut i1, mut j0, mut j1) = (usize::MAX, 0, usize::MAX, 0);
-        for ((i, j), &f) in self.heights.indexed_iter() {
-            if f < d {
-                (i0, i1, j0, j1) = (i0.min(i), i1.max(i + 1), j0.min(j), j1.max(j + 1));
-            }
-        }
+        let w = self.surface.window_below(d, 0)?;
         let (nx, ny) = grid.shape();
-        (i1 > 0 && 2 * (i1 - i0) * (j1 - j0) < nx * ny).then_some(Window { i0, i1, j0, j1 })
+        (2 * w.shape().0 * w.shape().1 < nx * ny).then_some(w)
     }
 
     /// Solves on the window `w` (warm-started from the current pressure there), then puts the
@@ -134,12 +130,12 @@ impl ContactSolver {
         let mut sub = match self.sub.take() {
             Some((win, sub)) if win == *w => sub,
             _ => {
-                let grid = *self.op.grid();
-                let sub_grid = Grid::new(w.i1 - w.i0, w.j1 - w.j0, grid.dx(), Boundary::Free)
-                    .expect("a window of a valid grid is a valid grid");
-                let surface = Surface::new(sub_grid, self.heights.slice(block).to_owned())
-                    .expect("finite heights of a valid surface");
-                let op = operator_for(sub_grid, self.op.e_star()).expect("validated modulus");
+                let surface = self
+                    .surface
+                    .window(w)
+                    .expect("a window of the surface's own grid");
+                let op =
+                    operator_for(*surface.grid(), self.op.e_star()).expect("validated modulus");
                 let mut sub = Box::new(ContactSolver::new(op, &surface, self.options)?);
                 sub.crop = false;
                 sub
@@ -153,7 +149,7 @@ impl ContactSolver {
         self.sub = Some((*w, sub));
         self.op.apply(self.pressure.view(), self.disp.view_mut());
         Zip::from(&mut self.gap)
-            .and(&self.heights)
+            .and(self.surface.heights())
             .and(&self.disp)
             .for_each(|g, &f, &u| *g = f - d + u);
         Ok(self.state(d, st.iterations, st.residual, st.converged, false))
@@ -170,10 +166,10 @@ impl ContactSolver {
         let coarse_grid = Grid::new(nx / 2, ny / 2, 2.0 * grid.dx(), grid.boundary())
             .expect("a coarsened valid grid is valid");
         let heights = Array2::from_shape_fn((nx / 2, ny / 2), |(i, j)| {
-            0.25 * (self.heights[[2 * i, 2 * j]]
-                + self.heights[[2 * i + 1, 2 * j]]
-                + self.heights[[2 * i, 2 * j + 1]]
-                + self.heights[[2 * i + 1, 2 * j + 1]])
+            0.25 * (self.surface.heights()[[2 * i, 2 * j]]
+                + self.surface.heights()[[2 * i + 1, 2 * j]]
+                + self.surface.heights()[[2 * i, 2 * j + 1]]
+                + self.surface.heights()[[2 * i + 1, 2 * j + 1]])
         });
         let surface = Surface::new(coarse_grid, heights).expect("finite heights");
         let op = operator_for(coarse_grid, self.op.e_star()).expect("validated modulus");
@@ -194,12 +190,12 @@ impl ContactSolver {
 
     /// The constrained CG iterations; returns (iterations, relative residual, converged).
     fn iterate(&mut self, d: f64, scale: f64) -> (usize, f64, bool) {
-        let n = self.heights.len() as f64;
+        let n = self.surface.heights().len() as f64;
         let w0 = self.op.self_compliance();
         if !self.pressure.iter().any(|&p| p > 0.0) {
             // Cold start: each penetrating element carries what would close its own gap.
             Zip::from(&mut self.pressure)
-                .and(&self.heights)
+                .and(self.surface.heights())
                 .for_each(|p, &f| *p = (d - f).max(0.0) / w0);
         }
         let (mut delta, mut g_old) = (0.0, 1.0);
@@ -213,7 +209,7 @@ impl ContactSolver {
                 self.op.apply(self.pressure.view(), self.disp.view_mut());
             }
             Zip::from(&mut self.gap)
-                .and(&self.heights)
+                .and(self.surface.heights())
                 .and(&self.disp)
                 .for_each(|g, &f, &u| *g = f - d + u);
             let (mut g_sum, mut res2) = (0.0, 0.0);
@@ -235,7 +231,7 @@ impl ContactSolver {
             if g_sum == 0.0 {
                 // Contact set emptied by projection: restart from the cold guess.
                 Zip::from(&mut self.pressure)
-                    .and(&self.heights)
+                    .and(self.surface.heights())
                     .for_each(|p, &f| *p = (d - f).max(0.0) / w0);
                 (delta, fresh) = (0.0, false);
                 continue;
@@ -288,9 +284,9 @@ impl ContactSolver {
     /// Periodic full contact (`d ≥ mean f`): the zero-mean pressure that closes every gap, shifted
     /// by the least mean pressure that keeps every element compressive.
     fn full_contact(&mut self, d: f64) -> ContactState {
-        let fmean = self.heights.mean().unwrap_or(0.0);
+        let fmean = self.surface.heights().mean().unwrap_or(0.0);
         // Zero-mean displacement needed: u' = (d − f) − mean(d − f) = fmean − f.
-        self.gap.assign(&self.heights.mapv(|f| fmean - f));
+        self.gap.assign(&self.surface.heights().mapv(|f| fmean - f));
         let ok = self
             .op
             .solve_zero_mean(self.gap.view(), self.pressure.view_mut());
