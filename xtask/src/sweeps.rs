@@ -232,7 +232,12 @@ impl FigureSweep {
     /// spec's parameters changed, or another mode's or figure's sweep) stops with an error
     /// rather than mixing results. Within the sweep, a point is only skipped when its result
     /// file records exactly the point's scene (`tack_cli::sweep::verify_point`).
-    pub fn run(&self, threads: usize) -> Result<Vec<PointRun>> {
+    ///
+    /// A point whose scene is refused or whose run fails does not stop the figure: its slot is
+    /// `None` and it is listed in [`SweepRuns::failed`] (its error is in `points/<i>.err`), so
+    /// that one unlucky realization of a 675-run sweep costs one point, not the figure. Only a
+    /// sweep in which every point failed is an error.
+    pub fn run(&self, threads: usize) -> Result<SweepRuns> {
         let copy = self.dir.join(SWEEP_COPY);
         if copy.is_file() {
             let old = std::fs::read_to_string(&copy)
@@ -263,32 +268,72 @@ impl FigureSweep {
         };
         let report = run_sweep(&self.sweep, &self.dir, &options)?;
         println!("  {report}");
-        if !report.failed.is_empty() {
-            let list: String = report
-                .failed
-                .iter()
-                .take(5)
-                .map(|f| {
-                    format!(
-                        "\n  point {} ({}): {}",
-                        f.index, self.notes[f.index], f.message
-                    )
-                })
-                .collect();
+        let failed: Vec<FailedPoint> = report
+            .failed
+            .iter()
+            .map(|f| FailedPoint {
+                index: f.index,
+                note: self.notes[f.index].clone(),
+                message: f.message.clone(),
+            })
+            .collect();
+        for f in &failed {
+            println!("  left out: {f}");
+        }
+        if failed.len() == total {
             bail!(
-                "{} of {total} points of {} failed (errors in points/*.err):{list}",
-                report.failed.len(),
-                self.dir.display()
+                "all {total} points of {} failed (errors in points/*.err); the first: {}",
+                self.dir.display(),
+                failed.first().map_or(String::new(), |f| f.to_string())
             );
         }
-        (0..total)
+        let runs = (0..total)
             .map(|i| {
+                if failed.iter().any(|f| f.index == i) {
+                    return Ok(None);
+                }
                 let file = point_path(&self.dir, i, total, "h5");
                 let text = self.sweep.point_text(i)?;
                 let result = verify_point(&file, &text).map_err(anyhow::Error::msg)?;
-                Ok(PointRun { file, result })
+                Ok(Some(PointRun { file, result }))
             })
+            .collect::<Result<_>>()?;
+        Ok(SweepRuns { runs, failed })
+    }
+}
+
+/// What [`FigureSweep::run`] read back.
+pub struct SweepRuns {
+    /// Every point in order; `None` where the point failed.
+    pub runs: Vec<Option<PointRun>>,
+    /// The failed points, in order.
+    pub failed: Vec<FailedPoint>,
+}
+
+impl SweepRuns {
+    /// One summary note per failed point (none when every point ran).
+    pub fn notes(&self) -> Vec<String> {
+        self.failed
+            .iter()
+            .map(|f| format!("left out (failed): {f}"))
             .collect()
+    }
+}
+
+/// A point of a figure's sweep that failed.
+#[derive(Debug, Clone)]
+pub struct FailedPoint {
+    /// Its index in the sweep.
+    pub index: usize,
+    /// What it is (the figure's note).
+    pub note: String,
+    /// Why it failed.
+    pub message: String,
+}
+
+impl std::fmt::Display for FailedPoint {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "point {} ({}): {}", self.index, self.note, self.message)
     }
 }
 
@@ -391,5 +436,53 @@ mod tests {
                 .contains("\"material.e_star\" = [\n  1.0,  # point 0")
         );
         assert!(!out.exists(), "building a sweep writes nothing");
+    }
+
+    #[test]
+    fn a_failed_point_is_left_out_and_listed_not_fatal() {
+        let out =
+            std::env::temp_dir().join(format!("tack-xtask-sweeps-fail-{}", std::process::id()));
+        // Point 1's grid (12² at Δx = 0.6) cannot hold the Hertz contact at the deepest approach.
+        let points: Vec<PointScene> = [24, 12, 26]
+            .iter()
+            .map(|&n| PointScene {
+                note: format!("n = {n}"),
+                scene: scene(0.2, 8.0, n),
+            })
+            .collect();
+        let fs = FigureSweep::new(&out, 5, false, "test", &["pull_off_ratio"], points).unwrap();
+        let done = fs.run(1).unwrap();
+        assert_eq!(done.runs.len(), 3);
+        assert!(done.runs[0].is_some() && done.runs[2].is_some());
+        assert!(done.runs[1].is_none());
+        assert_eq!(done.failed.len(), 1);
+        assert_eq!(done.failed[0].index, 1);
+        assert_eq!(done.failed[0].note, "n = 12");
+        assert!(
+            done.failed[0].message.contains("grid.n"),
+            "{}",
+            done.failed[0].message
+        );
+        let notes = done.notes();
+        assert_eq!(notes.len(), 1);
+        assert!(
+            notes[0].starts_with("left out (failed): point 1 (n = 12): "),
+            "{}",
+            notes[0]
+        );
+        // The runs that did run are real pull-offs.
+        assert!(done.runs[0].as_ref().unwrap().ratio() > 0.5);
+        // A sweep whose every point fails is an error that names the first failure.
+        let bad = vec![PointScene {
+            note: "tiny".into(),
+            scene: scene(0.2, 8.0, 10),
+        }];
+        let fs = FigureSweep::new(&out, 7, false, "test", &["pull_off_ratio"], bad).unwrap();
+        let err = fs.run(1).err().expect("every point failed").to_string();
+        assert!(
+            err.contains("all 1 points") && err.contains("tiny"),
+            "{err}"
+        );
+        std::fs::remove_dir_all(&out).unwrap();
     }
 }

@@ -71,6 +71,8 @@ pub struct Summary {
     pub compared: String,
     /// The numbers.
     pub items: Vec<Item>,
+    /// Remarks printed after the numbers (e.g. sweep points that failed and were left out).
+    pub notes: Vec<String>,
 }
 
 impl Summary {
@@ -80,7 +82,12 @@ impl Summary {
             figure,
             compared: compared.into(),
             items: Vec::new(),
+            notes: Vec::new(),
         }
+    }
+    /// Appends a remark (printed after the numbers).
+    pub fn note(&mut self, text: impl Into<String>) {
+        self.notes.push(text.into());
     }
     /// Appends a number.
     pub fn add(&mut self, key: impl Into<String>, value: f64) {
@@ -108,6 +115,9 @@ impl Summary {
             }
             s.push('\n');
         }
+        for n in &self.notes {
+            let _ = writeln!(s, "note: {n}");
+        }
         s
     }
     /// A markdown table of the numbers.
@@ -116,6 +126,12 @@ impl Summary {
         for i in &self.items {
             let paper = i.paper.map_or("".into(), sig3);
             let _ = writeln!(s, "| `{}` | {} | {paper} |", i.key, sig3(i.value));
+        }
+        if !self.notes.is_empty() {
+            s.push('\n');
+            for n in &self.notes {
+                let _ = writeln!(s, "- {n}");
+            }
         }
         s
     }

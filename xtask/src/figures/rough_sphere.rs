@@ -55,10 +55,13 @@ struct Fig8 {
 struct Run {
     /// `H<hurst>_a<alpha*>_s<seed>`, the name of copies in `fig6/`, `fig8/`.
     name: String,
+    /// Whether this is the first seed (the one that stores the pull-off fields).
+    first_seed: bool,
     run: PointRun,
 }
 
-/// One (H, α*) point of Figure 7: its runs over the seeds.
+/// One (H, α*) point of Figure 7: its runs over the seeds (those that ran; a failed seed is
+/// left out of the statistics and listed in the summary).
 struct Point {
     hurst: f64,
     alpha_star: f64,
@@ -119,10 +122,10 @@ pub fn scene_for(ctx: &Ctx, hurst: f64, a: f64, seed: u64) -> Result<SceneFile> 
 }
 
 /// Figure 7's sweep, run (or resumed) and read back: every (H, α*, seed) in the order H, α*,
-/// seed, grouped into points; also |d_JKR|. The first seed of every
-/// (H, α*) stores the pull-off and last-contact fields (`output.snapshots = "pull_off"`), the
-/// others only their curves.
-fn points(ctx: &Ctx) -> Result<(Fig7, Vec<Point>, f64)> {
+/// seed, grouped into points; also |d_JKR| and one note per failed run. The first seed of
+/// every (H, α*) stores the pull-off and last-contact fields (`output.snapshots = "pull_off"`),
+/// the others only their curves.
+fn points(ctx: &Ctx) -> Result<(Fig7, Vec<Point>, f64, Vec<String>)> {
     let spec = ctx.spec(7)?;
     let p: Fig7 = spec.params()?;
     let base = spec.scene()?;
@@ -140,7 +143,7 @@ fn points(ctx: &Ctx) -> Result<(Fig7, Vec<Point>, f64)> {
                     note: format!("H = {hurst}, α* = {a}, seed {seed}"),
                     scene: file,
                 });
-                names.push(format!("H{hurst}_a{a:.3}_s{seed}"));
+                names.push((format!("H{hurst}_a{a:.3}_s{seed}"), k == 0));
             }
             meta.push((hurst, a, h));
         }
@@ -153,24 +156,33 @@ fn points(ctx: &Ctx) -> Result<(Fig7, Vec<Point>, f64)> {
         &["pull_off_force", "pull_off_ratio", "alpha_star"],
         scenes,
     )?;
-    let mut runs = names
-        .into_iter()
-        .zip(sweep.run(ctx.threads)?)
-        .map(|(name, run)| Run { name, run });
+    let done = sweep.run(ctx.threads)?;
+    let notes = done.notes();
+    let mut runs = names.into_iter().zip(done.runs);
     let pts = meta
         .into_iter()
         .map(|(hurst, alpha_star, h)| Point {
             hurst,
             alpha_star,
             h,
-            runs: runs.by_ref().take(p.seeds.len()).collect(),
+            runs: runs
+                .by_ref()
+                .take(p.seeds.len())
+                .filter_map(|((name, first_seed), run)| {
+                    Some(Run {
+                        name,
+                        first_seed,
+                        run: run?,
+                    })
+                })
+                .collect(),
         })
         .collect();
     let (e, g, radius) = match base.geometry {
         Geometry::Sphere { radius } => (base.material.e_star, base.material.gamma, radius),
         _ => bail!("figure 7 needs a sphere"),
     };
-    Ok((p, pts, jkr_pull_off_approach(e, g, radius).abs()))
+    Ok((p, pts, jkr_pull_off_approach(e, g, radius).abs(), notes))
 }
 
 /// Least-squares fit of A·exp(−((x − c)/w)²) by damped Gauss–Newton from (1, 0.36, 0.12).
@@ -245,7 +257,7 @@ fn solve3(m: [[f64; 3]; 3], r: [f64; 3]) -> Option<[f64; 3]> {
 /// against α* with Eq. 12 and the fitted Gaussian (B).
 pub fn fig7(ctx: &Ctx) -> Result<Summary> {
     let spec = ctx.spec(7)?;
-    let (p, pts, d_jkr) = points(ctx)?;
+    let (p, pts, d_jkr, notes) = points(ctx)?;
     let mut table = Table::new(
         "# approach = alpha* (Eq. 11), force = mean |F_ad/F_JKR| over the seeds\n\
          # area = its standard deviation, mean_pressure = Eq. 12 at alpha*, n_bonded = index of H",
@@ -271,7 +283,10 @@ pub fn fig7(ctx: &Ctx) -> Result<Summary> {
     let mut fit_pts = Vec::new();
     for (s, &hurst) in p.hurst.iter().enumerate() {
         let (mut a_pts, mut h_pts, mut err) = (Vec::new(), Vec::new(), Vec::new());
-        for pt in pts.iter().filter(|q| q.hurst == hurst) {
+        for pt in pts
+            .iter()
+            .filter(|q| q.hurst == hurst && !q.runs.is_empty())
+        {
             let (mean, std) = pt.mean_std();
             table.push(s, pt.alpha_star, mean, lambda_star(pt.alpha_star), std);
             // Each H is drawn slightly shifted in α* so that the error bars stay apart.
@@ -303,6 +318,7 @@ pub fn fig7(ctx: &Ctx) -> Result<Summary> {
     summary.add_vs("fit_c", c, 0.3619);
     summary.add_vs("fit_w", w, 0.1188);
     summary.add("fit_points", fit_pts.len() as f64);
+    notes.into_iter().for_each(|n| summary.note(n));
     let x_max = p.alpha_star.iter().copied().fold(0.0, f64::max) * 1.05;
     let curve = |f: &dyn Fn(f64) -> f64| {
         (0..=300)
@@ -338,7 +354,7 @@ pub fn fig7(ctx: &Ctx) -> Result<Summary> {
 pub fn fig6(ctx: &Ctx) -> Result<Summary> {
     let spec = ctx.spec(6)?;
     let sel: Fig6 = spec.params()?;
-    let (_, pts, d_jkr) = points(ctx)?;
+    let (_, pts, d_jkr, _) = points(ctx)?;
     let mut table = Table::new(
         "# approach = d/|d_JKR| (from the mean plane), force = F/|F_JKR|, every step of the first seed\n\
          # area = alpha*, mean_pressure = NaN, n_bonded = index of the (H, alpha*) curve",
@@ -365,7 +381,17 @@ pub fn fig6(ctx: &Ctx) -> Result<Summary> {
             else {
                 bail!("fig6: H = {hurst}, α* = {a} is not among figure 7's points");
             };
-            let r = &pt.runs[0];
+            // The first seed's curve, or the first that ran.
+            let Some(r) = pt.runs.iter().find(|r| r.first_seed).or(pt.runs.first()) else {
+                summary.note(format!("H = {hurst}, α* = {a}: no realization ran"));
+                continue;
+            };
+            if !r.first_seed {
+                summary.note(format!(
+                    "H = {hurst}, α* = {a}: the first seed failed, {} is shown",
+                    r.name
+                ));
+            }
             let steps = &r.run.result.curve;
             let f = r.run.result.summary.f_jkr.abs();
             let curve: Vec<(f64, f64)> = steps
@@ -418,7 +444,7 @@ pub fn fig6(ctx: &Ctx) -> Result<Summary> {
 pub fn fig8(ctx: &Ctx) -> Result<Summary> {
     let spec = ctx.spec(8)?;
     let sel: Fig8 = spec.params()?;
-    let (p, pts, d_jkr) = points(ctx)?;
+    let (p, pts, d_jkr, _) = points(ctx)?;
     let mut table = Table::new(
         "# approach = h/|d_JKR| of the shown configuration, force = mean |F_ad/F_JKR| there\n\
          # area = alpha*, mean_pressure = NaN, n_bonded = index of H (three rows each: max, middle, weak)",
@@ -430,7 +456,19 @@ pub fn fig8(ctx: &Ctx) -> Result<Summary> {
     let mut maps = Vec::new();
     let mut runs = Vec::new();
     for (s, &hurst) in p.hurst.iter().enumerate() {
-        let row: Vec<&Point> = pts.iter().filter(|q| q.hurst == hurst).collect();
+        // Points whose first seed (the one with stored fields) ran.
+        let row: Vec<&Point> = pts
+            .iter()
+            .filter(|q| q.hurst == hurst && q.runs.iter().any(|r| r.first_seed))
+            .collect();
+        for q in pts.iter().filter(|q| q.hurst == hurst) {
+            if !q.runs.iter().any(|r| r.first_seed) {
+                summary.note(format!(
+                    "H = {hurst}, α* = {}: the first seed failed, not a candidate",
+                    q.alpha_star
+                ));
+            }
+        }
         let mean = |q: &Point| q.mean_std().0;
         let Some(best) = row
             .iter()
@@ -464,7 +502,9 @@ pub fn fig8(ctx: &Ctx) -> Result<Summary> {
         let mut row_masks = Vec::new();
         for (what, q) in [("max", Some(best)), ("middle", middle), ("weak", weak)] {
             let Some(q) = q else { continue };
-            let r = &q.runs[0];
+            let Some(r) = q.runs.iter().find(|r| r.first_seed) else {
+                continue;
+            };
             let step = r.run.pull_off_step();
             summary.add(format!("H_{hurst}_{what}_alpha_star"), q.alpha_star);
             summary.add(format!("H_{hurst}_{what}_ratio"), mean(q));

@@ -331,14 +331,16 @@ pub fn fig5(ctx: &Ctx) -> Result<Summary> {
         &["pull_off_force", "pull_off_ratio", "johnson_alpha"],
         points,
     )?;
-    // (α, |F_ad/F_JKR|, λ, R) of every point, grouped by combination.
-    let results: Vec<(f64, f64, f64, f64)> = sweep
-        .run(ctx.threads)?
+    // (α, |F_ad/F_JKR|, λ, R) of every point that ran (`None` where it failed), grouped by
+    // combination.
+    let done = sweep.run(ctx.threads)?;
+    let results: Vec<Option<(f64, f64, f64, f64)>> = done
+        .runs
         .iter()
         .zip(&files)
         .map(|(r, file)| {
             let (_, lambda, alpha) = wave(file);
-            (alpha, r.ratio(), lambda, radius(file))
+            r.as_ref().map(|r| (alpha, r.ratio(), lambda, radius(file)))
         })
         .collect();
     let groups: Vec<_> = p
@@ -365,7 +367,7 @@ pub fn fig5(ctx: &Ctx) -> Result<Summary> {
     let mut all = 0;
     for (c, (combo, runs)) in groups.iter().enumerate() {
         let (mut pts, mut raw) = (Vec::new(), Vec::new());
-        for &(alpha, ratio, lambda, big_r) in runs.iter() {
+        for &(alpha, ratio, lambda, big_r) in runs.iter().flatten() {
             all += 1;
             let dev = ratio - lambda_fit(alpha);
             sq += dev * dev;
@@ -399,6 +401,7 @@ pub fn fig5(ctx: &Ctx) -> Result<Summary> {
         (sq_small / n_small.max(1) as f64).sqrt(),
     );
     summary.add_vs("max_enhancement", best, 1.7);
+    done.notes().into_iter().for_each(|n| summary.note(n));
     let lo: Vec<(f64, f64)> = (1..240)
         .map(|i| i as f64 * 1e-3)
         .map(|a| (a, lambda_fit(a)))
