@@ -280,10 +280,15 @@ pub fn write_figure(
             git_revision: tack_cli::provenance::GIT_REVISION.into(),
             command_line: tack_cli::provenance::command_line(),
             scene: format!(
-                "{}\n# mode: {}\n# figN.h5 columns:\n{}",
+                "{}\n# mode: {}\n# figN.h5 columns:\n{}{}",
                 spec.text,
                 if spec.full { "full" } else { "quick" },
-                table.legend
+                table.legend,
+                summary
+                    .notes
+                    .iter()
+                    .map(|n| format!("\n# note: {n}"))
+                    .collect::<String>()
             ),
             created: tack_cli::provenance::now_rfc3339(),
             seed: None,
