@@ -277,9 +277,6 @@ impl FigureSweep {
                 message: f.message.clone(),
             })
             .collect();
-        for f in &failed {
-            println!("  left out: {f}");
-        }
         if failed.len() == total {
             bail!(
                 "all {total} points of {} failed (errors in points/*.err); the first: {}",

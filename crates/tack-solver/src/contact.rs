@@ -165,11 +165,12 @@ impl ContactSolver {
         }
         let coarse_grid = Grid::new(nx / 2, ny / 2, 2.0 * grid.dx(), grid.boundary())
             .expect("a coarsened valid grid is valid");
+        let f = self.surface.heights();
         let heights = Array2::from_shape_fn((nx / 2, ny / 2), |(i, j)| {
-            0.25 * (self.surface.heights()[[2 * i, 2 * j]]
-                + self.surface.heights()[[2 * i + 1, 2 * j]]
-                + self.surface.heights()[[2 * i, 2 * j + 1]]
-                + self.surface.heights()[[2 * i + 1, 2 * j + 1]])
+            0.25 * (f[[2 * i, 2 * j]]
+                + f[[2 * i + 1, 2 * j]]
+                + f[[2 * i, 2 * j + 1]]
+                + f[[2 * i + 1, 2 * j + 1]])
         });
         let surface = Surface::new(coarse_grid, heights).expect("finite heights");
         let op = operator_for(coarse_grid, self.op.e_star()).expect("validated modulus");
