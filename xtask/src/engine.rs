@@ -2,7 +2,7 @@
 //! builds a tack-cli [`Problem`], walks its load–unload path (`AdhesiveSolver::run_path`,
 //! coarse retraction included) on the crop window keeping only the fields a figure asks for,
 //! and runs batches in parallel (rayon) with a progress line per finished run. Figures 5–8 run
-//! through `tack_cli::sweep` instead (`crate::sweeps`).
+//! through `tack::sweep` instead (`crate::sweeps`).
 //!
 //! Determinism: every run is sequential; a batch is collected in input order, so the results
 //! are bit-identical for any thread count.
@@ -16,7 +16,7 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 use ndarray::Array2;
 use rayon::prelude::*;
-use tack_cli::{Problem, Scene};
+use tack::{Problem, Scene};
 use tack_solver::{
     Observer, PathResult, Phase, Snapshot, SnapshotRequest, StepRecord, count_clusters,
 };
@@ -261,16 +261,12 @@ fn describe(r: &RunOutput) -> String {
 /// written (the others served the figure's selection).
 pub fn write_run(dir: &Path, r: &RunOutput, shown: &[usize]) -> Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
-    let prov = tack_cli::provenance::provenance(
-        &r.scene,
-        &r.problem,
-        tack_cli::provenance::command_line(),
-    );
+    let prov = tack::provenance::provenance(&r.scene, &r.problem, tack::provenance::command_line());
     let last = r.path.records.iter().rposition(|s| s.n_bonded > 0);
     let keep = |k: usize| k == r.pull_off_step() || Some(k) == last || shown.contains(&k);
     let mut path = r.path.clone();
     path.snapshots.retain(|s| keep(s.step));
-    let mut result = tack_cli::run::result_file(&r.problem, &path, prov);
+    let mut result = tack::run::result_file(&r.problem, &path, prov);
     // Snapshots back into the full grid, as `tack run` writes them.
     if let Some(w) = &r.problem.window {
         let block = ndarray::s![w.i0..w.i1, w.j0..w.j1];

@@ -11,8 +11,8 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result, bail};
 use serde::Deserialize;
 use serde::de::DeserializeOwned;
-use tack_cli::Scene;
-use tack_cli::scene::SceneFile;
+use tack::Scene;
+use tack::scene::SceneFile;
 
 /// The top level of a spec file.
 #[derive(Debug, Deserialize)]

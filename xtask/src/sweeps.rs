@@ -1,6 +1,6 @@
 //! Figures run as tack sweeps (Figures 5 and 7, which Figures 6 and 8 read): the figure's point
 //! scenes become one sweep file (the base scene inline, one zipped `[vary]` entry of the fields
-//! that differ between points, one row per point), run by `tack_cli::sweep::run_sweep` into
+//! that differ between points, one row per point), run by `tack::sweep::run_sweep` into
 //! `OUT/figN/sweep-<mode>/` (one HDF5 result per point, resumable), then read back with
 //! `tack_io::read_result`.
 //!
@@ -14,8 +14,8 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
-use tack_cli::SceneFile;
-use tack_cli::sweep::{SWEEP_COPY, Sweep, SweepOptions, point_path, run_sweep, verify_point};
+use tack::SceneFile;
+use tack::sweep::{SWEEP_COPY, Sweep, SweepOptions, point_path, run_sweep, verify_point};
 
 /// The sections of a scene in the order docs/scenes.md documents them.
 const SECTIONS: [&str; 7] = [
@@ -231,7 +231,7 @@ impl FigureSweep {
     /// The directory must be new or hold this very sweep: a `sweep.toml` that differs (the
     /// spec's parameters changed, or another mode's or figure's sweep) stops with an error
     /// rather than mixing results. Within the sweep, a point is only skipped when its result
-    /// file records exactly the point's scene (`tack_cli::sweep::verify_point`).
+    /// file records exactly the point's scene (`tack::sweep::verify_point`).
     ///
     /// A point whose scene is refused or whose run fails does not stop the figure: its slot is
     /// `None` and it is listed in [`SweepRuns::failed`] (its error is in `points/<i>.err`), so
@@ -266,7 +266,7 @@ impl FigureSweep {
             threads: Some(threads),
             ..SweepOptions::default()
         };
-        let report = run_sweep(&self.sweep, &self.dir, &options)?;
+        let report = run_sweep(&self.sweep, &self.dir, &options, &PrintFailures)?;
         println!("  {report}");
         let failed: Vec<FailedPoint> = report
             .failed
@@ -360,6 +360,17 @@ impl PointRun {
     }
 }
 
+/// Prints each failed point as it happens (the figure's summary names it again).
+struct PrintFailures;
+
+impl tack::sweep::SweepObserver for PrintFailures {
+    fn on_point(&self, index: usize, label: &str, failure: Option<&str>) {
+        if let Some(message) = failure {
+            eprintln!("  point {index} ({label}) failed: {message}");
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -370,7 +381,7 @@ mod tests {
              shape = \"sphere\"\nradius = {radius}\n[grid]\nn = {n}\ndx = 0.6\n[protocol]\n\
              max_approach = 3.0\nload_step = 0.15\n[output]\nsurface = false\n"
         );
-        tack_cli::Scene::parse(&text, ".", &[]).unwrap().file
+        tack::Scene::parse(&text, ".", &[]).unwrap().file
     }
 
     #[test]
@@ -391,7 +402,7 @@ mod tests {
                 scene: p.scene.clone(),
             })
             .collect::<Vec<_>>();
-        with_snapshots[0].scene.output.snapshots = tack_cli::scene::Snapshots::PullOff;
+        with_snapshots[0].scene.output.snapshots = tack::scene::Snapshots::PullOff;
         let fs = FigureSweep::new(&out, 7, false, "test", &["pull_off_ratio"], points).unwrap();
         assert_eq!(fs.dir, out.join("fig7/sweep-quick"));
         let fields: Vec<&str> = fs.sweep.axes.iter().map(|a| a.field.as_str()).collect();

@@ -10,12 +10,15 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use clap::{Parser, Subcommand};
-use tack_cli::merge::{self, MergeOptions};
-use tack_cli::problem::Problem;
-use tack_cli::run::{self, RunOptions, num};
-use tack_cli::scene::Scene;
-use tack_cli::sweep::{self, Shard, Sweep, SweepOptions};
-use tack_cli::{plot, provenance};
+use tack::merge::{self, MergeOptions};
+use tack::problem::Problem;
+use tack::provenance;
+use tack::run::{self, RunOptions};
+use tack::scene::Scene;
+use tack::sweep::{self, Shard, Sweep, SweepOptions};
+use tack_cli::plot;
+use tack_cli::progress::{Progress, SweepProgress};
+use tack_cli::report::{self, num};
 
 /// Adhesive strength of rough elastic contacts (Li, Pohrt & Popov 2019), by FFT-accelerated BEM.
 ///
@@ -135,12 +138,12 @@ fn execute(command: Command) -> anyhow::Result<()> {
             richardson,
         } => {
             let options = RunOptions {
-                quiet,
                 command_line: None,
                 richardson,
             };
-            let (scene, outcome) = run::run_scene(&scene, &set, &output, &options)?;
-            print!("{}", run::report(&scene, &outcome, Some(&output)));
+            let scene = Scene::load(&scene, &set)?;
+            let outcome = run::run_to_file(&scene, &output, &options, &mut Progress::new(quiet))?;
+            print!("{}", report::report(&scene, &outcome, Some(&output)));
         }
         Command::Surface { scene, output, set } => {
             let scene = Scene::load(&scene, &set)?;
@@ -193,10 +196,9 @@ fn execute(command: Command) -> anyhow::Result<()> {
             let options = SweepOptions {
                 threads: threads.map(NonZeroUsize::get),
                 shard: shard.unwrap_or_default(),
-                quiet,
                 command_line: None,
             };
-            let report = sweep::run_sweep(&loaded, &output, &options)?;
+            let report = sweep::run_sweep(&loaded, &output, &options, &SweepProgress::new(quiet))?;
             println!("{report}");
             if !report.failed.is_empty() {
                 anyhow::bail!(

@@ -150,7 +150,7 @@ example!(wavy_1d_periodic, |r, _| {
         "not a sphere"
     );
     let alpha = s.johnson_alpha.expect("johnson_alpha");
-    let want = tack_analytics::johnson_alpha(1.0, 5e-5, 0.01, 1.0); // = 1/π
+    let want = tack::analytics::johnson_alpha(1.0, 5e-5, 0.01, 1.0); // = 1/π
     assert!((alpha - want).abs() < 1e-12, "{alpha}");
     // Johnson (Eq. 2) at α = 0.318: the least mean pressure is about −0.10 p*.
     let ratio = s.extra["min_mean_pressure"] / s.extra["p_star"];

@@ -468,11 +468,11 @@ fn example_sweeps_are_valid_at_every_point_and_the_jkr_example_runs() {
         .collect::<Vec<_>>();
     assert!(sweeps.len() >= 2, "{sweeps:?}");
     for path in &sweeps {
-        let sweep = tack_cli::sweep::Sweep::load(path)
-            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let sweep =
+            tack::sweep::Sweep::load(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         for i in 0..sweep.len() {
             let scene = sweep.point_scene(i).expect("point scene");
-            if let Err(e) = tack_cli::Problem::from_scene(&scene) {
+            if let Err(e) = tack::Problem::from_scene(&scene) {
                 panic!("{} point {i} ({}): {e}", path.display(), sweep.label(i));
             }
         }
@@ -531,11 +531,11 @@ fn zipped_sweep_runs_and_merges_every_field_as_a_column() {
             .expect("point file")
             .provenance
             .scene;
-        let parsed = tack_cli::Scene::parse(&scene, ".", &[]).expect("recorded scene");
+        let parsed = tack::Scene::parse(&scene, ".", &[]).expect("recorded scene");
         let (r, g) = (column(0)[k], column(1)[k]);
         assert_eq!(
             parsed.file.geometry,
-            tack_cli::scene::Geometry::Sphere { radius: r }
+            tack::scene::Geometry::Sphere { radius: r }
         );
         assert_eq!(parsed.file.material.gamma, g);
         assert_eq!(parsed.file.protocol.load_step, column(2)[k]);

@@ -15,6 +15,12 @@ pub enum SolverError {
         /// The allowed range.
         allowed: &'static str,
     },
+    /// An [`Observer`](crate::Observer) asked the path to stop.
+    #[error("cancelled after {steps} steps")]
+    Cancelled {
+        /// Steps completed before the stop.
+        steps: usize,
+    },
     /// The surface and the operator live on different grids.
     #[error("the surface grid {surface:?} does not match the operator grid {operator:?}")]
     GridMismatch {

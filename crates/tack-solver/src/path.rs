@@ -108,6 +108,11 @@ pub trait Observer {
         _bonded: &Array2<bool>,
     ) {
     }
+    /// Asked after every step: `true` stops the path there with
+    /// [`SolverError::Cancelled`] (a long run cancelled from another thread or a signal).
+    fn cancelled(&mut self) -> bool {
+        false
+    }
 }
 
 impl Observer for () {}
@@ -227,11 +232,23 @@ impl PathResult {
     /// Periodic full-contact steps are left out: their force is not fixed by the approach (the
     /// record holds the least admissible one, about −σ_c, a property of the mesh).
     pub fn pull_off_force(&self) -> f64 {
-        self.records
-            .iter()
-            .filter(|r| !r.full_contact)
-            .map(|r| r.force)
-            .fold(f64::INFINITY, f64::min)
+        self.pull_off_step()
+            .map_or(f64::INFINITY, |i| self.records[i].force)
+    }
+    /// Index of the step that carries [`PathResult::pull_off_force`]: the least force over
+    /// the steps that are not periodic full contact (the first of equal ones), `None` when
+    /// there is no such step.
+    pub fn pull_off_step(&self) -> Option<usize> {
+        let mut best: Option<usize> = None;
+        for (i, r) in self.records.iter().enumerate() {
+            if r.full_contact || r.force.is_nan() {
+                continue;
+            }
+            if best.is_none_or(|b| r.force < self.records[b].force) {
+                best = Some(i);
+            }
+        }
+        best
     }
     /// Every step converged.
     pub fn all_converged(&self) -> bool {
@@ -321,6 +338,11 @@ impl AdhesiveSolver {
         observer.on_step(index, phase, &rec);
         out.records.push(rec);
         out.phases.push(phase);
+        if observer.cancelled() {
+            return Err(SolverError::Cancelled {
+                steps: out.records.len(),
+            });
+        }
         Ok(rec)
     }
 }

@@ -23,10 +23,10 @@ use std::sync::Arc;
 
 use anyhow::{Context, Result};
 use serde::Deserialize;
+use tack::scene::{Geometry, SceneFile};
 use tack_analytics::{
     jkr_approach_hat, jkr_approach_scale, jkr_force_hat, jkr_pull_off_approach, jkr_pull_off_force,
 };
-use tack_cli::scene::{Geometry, SceneFile};
 
 use crate::engine::{RunOutput, write_run};
 use crate::plot::{Area, svg};
@@ -276,9 +276,9 @@ pub fn write_figure(
     }
     let result = tack_io::RunResult {
         provenance: tack_io::Provenance {
-            tack_version: tack_cli::provenance::VERSION.into(),
-            git_revision: tack_cli::provenance::GIT_REVISION.into(),
-            command_line: tack_cli::provenance::command_line(),
+            tack_version: tack::provenance::VERSION.into(),
+            git_revision: tack::provenance::GIT_REVISION.into(),
+            command_line: tack::provenance::command_line(),
             scene: format!(
                 "{}\n# mode: {}\n# figN.h5 columns:\n{}{}",
                 spec.text,
@@ -290,7 +290,7 @@ pub fn write_figure(
                     .map(|n| format!("\n# note: {n}"))
                     .collect::<String>()
             ),
-            created: tack_cli::provenance::now_rfc3339(),
+            created: tack::provenance::now_rfc3339(),
             seed: None,
         },
         curve: tack_io::Curve {

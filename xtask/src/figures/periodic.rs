@@ -5,11 +5,11 @@ use std::f64::consts::PI;
 
 use anyhow::{Result, bail};
 use serde::Deserialize;
+use tack::scene::Roughness;
 use tack_analytics::{
     johnson_1d_mean_pressure_ratio, johnson_2d_near_full_ratio, johnson_2d_p_star,
     westergaard_p_star,
 };
-use tack_cli::scene::Roughness;
 use tack_solver::{Phase, count_clusters};
 
 use super::{Ctx, RunFiles, Summary, Table, write_figure};

@@ -5,8 +5,8 @@
 
 use anyhow::{Result, bail};
 use serde::Deserialize;
+use tack::scene::{Geometry, Roughness, SceneFile, Snapshots};
 use tack_analytics::{alpha_star, jkr_pull_off_approach, lambda_star};
-use tack_cli::scene::{Geometry, Roughness, SceneFile, Snapshots};
 use tack_geometry::{Boundary, Grid, RoughSpec, rough_surface};
 
 use super::{Ctx, PullOff, RunFiles, Summary, Table, crop_maps, sphere_scene, write_figure};

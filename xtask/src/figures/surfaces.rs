@@ -3,9 +3,9 @@
 
 use anyhow::Result;
 use serde::Deserialize;
+use tack::Problem;
+use tack::scene::{Geometry, SceneFile};
 use tack_analytics::{jkr_pull_off_approach, jkr_pull_off_radius};
-use tack_cli::Problem;
-use tack_cli::scene::{Geometry, SceneFile};
 
 use super::{Ctx, RunFiles, Summary, Table, rough_sphere, wavy_sphere, write_figure};
 use crate::plot::{Chart, Map, Series, Style, draw_chart, draw_maps};
@@ -158,12 +158,12 @@ pub fn fig3(ctx: &Ctx) -> Result<Summary> {
             scene: toml::to_string(file)?,
             seed: prob.seed,
             ..tack_io::Provenance::current(
-                tack_cli::provenance::GIT_REVISION,
-                tack_cli::provenance::now_rfc3339(),
+                tack::provenance::GIT_REVISION,
+                tack::provenance::now_rfc3339(),
             )
         };
         let path = dir.join(format!("{name}.h5"));
-        tack_io::write_result(&path, &tack_cli::run::surface_file(prob, prov))?;
+        tack_io::write_result(&path, &tack::run::surface_file(prob, prov))?;
     }
     Ok(summary)
 }

@@ -9,9 +9,9 @@ use std::sync::Arc;
 
 use anyhow::{Context, Result, bail};
 use serde::Deserialize;
+use tack::Scene;
+use tack::scene::{Geometry, Roughness, SceneFile};
 use tack_analytics::{jkr_pull_off_approach, johnson_alpha, lambda_fit};
-use tack_cli::Scene;
-use tack_cli::scene::{Geometry, Roughness, SceneFile};
 
 use super::{
     Ctx, PullOff, RunFiles, Summary, Table, crop_maps, jkr_curve, sphere_scene, write_figure,

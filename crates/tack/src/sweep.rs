@@ -17,7 +17,6 @@
 
 use std::collections::HashMap;
 use std::fmt;
-use std::io::IsTerminal;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
@@ -25,7 +24,6 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 use serde::Deserialize;
 use thiserror::Error;
@@ -740,12 +738,26 @@ pub struct SweepOptions {
     pub threads: Option<usize>,
     /// Which points to run.
     pub shard: Shard,
-    /// Never draw the progress bar (it is drawn only when stderr is a terminal anyway).
-    pub quiet: bool,
     /// Command line recorded in the point files (with ` [point i]` appended); default: this
     /// process's.
     pub command_line: Option<String>,
 }
+
+/// Progress of a [`run_sweep`]: called from the worker threads as points finish (in any
+/// order), so implementations synchronise themselves. The CLI draws a progress bar with it.
+pub trait SweepObserver: Sync {
+    /// The shard's point count, before any point runs.
+    fn on_start(&self, _points: usize) {}
+    /// A point finished: run now, found complete, or failed (`failure`).
+    fn on_point(&self, _index: usize, _label: &str, _failure: Option<&str>) {}
+    /// Asked before each point starts: `true` leaves the remaining points unrun (they count as
+    /// neither run nor failed; a rerun resumes them).
+    fn cancelled(&self) -> bool {
+        false
+    }
+}
+
+impl SweepObserver for () {}
 
 /// A point that failed, with its error.
 #[derive(Debug, Clone, PartialEq)]
@@ -981,14 +993,13 @@ fn run_point(sweep: &Sweep, dir: &Path, index: usize, command_line: &str) -> Poi
         let _ = std::fs::remove_file(&err);
         return PointOutcome::AlreadyComplete;
     }
-    let outcome = catch_unwind(AssertUnwindSafe(|| -> anyhow::Result<()> {
+    let outcome = catch_unwind(AssertUnwindSafe(|| -> Result<(), crate::Error> {
         let scene = Scene::parse(&text, &sweep.base_dir, &[])?;
         let options = RunOptions {
-            quiet: true,
             command_line: Some(format!("{command_line} [point {index}]")),
             richardson: false,
         };
-        run::run_loaded(&scene, &h5, &options)?;
+        run::run_to_file(&scene, &h5, &options, &mut ())?;
         Ok(())
     }));
     match outcome {
@@ -1023,13 +1034,14 @@ fn fail_point(h5: &Path, err: &Path, message: String) -> PointOutcome {
 ///
 /// Complete points (a result file that reads back and records exactly the point's scene) are
 /// skipped, so a rerun resumes an interrupted sweep; failed points are run again. A failing
-/// point does not stop the others: it is listed in the report, and its message printed to
-/// stderr as it happens. Each point is solved sequentially, so results do not depend on the
+/// point does not stop the others: it is listed in the report and passed to the observer as
+/// it happens. Each point is solved sequentially, so results do not depend on the
 /// number of threads.
 pub fn run_sweep(
     sweep: &Sweep,
     dir: &Path,
     options: &SweepOptions,
+    observer: &dyn SweepObserver,
 ) -> Result<SweepReport, SweepError> {
     let started = Instant::now();
     prepare_dir(sweep, dir)?;
@@ -1051,32 +1063,33 @@ pub fn run_sweep(
         .command_line
         .clone()
         .unwrap_or_else(crate::provenance::command_line);
-    let bar = progress_bar(points.len() as u64, options.quiet);
+    observer.on_start(points.len());
     let already = AtomicUsize::new(0);
     let ran = AtomicUsize::new(0);
     let failed = Mutex::new(Vec::new());
     pool.install(|| {
         points.par_iter().with_max_len(1).for_each(|&index| {
+            if observer.cancelled() {
+                return;
+            }
+            let label = sweep.label(index);
             match run_point(sweep, dir, index, &command_line) {
                 PointOutcome::AlreadyComplete => {
                     already.fetch_add(1, Ordering::Relaxed);
+                    observer.on_point(index, &label, None);
                 }
                 PointOutcome::Ran => {
                     ran.fetch_add(1, Ordering::Relaxed);
+                    observer.on_point(index, &label, None);
                 }
                 PointOutcome::Failed(message) => {
-                    bar.suspend(|| {
-                        eprintln!("point {index} ({}) failed: {message}", sweep.label(index))
-                    });
+                    observer.on_point(index, &label, Some(&message));
                     let mut failed = failed.lock().unwrap_or_else(|e| e.into_inner());
                     failed.push(PointFailure { index, message });
-                    bar.set_message(format!("({} failed)", failed.len()));
                 }
             }
-            bar.inc(1);
         });
     });
-    bar.finish_and_clear();
     let mut failed = failed.into_inner().unwrap_or_else(|e| e.into_inner());
     failed.sort_by_key(|f| f.index);
     Ok(SweepReport {
@@ -1089,21 +1102,6 @@ pub fn run_sweep(
         failed,
         wall_time: started.elapsed(),
     })
-}
-
-/// A bar over the shard's points on stderr, drawn only on a terminal and without `quiet`.
-fn progress_bar(len: u64, quiet: bool) -> ProgressBar {
-    if quiet || !std::io::stderr().is_terminal() {
-        return ProgressBar::hidden();
-    }
-    let bar = ProgressBar::with_draw_target(Some(len), ProgressDrawTarget::stderr());
-    let style = ProgressStyle::with_template(
-        "[{elapsed_precise}] {bar:30} {pos}/{len} points, eta {eta} {msg}",
-    )
-    .unwrap_or_else(|_| ProgressStyle::default_bar());
-    bar.set_style(style);
-    bar.enable_steady_tick(Duration::from_millis(250));
-    bar
 }
 
 fn read(path: &Path) -> Result<String, SweepError> {
