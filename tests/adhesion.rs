@@ -91,7 +91,8 @@ fn jkr_sphere_pull_off_converges_with_refinement() {
             run.max_extent < run.grid.nx() / 2,
             "contact reached the grid edge"
         );
-        // The criterion overshoots F_JKR (REFERENCE §2 saw-tooth) and converges about first order.
+        // The criterion overshoots F_JKR (saw-tooth, docs/theory.md §9) and converges about
+        // first order.
         assert!(err > 0.0 && err < 0.5);
         if let Some((e, j, c)) = prev {
             assert!(err < e, "pull-off error must fall with refinement");
@@ -124,7 +125,7 @@ fn jkr_sphere_pull_off_converges_with_refinement() {
 #[test]
 fn centre_displacement_kappa_does_not_converge() {
     // κ = 0.5611 (centre displacement) undershoots more and more with refinement: the error
-    // does not fall. This is the evidence for κ = 0.473201 (REFERENCE §2).
+    // does not fall. This is the evidence for κ = 0.473201 (docs/theory.md §3.2).
     let errs: Vec<f64> = [5.0, 10.0, 20.0]
         .iter()
         .map(|&r| {
@@ -341,16 +342,47 @@ fn a_step_across_the_jump_off_terminates_detached() {
 }
 
 #[test]
-fn same_inputs_give_the_same_bits_on_any_thread() {
+fn same_inputs_give_the_same_bits_on_any_thread_count() {
+    // The run inside rayon pools of 1, 2 and 3 threads, one of them while two other runs
+    // compete for the cores: every parallel part of a solve must reduce in a fixed order, so
+    // every record matches to the bit (StepRecord's derived PartialEq would let −0.0 == 0.0
+    // and NaN != NaN pass or fail wrongly: the f64 fields are compared as bits).
     let go = || JkrSphere::new(5.0, KAPPA).run().result;
-    let a = go();
-    let handles: Vec<_> = (0..2).map(|_| std::thread::spawn(go)).collect();
-    for h in handles {
-        let b = h.join().unwrap();
-        assert_eq!(a.records.len(), b.records.len());
-        for (x, y) in a.records.iter().zip(&b.records) {
-            assert_eq!(x.force.to_bits(), y.force.to_bits());
-            assert_eq!((x.n_bonded, x.cg_iterations), (y.n_bonded, y.cg_iterations));
+    let in_pool = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(go)
+    };
+    let reference = in_pool(1);
+    let busy: Vec<_> = (0..2).map(|_| std::thread::spawn(go)).collect();
+    let others = [in_pool(2), in_pool(3)];
+    let others = others
+        .into_iter()
+        .chain(busy.into_iter().map(|h| h.join().unwrap()));
+    let bits = |r: &StepRecord| {
+        [r.approach, r.force, r.mean_pressure, r.area, r.residual].map(f64::to_bits)
+    };
+    for run in others {
+        assert_eq!(reference.records.len(), run.records.len());
+        for (x, y) in reference.records.iter().zip(&run.records) {
+            assert_eq!(bits(x), bits(y));
+            assert_eq!(
+                (
+                    x.n_bonded,
+                    x.n_clusters,
+                    x.cg_iterations,
+                    x.active_set_iterations
+                ),
+                (
+                    y.n_bonded,
+                    y.n_clusters,
+                    y.cg_iterations,
+                    y.active_set_iterations
+                )
+            );
+            assert_eq!((x.converged, x.full_contact), (y.converged, y.full_contact));
         }
     }
 }

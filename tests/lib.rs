@@ -11,7 +11,8 @@ pub struct JkrSphere {
     pub ac_over_dx: f64,
     /// Pohrt–Popov constant κ.
     pub kappa: f64,
-    /// Deepest dimensionless approach of the load phase (REFERENCE §2 uses 6).
+    /// Deepest dimensionless approach of the load phase (6 by default: a contact of about
+    /// 1.6 a_c, docs/theory.md §3.5).
     pub max_approach: f64,
     /// Dimensionless retraction step.
     pub unload_step: f64,

@@ -1,6 +1,6 @@
 //! Running the scenes of the figures that are not sweeps (Figures 1, 2 and 4): one helper that
-//! builds a tack-cli [`Problem`], walks its load–unload path (`AdhesiveSolver::run_path`,
-//! coarse retraction included) on the crop window keeping only the fields a figure asks for,
+//! builds a [`Problem`], solves its load–unload path with `tack::run::solve` (on the crop window,
+//! coarse retraction included) keeping only the fields a figure asks for (on the full grid),
 //! and runs batches in parallel (rayon) with a progress line per finished run. Figures 5–8 run
 //! through `tack::sweep` instead (`crate::sweeps`).
 //!
@@ -17,9 +17,7 @@ use anyhow::{Context, Result};
 use ndarray::Array2;
 use rayon::prelude::*;
 use tack::{Problem, Scene};
-use tack_solver::{
-    Observer, PathResult, Phase, Snapshot, SnapshotRequest, StepRecord, count_clusters,
-};
+use tack_solver::{Observer, PathResult, Phase, StepFields, StepRecord, count_clusters};
 
 /// Which pressure fields and bonded masks a run keeps (fields of all other steps are dropped).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -55,7 +53,7 @@ pub struct RunOutput {
     pub scene: Scene,
     /// The problem (full grid, and the crop window the path ran on).
     pub problem: Problem,
-    /// Steps and kept fields (snapshots are on the crop window).
+    /// Steps and kept fields (snapshots on the full grid).
     pub path: PathResult,
     /// A bonded element reached the border of a cropped window (the crop may have cut contact).
     pub touched_edge: bool,
@@ -82,21 +80,17 @@ impl RunOutput {
             .filter(|(_, (_, p))| **p == Phase::Unload)
             .map(|(k, (r, _))| (k, r))
     }
-    /// Index of the most tensile step.
+    /// Index of the pull-off step (`PathResult::pull_off_step`: full-contact steps left out).
     pub fn pull_off_step(&self) -> usize {
-        let r = &self.path.records;
-        (0..r.len())
-            .min_by(|&a, &b| r[a].force.total_cmp(&r[b].force))
-            .unwrap_or(0)
+        self.path.pull_off_step().unwrap_or(0)
     }
     /// The kept fields of step `k`, if any.
-    pub fn snapshot(&self, k: usize) -> Option<&Snapshot> {
+    pub fn snapshot(&self, k: usize) -> Option<&StepFields> {
         self.path.snapshots.iter().find(|s| s.step == k)
     }
 }
 
-/// Builds the problem (tack-cli: validation, surface, crop window) and walks its path on the
-/// crop window.
+/// Builds the problem (validation, surface, crop window) and solves its path.
 pub fn run(spec: &RunSpec) -> Result<RunOutput> {
     let started = Instant::now();
     let problem = Problem::from_scene(&spec.scene).with_context(|| format!("run {}", spec.name))?;
@@ -111,14 +105,13 @@ pub fn run(spec: &RunSpec) -> Result<RunOutput> {
     })
 }
 
-/// The load–unload path of `problem` (`AdhesiveSolver::run_path`, with the scene's coarse
-/// retraction), keeping the fields `keep` asks for. Runs on the problem's crop window, if any;
-/// the kept fields are on the window.
+/// The load–unload path of `problem` (`tack::run::solve`: on the crop window, again on the
+/// full grid should contact reach its edge), keeping the fields `keep` asks for, on the full
+/// grid.
 fn walk(problem: &Problem, keep: Keep) -> Result<PathResult> {
-    let mut solver = problem.solver(problem.window.as_ref())?;
     let periodic = problem.grid.boundary() == tack_geometry::Boundary::Periodic;
     let mut keeper = Keeper::new(keep, periodic, problem.path.max_approach);
-    let mut out = solver.run_path(&problem.path, &SnapshotRequest::None, &mut keeper)?;
+    let mut out = tack::run::solve(problem, &mut keeper)?;
     out.snapshots = keeper.into_snapshots();
     Ok(out)
 }
@@ -127,15 +120,17 @@ fn walk(problem: &Problem, keep: Keep) -> Result<PathResult> {
 struct Keeper {
     keep: Keep,
     periodic: bool,
-    kept: BTreeMap<usize, Snapshot>,
+    kept: BTreeMap<usize, StepFields>,
     /// The least force so far and its fields.
-    best: Option<(f64, Snapshot)>,
+    best: Option<(f64, StepFields)>,
     /// The previous unload step (break-up detection).
-    prev: Option<Snapshot>,
+    prev: Option<StepFields>,
     /// The latest unload step with a bonded element.
-    last: Option<Snapshot>,
+    last: Option<StepFields>,
     /// Approach at or below which the next `unload_every` field is kept.
     next_every: f64,
+    /// The path's deepest approach, where `next_every` starts.
+    next_every_start: f64,
     broken: bool,
 }
 
@@ -149,12 +144,13 @@ impl Keeper {
             prev: None,
             last: None,
             next_every: max_approach,
+            next_every_start: max_approach,
             broken: false,
         }
     }
 
     /// The kept fields in step order.
-    fn into_snapshots(mut self) -> Vec<Snapshot> {
+    fn into_snapshots(mut self) -> Vec<StepFields> {
         for s in [self.best.map(|b| b.1), self.last].into_iter().flatten() {
             self.kept.insert(s.step, s);
         }
@@ -163,6 +159,10 @@ impl Keeper {
 }
 
 impl Observer for Keeper {
+    fn on_restart(&mut self) {
+        *self = Self::new(self.keep, self.periodic, self.next_every_start);
+    }
+
     fn on_fields(
         &mut self,
         step: usize,
@@ -171,13 +171,14 @@ impl Observer for Keeper {
         pressure: &Array2<f64>,
         bonded: &Array2<bool>,
     ) {
-        let snap = || Snapshot {
+        let snap = || StepFields {
             step,
             pressure: pressure.clone(),
             bonded: bonded.clone(),
         };
         let keep = self.keep;
-        if keep.pull_off && self.best.as_ref().is_none_or(|b| rec.force < b.0) {
+        if keep.pull_off && !rec.full_contact && self.best.as_ref().is_none_or(|b| rec.force < b.0)
+        {
             self.best = Some((rec.force, snap()));
         }
         if phase != Phase::Unload {
@@ -256,7 +257,7 @@ fn describe(r: &RunOutput) -> String {
 }
 
 /// Writes one run's result file (tack-io layout, written atomically) to `dir/<name>.h5`, with
-/// the snapshots placed on the full grid as `tack run` writes them.
+/// the snapshots on the full grid as `tack run` writes them.
 /// Of the kept fields, only the pull-off step, the last contact and the steps in `shown` are
 /// written (the others served the figure's selection).
 pub fn write_run(dir: &Path, r: &RunOutput, shown: &[usize]) -> Result<()> {
@@ -266,19 +267,8 @@ pub fn write_run(dir: &Path, r: &RunOutput, shown: &[usize]) -> Result<()> {
     let keep = |k: usize| k == r.pull_off_step() || Some(k) == last || shown.contains(&k);
     let mut path = r.path.clone();
     path.snapshots.retain(|s| keep(s.step));
+    // The kept fields are on the full grid already (`tack::run::solve`).
     let mut result = tack::run::result_file(&r.problem, &path, prov);
-    // Snapshots back into the full grid, as `tack run` writes them.
-    if let Some(w) = &r.problem.window {
-        let block = ndarray::s![w.i0..w.i1, w.j0..w.j1];
-        let shape = r.problem.grid.shape();
-        for snap in &mut result.snapshots {
-            let mut pressure = ndarray::Array2::zeros(shape);
-            let mut bonded = ndarray::Array2::from_elem(shape, false);
-            pressure.slice_mut(block).assign(&snap.pressure);
-            bonded.slice_mut(block).assign(&snap.bonded);
-            (snap.pressure, snap.bonded) = (pressure, bonded);
-        }
-    }
     result.summary.extra.insert("wall_time_s".into(), r.seconds);
     let file = dir.join(format!("{}.h5", r.name));
     tack_io::write_result(&file, &result).with_context(|| format!("writing {}", file.display()))

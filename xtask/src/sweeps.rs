@@ -347,12 +347,13 @@ impl PointRun {
     pub fn ratio(&self) -> f64 {
         self.result.summary.pull_off_ratio.abs()
     }
-    /// Index of the pull-off step: the least force (the first on ties).
+    /// Index of the pull-off step (`tack_solver::pull_off_step`: the least force over the
+    /// steps not in periodic full contact, the first on ties).
     pub fn pull_off_step(&self) -> usize {
-        let f = &self.result.curve.force;
-        (0..f.len())
-            .min_by(|&a, &b| f[a].total_cmp(&f[b]))
-            .unwrap_or(0)
+        let c = &self.result.curve;
+        let full = |i: usize| c.full_contact.as_ref().is_some_and(|f| f[i]);
+        let steps = c.force.iter().enumerate().map(|(i, &f)| (f, full(i)));
+        tack_solver::pull_off_step(steps).unwrap_or(0)
     }
     /// The stored fields of step `step` (on the full grid), if any.
     pub fn snapshot(&self, step: usize) -> Option<&tack_io::Snapshot> {

@@ -22,6 +22,22 @@ pub fn alpha_star(e_star: f64, gamma: f64, h: f64, hurst: f64, q0: f64, q1: f64)
     (4.0 * gamma * q1.powf(0.8 * hurst - 1.0) / (PI * e_star * h * h * q0.powf(0.8 * hurst))).sqrt()
 }
 
+/// Rms height h of a randomly rough surface with adhesion parameter `alpha_star`, the inverse of
+/// Eq. 11: h = sqrt(4γ q1^(0.8H − 1) / (π E* q0^(0.8H)))/α*, for α* > 0 (α* = 0 gives +∞).
+///
+/// Bit for bit `alpha_star(e_star, gamma, 1.0, hurst, q0, q1) / alpha_star`.
+pub fn rms_height_from_alpha_star(
+    e_star: f64,
+    gamma: f64,
+    alpha_star: f64,
+    hurst: f64,
+    q0: f64,
+    q1: f64,
+) -> f64 {
+    (4.0 * gamma * q1.powf(0.8 * hurst - 1.0) / (PI * e_star * q0.powf(0.8 * hurst))).sqrt()
+        / alpha_star
+}
+
 /// Pull-off force of a randomly rough sphere relative to JKR,
 /// |F_ad/F_JKR| ≈ Λ*(α*) = 1.023 exp(−((α* − 0.3619)/0.1188)²) (Eq. 12).
 pub fn lambda_star(alpha_star: f64) -> f64 {
@@ -73,6 +89,33 @@ mod tests {
                 johnson_alpha(e, gamma, h, l),
                 1e-12,
             );
+        }
+    }
+
+    /// Inverse of Eq. 11: α*(h(α*)) = α* and h(α*(h)) = h to rounding (1e-12), over H and
+    /// bands q0 = q1 up to q1/q0 = 2^10; and equal bits to the forward form at h = 1 divided by α*
+    /// (how Fig. 7 computed h before).
+    #[test]
+    fn rms_height_from_alpha_star_inverts_eq11() {
+        let (e, gamma) = (1.0, 5e-5);
+        let q0 = 2.0 * PI;
+        for hurst in [0.1, 0.5, 0.9] {
+            for q1 in [q0, 16.0 * q0, 1024.0 * q0] {
+                for a in [0.05, 0.3619, 0.7, 3.0] {
+                    let h = rms_height_from_alpha_star(e, gamma, a, hurst, q0, q1);
+                    assert_close(alpha_star(e, gamma, h, hurst, q0, q1), a, 1e-12);
+                    let back = alpha_star(e, gamma, h, hurst, q0, q1);
+                    assert_close(
+                        rms_height_from_alpha_star(e, gamma, back, hurst, q0, q1),
+                        h,
+                        1e-12,
+                    );
+                    assert_eq!(
+                        h.to_bits(),
+                        (alpha_star(e, gamma, 1.0, hurst, q0, q1) / a).to_bits()
+                    );
+                }
+            }
         }
     }
 

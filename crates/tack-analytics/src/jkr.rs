@@ -161,7 +161,8 @@ mod tests {
             jkr_pull_off_approach(E, G, R),
             1e-12,
         );
-        // REFERENCE quotes d̂ ≈ −0.7735; the exact value is −(3π²/64)^(1/3) = −0.77342.
+        // Eq. 8 in JKR units: d̂ = −(3π²/64)^(1/3) = −0.77342 (docs/theory.md §5.2); the
+        // rounded −0.7735 quoted elsewhere lies within the 2e-4 checked here.
         let d_hat = jkr_pull_off_approach(E, G, R) / jkr_approach_scale(E, G, R);
         assert!((d_hat + 0.7735).abs() < 2e-4, "d_hat = {d_hat}");
         let slope = derivative(|a| jkr_force_from_radius(E, G, R, a), a_c, 1e-4 * a_c);

@@ -11,6 +11,12 @@ pub fn johnson_alpha(e_star: f64, gamma: f64, h: f64, lambda: f64) -> f64 {
     (2.0 * lambda * gamma / (PI * PI * h * h * e_star)).sqrt()
 }
 
+/// Waviness amplitude h of Johnson parameter `alpha` at wavelength `lambda`, the inverse of
+/// Eq. 3 (Johnson 1995): h = sqrt(2λγ/(π² E*))/α, for α > 0 (α = 0 gives +∞).
+pub fn waviness_amplitude_from_alpha(e_star: f64, gamma: f64, alpha: f64, lambda: f64) -> f64 {
+    (2.0 * lambda * gamma / (PI * PI * e_star)).sqrt() / alpha
+}
+
 /// 1D adhesive waviness: p̄/p*_1D = sin²ψ − α sqrt(tan ψ) with ψ = πa/λ in (0, π/2)
 /// (Eq. 2; Johnson 1995).
 pub fn johnson_1d_mean_pressure_ratio(alpha: f64, psi: f64) -> f64 {
@@ -103,6 +109,33 @@ mod tests {
     fn alpha_hand_value() {
         // 2λγ/(π²h²E*) = 2·π²·1/(π²·1·2) = 1.
         assert_close(johnson_alpha(2.0, 1.0, 1.0, PI * PI), 1.0, 1e-15);
+    }
+
+    /// Inverse of Eq. 3: α(h(α)) = α and h(α(h)) = h to rounding (a few ulps; 1e-12).
+    #[test]
+    fn amplitude_from_alpha_inverts_eq3() {
+        for (e, gamma, lambda) in [(2.0, 1.0, PI * PI), (1.0, 5e-5, 1.0), (3.0e4, 0.7, 2.5e-3)] {
+            for alpha in [1e-3, 0.1, 0.24, JOHNSON_1D_CRITICAL_ALPHA, 1.0, 37.0] {
+                let h = waviness_amplitude_from_alpha(e, gamma, alpha, lambda);
+                assert_close(johnson_alpha(e, gamma, h, lambda), alpha, 1e-12);
+                assert_close(
+                    waviness_amplitude_from_alpha(
+                        e,
+                        gamma,
+                        johnson_alpha(e, gamma, h, lambda),
+                        lambda,
+                    ),
+                    h,
+                    1e-12,
+                );
+            }
+        }
+        // Hand value: 2λγ/(π²E*) = 1 for E* = 2, γ = 1, λ = π², so h = 1/α.
+        assert_close(
+            waviness_amplitude_from_alpha(2.0, 1.0, 0.25, PI * PI),
+            4.0,
+            1e-15,
+        );
     }
 
     /// Eq. 5 from first principles (Johnson 1995 reasoning): near the trough the complete-contact

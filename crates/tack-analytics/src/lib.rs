@@ -4,9 +4,35 @@
 //! effective modulus E*, `gamma` the work of adhesion per unit area, forces are positive when
 //! compressive and the approach `d` is positive when pressing. Equation numbers (Eq. N) refer to
 //! Li, Pohrt & Popov, "Adhesive Strength of Contacts of Rough Spheres", Front. Mech. Eng. 2019.
+//!
+//! Besides the closed forms: the inverses of the adhesion parameters (waviness amplitude from
+//! Johnson's α, Eq. 3; rms height from α*, Eq. 11) and a least-squares fit of the Gaussian form
+//! of Eq. 12 ([`fit_gaussian`]), as used for the paper's Fig. 7.
+//!
+//! ```
+//! use std::f64::consts::PI;
+//! use tack_analytics::{
+//!     alpha_star, jkr_force_from_radius, jkr_pull_off_force, jkr_pull_off_radius,
+//!     rms_height_from_alpha_star,
+//! };
+//!
+//! // JKR pull-off under force control: F = −(3/2)πγR (Eq. 7), reached on the equilibrium
+//! // curve F(a) at a_c = (9πγR²/(8E*))^(1/3).
+//! let (e_star, gamma, radius) = (1.0, 5e-5, 1.0);
+//! let f = jkr_pull_off_force(gamma, radius);
+//! assert!((f + 1.5 * PI * gamma * radius).abs() < 1e-15);
+//! let a_c = jkr_pull_off_radius(e_star, gamma, radius);
+//! assert!((jkr_force_from_radius(e_star, gamma, radius, a_c) - f).abs() < 1e-12 * f.abs());
+//!
+//! // The rms height that gives α* = 0.36 on the band q0 = 2π, q1 = 128π with H = 0.5.
+//! let (q0, q1) = (2.0 * PI, 128.0 * PI);
+//! let h = rms_height_from_alpha_star(e_star, gamma, 0.36, 0.5, q0, q1);
+//! assert!((alpha_star(e_star, gamma, h, 0.5, q0, q1) - 0.36).abs() < 1e-12);
+//! ```
 
 mod const_math;
 mod fits;
+mod gaussian_fit;
 mod hertz;
 mod jkr;
 mod johnson;
@@ -16,7 +42,8 @@ mod pohrt_popov;
 mod quad;
 mod westergaard;
 
-pub use fits::{alpha_star, lambda_fit, lambda_star};
+pub use fits::{alpha_star, lambda_fit, lambda_star, rms_height_from_alpha_star};
+pub use gaussian_fit::{FitError, GaussianFit, fit_gaussian};
 pub use hertz::{hertz_contact_radius, hertz_force, hertz_max_pressure, hertz_pressure};
 pub use jkr::{
     JkrPoint, jkr_approach_from_radius, jkr_approach_hat, jkr_approach_scale,
@@ -27,6 +54,7 @@ pub use jkr::{
 pub use johnson::{
     JOHNSON_1D_CRITICAL_ALPHA, JOHNSON_1D_CRITICAL_PSI, johnson_1d_critical_alpha,
     johnson_1d_mean_pressure_ratio, johnson_2d_near_full_ratio, johnson_2d_p_star, johnson_alpha,
+    waviness_amplitude_from_alpha,
 };
 pub use kendall::kendall_pull_off;
 pub use pohrt_popov::{KAPPA_CENTRE, KAPPA_MEAN, critical_stress, kappa_centre, kappa_mean};

@@ -1,5 +1,5 @@
 //! Pohrt & Popov (2015) mesh-dependent critical stress for BEM adhesion in the JKR limit,
-//! σ_c = sqrt(E* γ / (κ Δx)), and the two candidate values of κ (REFERENCE §2).
+//! σ_c = sqrt(E* γ / (κ Δx)), and the two candidate values of κ (docs/theory.md §3.1–3.2).
 
 use crate::const_math;
 use std::f64::consts::PI;
@@ -12,7 +12,7 @@ pub const fn kappa_mean() -> f64 {
 }
 
 /// κ balanced against the *centre* displacement of the element instead of its mean,
-/// κ = w0/2 = (2/π) ln(1 + √2) ≈ 0.5611 (Pohrt & Popov 2015 variant; see REFERENCE §2, where
+/// κ = w0/2 = (2/π) ln(1 + √2) ≈ 0.5611 (Pohrt & Popov 2015 variant; see docs/theory.md §3.2, where
 /// measurements favour [`KAPPA_MEAN`] because this one does not converge with refinement).
 pub const fn kappa_centre() -> f64 {
     2.0 / PI * const_math::ln_one_plus_sqrt2()

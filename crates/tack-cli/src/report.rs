@@ -70,11 +70,17 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
             num(s.pull_off_force),
             num(path.records[i].approach)
         )),
-        Some(i) => lines.push(format!(
-            "force       no adhesion (gamma = 0): no pull-off; least force {} at d = {}",
-            num(s.pull_off_force),
-            num(path.records[i].approach)
-        )),
+        Some(_) => {
+            let peak = path
+                .records
+                .iter()
+                .max_by(|a, b| a.force.total_cmp(&b.force));
+            lines.push(format!(
+                "force       no adhesion (gamma = 0), no pull-off; peak load F = {} at d = {}",
+                num(peak.map_or(f64::NAN, |r| r.force)),
+                num(peak.map_or(f64::NAN, |r| r.approach))
+            ));
+        }
         None => lines.push("pull-off    none: no step outside full contact".to_owned()),
     }
     if adhesive && s.f_jkr.is_finite() && s.f_jkr != 0.0 {
@@ -236,5 +242,109 @@ pub fn num(x: f64) -> String {
             ),
             _ => s,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tack::RunOptions;
+
+    fn run(text: &str, sets: &[&str]) -> (Scene, RunOutcome) {
+        let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        let scene = Scene::parse(text, ".", &sets).unwrap();
+        let outcome = tack::run(&scene, &RunOptions::default(), &mut ()).unwrap();
+        (scene, outcome)
+    }
+
+    const WAVY_1D: &str = include_str!("../../../data/examples/wavy_1d_periodic.toml");
+    const SPHERE: &str = include_str!("../../../data/examples/smooth_jkr_sphere.toml");
+
+    #[test]
+    fn the_pull_off_approach_is_that_of_the_step_carrying_the_force() {
+        // Pressed past the mean height, the waviness is in full contact, whose steps record the
+        // least admissible force (a bound), lower than the pull-off force.
+        let (scene, outcome) = run(WAVY_1D, &["protocol.max_approach=0.012"]);
+        let records = &outcome.path.records;
+        let least = records
+            .iter()
+            .min_by(|a, b| a.force.total_cmp(&b.force))
+            .unwrap();
+        assert!(
+            least.full_contact,
+            "the scene must hit the full-contact bound"
+        );
+        let i = outcome.path.pull_off_step().unwrap();
+        assert!(!records[i].full_contact);
+        assert_eq!(records[i].force, outcome.pull_off_force());
+        let text = report(&scene, &outcome, None);
+        let want = format!(
+            "F = {} at d = {} ",
+            num(records[i].force),
+            num(records[i].approach)
+        );
+        assert!(text.contains(&want), "{text}\nwants {want}");
+        assert!(
+            !text.contains(&format!("at d = {} ", num(least.approach))),
+            "{text}"
+        );
+        // The least mean pressure is a state's, not the full-contact bound.
+        let p_min = outcome.result.summary.extra["min_mean_pressure"];
+        assert!(least.mean_pressure < p_min, "{p_min}");
+        let states = records.iter().filter(|r| !r.full_contact);
+        let want = states
+            .map(|r| r.mean_pressure)
+            .fold(f64::INFINITY, f64::min);
+        assert_eq!(p_min, want);
+    }
+
+    #[test]
+    fn without_adhesion_no_pull_off_or_jkr_ratio_is_printed() {
+        let (scene, outcome) = run(SPHERE, &["material.gamma=0"]);
+        let text = report(&scene, &outcome, None);
+        assert!(!text.contains("NaN") && !text.contains("F_JKR"), "{text}");
+        assert!(!text.contains("pull-off    F"), "{text}");
+        assert!(text.contains("no adhesion (gamma = 0)"), "{text}");
+        let peak = outcome
+            .path
+            .records
+            .iter()
+            .map(|r| r.force)
+            .fold(0.0, f64::max);
+        assert!(
+            text.contains(&format!("peak load F = {}", num(peak))),
+            "{text}"
+        );
+    }
+
+    #[test]
+    fn the_richardson_wall_time_includes_the_coarse_run() {
+        let scene = Scene::parse(SPHERE, ".", &[]).unwrap();
+        let options = RunOptions {
+            command_line: None,
+            richardson: true,
+        };
+        let outcome = tack::run(&scene, &options, &mut ()).unwrap();
+        let text = report(&scene, &outcome, None);
+        let total = format!(
+            "wall time   {:.2} s",
+            outcome.total_wall_time().as_secs_f64()
+        );
+        assert!(
+            text.contains(&total) && text.contains("coarse (2Δx) run"),
+            "{text}"
+        );
+    }
+
+    #[test]
+    fn numbers_have_six_significant_digits() {
+        assert_eq!(num(-5.3454057683), "-5.34541");
+        assert_eq!(num(0.005), "0.005");
+        assert_eq!(num(3.0), "3");
+        assert_eq!(num(123456.7), "123457");
+        assert_eq!(num(1.5e-7), "1.5e-7");
+        assert_eq!(num(5e-4), "5e-4");
+        assert_eq!(num(f64::NAN), "NaN");
+        assert_eq!(num(0.0), "0");
     }
 }

@@ -5,6 +5,37 @@
 //! are analytic height functions sampled onto a grid; [`rough_surface`] generates seeded random
 //! roughness and [`read_height_map_file`] imports measured heights. Surfaces compose by adding
 //! heights, so a macro shape plus roughness needs no special case.
+//!
+//! Element `(i, j)` has its centre at `((i − ⌊nx/2⌋)Δx, (j − ⌊ny/2⌋)Δx)`, so the sphere's apex
+//! sits exactly on an element centre. Every constructor validates its input, and errors
+//! ([`GeometryError`]) name the scene field, the value and the allowed range.
+//!
+//! ```
+//! use tack_geometry::{Boundary, Grid, RoughSpec, Sphere, Surface, rough_surface};
+//!
+//! // A 33 × 33 free grid of 0.1-wide elements and a sphere of radius 2, f = (x² + y²)/(2R).
+//! let grid = Grid::square(33, 0.1, Boundary::Free)?;
+//! assert_eq!((grid.x(16), grid.y(16)), (0.0, 0.0)); // the centre element is the origin
+//! let mut surface = Surface::from_shape(grid, &Sphere::new(2.0)?);
+//! assert_eq!(surface.heights()[[16, 16]], 0.0); // apex: the lowest point
+//! assert_eq!(surface.min(), 0.0);
+//! // One unit off-centre along x (10 elements): 1²/(2·2) = 0.25.
+//! assert!((surface.heights()[[26, 16]] - 0.25).abs() < 1e-12);
+//!
+//! // Seeded random roughness (rms 0.01, H = 0.5, the paper's band) adds to the sphere.
+//! let spec = RoughSpec::paper_defaults(grid, 0.01, 0.5, 7);
+//! let rough = rough_surface(grid, &spec)?;
+//! assert!(rough.mean().abs() < 1e-12);
+//! let rms = (rough.heights().iter().map(|h| h * h).sum::<f64>() / grid.len() as f64).sqrt();
+//! assert!((rms - 0.01).abs() < 1e-12);
+//! surface.add(&rough)?;
+//! assert_eq!(rough_surface(grid, &spec)?, rough); // same seed, same surface
+//!
+//! // Invalid input names the field.
+//! let err = Sphere::new(-1.0).unwrap_err();
+//! assert!(err.to_string().contains("geometry.radius"));
+//! # Ok::<(), tack_geometry::GeometryError>(())
+//! ```
 
 mod error;
 mod grid;

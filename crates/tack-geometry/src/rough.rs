@@ -1,9 +1,10 @@
-//! Seeded random rough surfaces by Fourier filtering (Pohrt & Li 2014 style, REFERENCE §4).
+//! Seeded random rough surfaces by Fourier filtering (Pohrt & Li 2014 style, docs/theory.md §4).
 //!
 //! The spectrum has amplitude `|q|^−(H+1)` on the band `q0 ≤ |q| ≤ q1` (power `C ∝ q^−2−2H`)
 //! and zero elsewhere, with uniform random phases; the inverse transform is real by Hermitian
 //! symmetry, its mean is removed and it is scaled to the requested rms height. Only the phases
-//! are random: the amplitudes are exactly the power law.
+//! are random: the amplitudes are exactly the power law, except at the few self-conjugate
+//! (Nyquist) entries, which must be real and get `a·cos φ` (see `half_spectrum`).
 //!
 //! Reproducibility: the phases come from `ChaCha8Rng::seed_from_u64(seed)`, one `u64` per entry
 //! of the half spectrum `(kx, ky) ∈ [0, nx) × [0, ny/2]` in row-major order (`ky` fastest),

@@ -10,6 +10,7 @@
 //! | `/curve/{n_bonded, n_clusters, iterations, active_set_iterations}` | 1D u64 (`iterations` counts CG iterations) |
 //! | `/curve/converged` | 1D u8, 0 or 1 |
 //! | `/curve/mean_pressure` | 1D f64, only when recorded |
+//! | `/curve/full_contact` | 1D u8, 1 where the step is in periodic full contact (its force and mean pressure are a bound, not a state's); only when recorded |
 //! | `/surface/heights` | 2D f64 `(nx, ny)` with f64 attribute `dx`, only when asked for |
 //! | `/snapshots/<step>/{pressure, bonded}` | 2D f64 and 2D u8 (0/1); `<step>` is the index into the curve as a plain decimal (`0`, `17`, `250`), the group has the f64 attribute `approach` |
 //! | `/summary` attributes | f64 `pull_off_force`, `f_jkr`, `pull_off_ratio`; `johnson_alpha` and `alpha_star` when known; any extra named scalars |
@@ -36,6 +37,56 @@
 //!
 //! HDF5 lists group members alphabetically; the `fields` and `names` attributes keep the
 //! order of the sweep file. Written atomically, like result files.
+//!
+//! # Example: a round trip
+//!
+//! The data model ([`RunResult`]) is plain data; `tack::run` fills it from a solve, but any
+//! program can write one and read it back unchanged.
+//!
+//! ```
+//! use tack_io::{Curve, Provenance, RunResult, Snapshot, Summary, read_result, write_result};
+//! use ndarray::{Array2, array};
+//!
+//! let curve = Curve {
+//!     approach: vec![0.5, 1.0, 0.5, 0.0],
+//!     force: vec![0.8, 2.4, 0.3, -1.1],
+//!     area: vec![0.2, 0.5, 0.3, 0.1],
+//!     n_bonded: vec![20, 50, 30, 10],
+//!     n_clusters: vec![1, 1, 1, 1],
+//!     iterations: vec![12, 9, 7, 15],
+//!     active_set_iterations: vec![2, 2, 3, 4],
+//!     converged: vec![true; 4],
+//!     mean_pressure: None,
+//!     full_contact: None,
+//! };
+//! let result = RunResult {
+//!     provenance: Provenance {
+//!         scene: "version = 1\n".into(),
+//!         ..Provenance::current("unknown", "2026-01-01T00:00:00Z")
+//!     },
+//!     curve,
+//!     surface: Some((Array2::from_elem((3, 2), 0.25), 0.1)),
+//!     snapshots: vec![Snapshot {
+//!         step: 3,
+//!         approach: 0.0,
+//!         pressure: array![[0.0, -0.5], [1.0, 0.0], [0.0, 0.0]],
+//!         bonded: array![[false, true], [true, false], [false, false]],
+//!     }],
+//!     summary: Summary {
+//!         pull_off_force: -1.1,
+//!         f_jkr: -1.0,
+//!         pull_off_ratio: 1.1,
+//!         ..Summary::default()
+//!     },
+//! };
+//!
+//! let path = std::env::temp_dir().join(format!("tack-io-doctest-{}.h5", std::process::id()));
+//! write_result(&path, &result)?;
+//! let back = read_result(&path);
+//! std::fs::remove_file(&path)?;
+//! assert_eq!(back?, result); // every field, bit for bit
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 mod error;
 mod h5;

@@ -60,6 +60,10 @@ pub struct Curve {
     pub converged: Vec<bool>,
     /// Mean pressure over the grid, when recorded.
     pub mean_pressure: Option<Vec<f64>>,
+    /// Whether the step is in periodic full contact, whose force and mean pressure are the
+    /// least admissible ones (a bound), not a state's; `None` in files written before the
+    /// column existed.
+    pub full_contact: Option<Vec<bool>>,
 }
 
 impl Curve {
@@ -87,6 +91,9 @@ impl Curve {
         ];
         if let Some(p) = &self.mean_pressure {
             cols.push(("mean_pressure", p.len()));
+        }
+        if let Some(f) = &self.full_contact {
+            cols.push(("full_contact", f.len()));
         }
         cols
     }

@@ -211,6 +211,12 @@ fn read_curve(file: &File, path: &Path) -> Result<Curve, IoError> {
         } else {
             None
         },
+        full_contact: if g.link_exists("full_contact") {
+            let full: Vec<u8> = read_column(&g, "full_contact", path)?;
+            Some(full.into_iter().map(|c| c != 0).collect())
+        } else {
+            None
+        },
     };
     curve.check_lengths(path)?;
     Ok(curve)

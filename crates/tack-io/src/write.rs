@@ -128,8 +128,12 @@ fn write_curve(file: &File, curve: &Curve, path: &Path) -> Result<(), IoError> {
     ] {
         write_dataset(&group, name, data.into(), path)?;
     }
-    let converged: Vec<u8> = curve.converged.iter().map(|&c| u8::from(c)).collect();
-    write_dataset(&group, "converged", (&converged).into(), path).map(drop)
+    let flags = |column: &[bool]| column.iter().map(|&c| u8::from(c)).collect::<Vec<u8>>();
+    write_dataset(&group, "converged", (&flags(&curve.converged)).into(), path)?;
+    if let Some(full) = &curve.full_contact {
+        write_dataset(&group, "full_contact", (&flags(full)).into(), path)?;
+    }
+    Ok(())
 }
 
 fn write_snapshots(

@@ -4,6 +4,43 @@
 //! Both operators implement [`ElasticOperator`]; build the one a grid needs with [`operator_for`].
 //! FFT plans and all scratch buffers are allocated once, at construction; `apply` allocates nothing
 //! of its own. Nothing in this crate does IO.
+//!
+//! Pressure is positive when compressive and pushes the surface in (positive displacement).
+//! The free operator samples [`love_rectangle`] on a zero-padded grid, so it equals the direct
+//! influence-matrix sum to round-off: a uniformly loaded block of elements displaces its centre
+//! exactly as Love's formula for the whole block says.
+//!
+//! ```
+//! use tack_geometry::{Boundary, Grid};
+//! use tack_kernels::{
+//!     ElasticOperator, FreeOperator, SELF_COMPLIANCE, love_rectangle, operator_for,
+//! };
+//! use ndarray::{Array2, s};
+//!
+//! let (e_star, dx, p) = (2.0, 0.1, 3.0);
+//! let grid = Grid::square(16, dx, Boundary::Free)?;
+//! let mut op = FreeOperator::new(grid, e_star)?;
+//!
+//! // Uniform pressure p on the 5 × 5 elements centred on the origin (element (8, 8)).
+//! let mut pressure = Array2::<f64>::zeros(grid.shape());
+//! pressure.slice_mut(s![6..11, 6..11]).fill(p);
+//! let mut u = Array2::<f64>::zeros(grid.shape());
+//! op.apply(pressure.view(), u.view_mut());
+//!
+//! // The surface moves in everywhere, most at the centre ...
+//! assert!(u.iter().all(|&v| v > 0.0));
+//! let centre = u[[8, 8]];
+//! assert!(u.iter().all(|&v| v <= centre));
+//! // ... by Love's displacement for the 0.5 × 0.5 square: the discrete sum is exact.
+//! let love = love_rectangle(0.0, 0.0, 2.5 * dx, 2.5 * dx) * p / e_star;
+//! assert!((centre - love).abs() < 1e-12 * love);
+//! assert_eq!(op.self_compliance(), SELF_COMPLIANCE * dx / e_star);
+//!
+//! // `operator_for` picks the operator from the grid's boundary kind.
+//! let boxed = operator_for(grid.with_boundary(Boundary::Periodic), e_star)?;
+//! assert_eq!(boxed.grid().boundary(), Boundary::Periodic);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 mod fft2;
 pub use fft2::Fft2;

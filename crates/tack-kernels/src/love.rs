@@ -40,7 +40,7 @@ mod tests {
 
     #[test]
     fn self_influence_is_1_1222() {
-        // Centre of a unit square (a = b = 1/2): 4 ln(1+√2)/π = 1.1222 (REFERENCE §1).
+        // Centre of a unit square (a = b = 1/2): 4 ln(1+√2)/π = 1.1222 (docs/theory.md §2.1).
         let w = love_rectangle(0.0, 0.0, 0.5, 0.5);
         assert!((w - 1.1222).abs() < 1e-4, "{w}");
         assert!((w - SELF_COMPLIANCE).abs() < 1e-14, "{w}");

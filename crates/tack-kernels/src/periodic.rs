@@ -1,5 +1,5 @@
 //! Periodic boundaries: the spectral half-space kernel `ũ(q) = 2 p̃(q)/(E*|q|)` with the
-//! mean (q = 0) mode dropped, so displacements are zero-mean (REFERENCE §1).
+//! mean (q = 0) mode dropped, so displacements are zero-mean (docs/theory.md §2.3).
 
 use ndarray::{ArrayView2, ArrayViewMut2};
 use tack_geometry::Grid;

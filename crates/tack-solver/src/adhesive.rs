@@ -1,7 +1,7 @@
 //! JKR-limit adhesive contact: a bonded set with the Pohrt–Popov mesh-dependent detachment
 //! criterion, solved at a prescribed approach by an active-set loop around a linear CG.
 //!
-//! Protocol at approach `d` (REFERENCE §2): solve `K p = d − f` on the bonded set `C`
+//! Protocol at approach `d` (docs/theory.md §3.4): solve `K p = d − f` on the bonded set `C`
 //! (`p = 0` off it); detach **every** bonded element whose tension exceeds `σ_c` (all at once,
 //! as in the reference prototype); attach every free element that penetrates; repeat until `C`
 //! no longer changes. Both decisions come from the same solution and are applied together, so

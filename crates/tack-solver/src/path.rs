@@ -30,6 +30,72 @@ pub struct ApproachPath {
 }
 
 impl ApproachPath {
+    /// Step cap of the constructors: far more than any sensible path needs, so that only a
+    /// path that does not end (a retraction that never loses contact) stops there.
+    pub const DEFAULT_MAX_STEPS: usize = 100_000;
+
+    /// Load from `start` to `max_approach` in steps of `load_step`, then retract in steps of
+    /// `unload_step` until no element is bonded: the whole force–approach curve.
+    ///
+    /// **Load deep enough.** Loading bonds only what touches, and a bonded element detaches
+    /// only under a tension above σ_c, so the contact reached at `max_approach` pins the
+    /// retraction. If that contact is smaller than the JKR pull-off radius a_c, the pull-off
+    /// comes out too weak: for a sphere, load to at least d = 6·(Rγ²/E*²)^(1/3) (a contact of
+    /// about 1.6 a_c; `docs/theory.md` §3.5). The pull-off is resolved to about `unload_step`.
+    ///
+    /// ```
+    /// use tack_solver::ApproachPath;
+    /// let path = ApproachPath::load_retract(0.01, 0.1, 0.01, 0.001)?;
+    /// assert_eq!(path.retract_to, None);
+    /// assert!(ApproachPath::load_retract(0.01, 0.1, 0.0, 0.001).is_err());
+    /// # Ok::<(), tack_solver::SolverError>(())
+    /// ```
+    pub fn load_retract(
+        start: f64,
+        max_approach: f64,
+        load_step: f64,
+        unload_step: f64,
+    ) -> Result<Self, SolverError> {
+        let path = Self {
+            start,
+            max_approach,
+            load_step,
+            unload_step,
+            coarse_unload_step: None,
+            retract_to: None,
+            max_steps: Self::DEFAULT_MAX_STEPS,
+        };
+        path.validate()?;
+        Ok(path)
+    }
+
+    /// Only the pull-off: one load step straight to `max_approach`, a retraction in coarse
+    /// steps of `coarse_unload_step` while the force is still compressive, then fine steps of
+    /// `unload_step` through the tensile part until no element is bonded. Much cheaper than
+    /// [`ApproachPath::load_retract`] when only the pull-off force is wanted.
+    ///
+    /// The load-deep-enough rule of [`ApproachPath::load_retract`] holds here too (one step to
+    /// `max_approach` bonds the same contact as a gradual load on a smooth body). A coarse step
+    /// larger than the whole tensile part would jump over the pull-off: keep it below the
+    /// approach change between zero force and pull-off (for a sphere about |d_JKR|).
+    pub fn pull_off_only(
+        max_approach: f64,
+        coarse_unload_step: f64,
+        unload_step: f64,
+    ) -> Result<Self, SolverError> {
+        let path = Self {
+            start: max_approach,
+            max_approach,
+            load_step: max_approach.abs().max(unload_step),
+            unload_step,
+            coarse_unload_step: Some(coarse_unload_step),
+            retract_to: None,
+            max_steps: Self::DEFAULT_MAX_STEPS,
+        };
+        path.validate()?;
+        Ok(path)
+    }
+
     /// Checks finiteness and ordering; errors name the `protocol.*` field.
     pub fn validate(&self) -> Result<(), SolverError> {
         let bad = |field, value, allowed| {
@@ -108,6 +174,10 @@ pub trait Observer {
         _bonded: &Array2<bool>,
     ) {
     }
+    /// The path starts over from its first step: a driver runs it again (the `tack` facade
+    /// re-solves on the full grid when contact reached a crop window's edge). Observers that
+    /// keep state per step reset it here.
+    fn on_restart(&mut self) {}
     /// Asked after every step: `true` stops the path there with
     /// [`SolverError::Cancelled`] (a long run cancelled from another thread or a signal).
     fn cancelled(&mut self) -> bool {
@@ -153,8 +223,8 @@ impl SnapshotRequest {
 /// (copied into buffers allocated once).
 #[derive(Default)]
 struct Keeper {
-    pull_off: Option<(f64, Snapshot)>,
-    last_contact: Option<Snapshot>,
+    pull_off: Option<(f64, StepFields)>,
+    last_contact: Option<StepFields>,
 }
 
 impl Keeper {
@@ -165,7 +235,7 @@ impl Keeper {
                 .as_ref()
                 .is_none_or(|(force, _)| record.force < *force)
         {
-            let snap = Snapshot {
+            let snap = StepFields {
                 step,
                 pressure: solver.pressure().clone(),
                 bonded: solver.bonded().clone(),
@@ -180,7 +250,7 @@ impl Keeper {
                     s.bonded.assign(solver.bonded());
                 }
                 None => {
-                    self.last_contact = Some(Snapshot {
+                    self.last_contact = Some(StepFields {
                         step,
                         pressure: solver.pressure().clone(),
                         bonded: solver.bonded().clone(),
@@ -191,8 +261,8 @@ impl Keeper {
     }
 
     /// The kept snapshots in step order, one per step.
-    fn into_snapshots(self) -> Vec<Snapshot> {
-        let mut out: Vec<Snapshot> = self.pull_off.map(|(_, s)| s).into_iter().collect();
+    fn into_snapshots(self) -> Vec<StepFields> {
+        let mut out: Vec<StepFields> = self.pull_off.map(|(_, s)| s).into_iter().collect();
         if let Some(last) = self.last_contact
             && out.first().is_none_or(|p| p.step != last.step)
         {
@@ -203,9 +273,10 @@ impl Keeper {
     }
 }
 
-/// Fields stored at one step.
+/// The pressure field and bonded mask of one step, kept on request ([`SnapshotRequest`]);
+/// the result file stores them, with the step's approach, as `tack_io::Snapshot`.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Snapshot {
+pub struct StepFields {
     /// Step index into [`PathResult::records`].
     pub step: usize,
     /// Element pressures.
@@ -222,9 +293,26 @@ pub struct PathResult {
     /// Phase of each step.
     pub phases: Vec<Phase>,
     /// Requested fields.
-    pub snapshots: Vec<Snapshot>,
+    pub snapshots: Vec<StepFields>,
     /// The path ended as planned (detached or `retract_to` reached), not by `max_steps`.
     pub completed: bool,
+}
+
+/// The pull-off step of a force curve given as `(force, full_contact)` per step: the least
+/// force over the steps that are not periodic full contact (their force is a bound, not a
+/// state's), the first of equal ones; NaN forces are skipped. `None` when no step counts.
+/// The one rule behind [`PathResult::pull_off_step`], usable on a curve read from a file.
+pub fn pull_off_step(steps: impl IntoIterator<Item = (f64, bool)>) -> Option<usize> {
+    let mut best: Option<(usize, f64)> = None;
+    for (i, (force, full_contact)) in steps.into_iter().enumerate() {
+        if full_contact || force.is_nan() {
+            continue;
+        }
+        if best.is_none_or(|(_, f)| force < f) {
+            best = Some((i, force));
+        }
+    }
+    best.map(|(i, _)| i)
 }
 
 impl PathResult {
@@ -239,16 +327,7 @@ impl PathResult {
     /// the steps that are not periodic full contact (the first of equal ones), `None` when
     /// there is no such step.
     pub fn pull_off_step(&self) -> Option<usize> {
-        let mut best: Option<usize> = None;
-        for (i, r) in self.records.iter().enumerate() {
-            if r.full_contact || r.force.is_nan() {
-                continue;
-            }
-            if best.is_none_or(|b| r.force < self.records[b].force) {
-                best = Some(i);
-            }
-        }
-        best
+        pull_off_step(self.records.iter().map(|r| (r.force, r.full_contact)))
     }
     /// Every step converged.
     pub fn all_converged(&self) -> bool {
@@ -325,7 +404,7 @@ impl AdhesiveSolver {
         let rec = self.step(d)?;
         let index = out.records.len();
         if snapshots.wants(index) {
-            out.snapshots.push(Snapshot {
+            out.snapshots.push(StepFields {
                 step: index,
                 pressure: self.pressure().clone(),
                 bonded: self.bonded().clone(),

@@ -269,6 +269,54 @@ pub fn band(grid: &Grid, q0: Option<f64>, q1: Option<f64>) -> (f64, f64) {
     (q0.unwrap_or(d.q0), q1.unwrap_or(d.q1))
 }
 
+/// The paper's random roughness on `grid` (band `q0 = 2π/L` … `q1 = π/Δx`, Hurst exponent
+/// `hurst`, phases from `seed`) with the rms height that gives the adhesion parameter
+/// `alpha_star` for material `e_star`, `gamma` (Eq. 11 inverted, `docs/theory.md` §7.2).
+///
+/// ```
+/// use tack::geometry::{Boundary, Grid};
+/// let grid = Grid::square(128, 1.0 / 128.0, Boundary::Free)?;
+/// let spec = tack::problem::rough_spec_for_alpha_star(grid, 1.0, 1e-4, 0.3, 0.5, 7)?;
+/// let a = tack::analytics::alpha_star(1.0, 1e-4, spec.rms, 0.5, spec.q0, spec.q1);
+/// assert!((a - 0.3).abs() < 1e-12);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn rough_spec_for_alpha_star(
+    grid: Grid,
+    e_star: f64,
+    gamma: f64,
+    alpha_star: f64,
+    hurst: f64,
+    seed: u64,
+) -> Result<RoughSpec, SceneError> {
+    let positive = |field: &str, v: f64| {
+        if v.is_finite() && v > 0.0 {
+            Ok(())
+        } else {
+            Err(SceneError::OutOfRange {
+                field: field.into(),
+                value: v.to_string(),
+                allowed: "a finite number > 0".into(),
+            })
+        }
+    };
+    positive("material.e_star", e_star)?;
+    positive("material.gamma", gamma)?;
+    positive("alpha_star", alpha_star)?;
+    if !(hurst > 0.0 && hurst < 1.0) {
+        return Err(SceneError::OutOfRange {
+            field: "roughness.hurst".into(),
+            value: hurst.to_string(),
+            allowed: "0 < H < 1".into(),
+        });
+    }
+    let mut spec = RoughSpec::paper_defaults(grid, 0.0, hurst, seed);
+    spec.rms = tack_analytics::rms_height_from_alpha_star(
+        e_star, gamma, alpha_star, hurst, spec.q0, spec.q1,
+    );
+    Ok(spec)
+}
+
 fn count(field: &str, n: usize) -> Result<usize, SceneError> {
     if (1..=MAX_ELEMENTS_PER_AXIS).contains(&n) {
         Ok(n)
@@ -583,8 +631,13 @@ fn check_fits(
                 (_, Some(s)) => ("geometry.half_side", s),
                 _ => return Ok(()),
             };
-            if size + grid.dx() > half_extent {
-                let n_needed = (2.0 * (size + grid.dx()) / grid.dx()).ceil() as usize;
+            // The punch face needs one element to spare beyond its edge on every side. The
+            // origin is the centre of element ⌊n/2⌋, so an even side reaches one element less
+            // on its positive end: the outermost centre there is at (n − 1 − ⌊n/2⌋)·Δx.
+            let reach = |n: usize| (n - 1 - n / 2) as f64 * grid.dx();
+            let needed = size + grid.dx() * (1.0 - 1e-9);
+            if reach(nx.min(ny)) < needed {
+                let n_needed = (1..).find(|&n| reach(n) >= needed).unwrap_or(usize::MAX);
                 return Err(SceneError::Inconsistent(format!(
                     "{field} = {size} does not fit the grid: the punch needs a free grid of at \
                      least {n_needed} × {n_needed} elements at grid.dx = {} (the grid is \
@@ -671,6 +724,32 @@ load_step = 0.05
         for s in &path.snapshots {
             assert_eq!(s.bonded.dim(), p.grid.shape());
             assert_eq!(s.bonded.iter().filter(|&&b| b).count(), r[s.step].n_bonded);
+        }
+    }
+
+    #[test]
+    fn a_punch_on_an_even_grid_needs_its_spare_element_on_the_short_side() {
+        let punch = include_str!("../../../data/examples/flat_punch.toml");
+        // a = 1, Δx = 0.1: the face needs centres out to 1.1 on both sides. An even n = 22
+        // reaches only 1.0 on its positive side (the origin is element 11); n = 23 reaches 1.1.
+        let e = build(punch, &["grid.n=22"]).unwrap_err().to_string();
+        assert!(
+            e.contains("geometry.radius = 1") && e.contains("23 × 23"),
+            "{e}"
+        );
+        assert!(build(punch, &["grid.n=21"]).is_err());
+        // The issue's case: a = 2 on n = 42 (reaches 2.0), accepted before and then touching
+        // the edge in every step.
+        let e = build(punch, &["grid.n=42", "geometry.radius=2"]).unwrap_err();
+        assert!(e.to_string().contains("43 × 43"), "{e}");
+        for n in [23, 24] {
+            let p = build(
+                punch,
+                &[&format!("grid.n={n}"), "protocol.unload_step=0.05"],
+            )
+            .unwrap();
+            let path = crate::run::solve(&p, &mut ()).unwrap();
+            assert!(path.records.iter().all(|r| !r.edge_contact), "n = {n}");
         }
     }
 

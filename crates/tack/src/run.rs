@@ -8,7 +8,7 @@
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use tack_solver::{Observer, PathResult};
+use tack_solver::{Observer, PathResult, Phase, StepRecord};
 
 use crate::Error;
 use crate::problem::Problem;
@@ -143,27 +143,77 @@ pub fn run_to_file(
 
 /// Runs the problem's approach path on a fresh solver.
 ///
-/// With a crop window the path runs on the window; snapshots are embedded back into the full
-/// grid. Should contact ever reach the window's edge (the crop rule is conservative, so this
-/// means a surprise), the path is solved again on the full grid.
+/// With a crop window the path runs on the window; snapshots, and the fields the observer
+/// sees in [`Observer::on_fields`], are on the full grid either way. Should contact ever reach
+/// the window's edge (the crop rule is conservative, so this means a surprise), the observer
+/// is told ([`Observer::on_restart`]) and the path is solved again on the full grid.
 pub fn solve(problem: &Problem, observer: &mut dyn Observer) -> Result<PathResult, SceneError> {
     if let Some(w) = &problem.window {
         let mut solver = problem.solver(Some(w))?;
-        let mut result = solver.run_path(&problem.path, &problem.snapshots, observer)?;
+        let mut embed = OnFullGrid {
+            inner: &mut *observer,
+            window: *w,
+            shape: problem.grid.shape(),
+        };
+        let mut result = solver.run_path(&problem.path, &problem.snapshots, &mut embed)?;
         if !result.records.iter().any(|r| r.edge_contact) {
-            let block = ndarray::s![w.i0..w.i1, w.j0..w.j1];
             for snap in &mut result.snapshots {
-                let mut pressure = ndarray::Array2::zeros(problem.grid.shape());
-                let mut bonded = ndarray::Array2::from_elem(problem.grid.shape(), false);
-                pressure.slice_mut(block).assign(&snap.pressure);
-                bonded.slice_mut(block).assign(&snap.bonded);
-                (snap.pressure, snap.bonded) = (pressure, bonded);
+                (snap.pressure, snap.bonded) = embed.fields(&snap.pressure, &snap.bonded);
             }
             return Ok(result);
         }
+        observer.on_restart();
     }
     let mut solver = problem.solver(None)?;
     Ok(solver.run_path(&problem.path, &problem.snapshots, observer)?)
+}
+
+/// Passes a cropped run's steps on with their fields placed on the full grid (zero pressure,
+/// unbonded outside the window).
+struct OnFullGrid<'a> {
+    inner: &'a mut dyn Observer,
+    window: tack_geometry::Window,
+    shape: (usize, usize),
+}
+
+impl OnFullGrid<'_> {
+    fn fields(
+        &self,
+        pressure: &ndarray::Array2<f64>,
+        bonded: &ndarray::Array2<bool>,
+    ) -> (ndarray::Array2<f64>, ndarray::Array2<bool>) {
+        let w = &self.window;
+        let block = ndarray::s![w.i0..w.i1, w.j0..w.j1];
+        let mut full_pressure = ndarray::Array2::zeros(self.shape);
+        let mut full_bonded = ndarray::Array2::from_elem(self.shape, false);
+        full_pressure.slice_mut(block).assign(pressure);
+        full_bonded.slice_mut(block).assign(bonded);
+        (full_pressure, full_bonded)
+    }
+}
+
+impl Observer for OnFullGrid<'_> {
+    fn on_step(&mut self, index: usize, phase: Phase, record: &StepRecord) {
+        self.inner.on_step(index, phase, record);
+    }
+    fn on_fields(
+        &mut self,
+        index: usize,
+        phase: Phase,
+        record: &StepRecord,
+        pressure: &ndarray::Array2<f64>,
+        bonded: &ndarray::Array2<bool>,
+    ) {
+        let (pressure, bonded) = self.fields(pressure, bonded);
+        self.inner
+            .on_fields(index, phase, record, &pressure, &bonded);
+    }
+    fn on_restart(&mut self) {
+        self.inner.on_restart();
+    }
+    fn cancelled(&mut self) -> bool {
+        self.inner.cancelled()
+    }
 }
 
 /// The `/summary` of a run: pull-off force (the minimum force), F_JKR and the ratio (NaN for
@@ -193,9 +243,12 @@ pub fn summary(problem: &Problem, path: &PathResult) -> tack_io::Summary {
     if let Some(p) = r.p_star {
         extra.insert("p_star".to_owned(), p);
     }
+    // Full-contact steps of a periodic grid record a bound (the least admissible mean
+    // pressure, about −σ_c), not a state's pressure: they are left out, as in the pull-off.
     let min_mean_pressure = path
         .records
         .iter()
+        .filter(|r| !r.full_contact)
         .map(|r| r.mean_pressure)
         .fold(f64::INFINITY, f64::min);
     if min_mean_pressure.is_finite() {
@@ -274,6 +327,7 @@ pub fn curve(path: &PathResult) -> tack_io::Curve {
         active_set_iterations: r.iter().map(|s| s.active_set_iterations as u64).collect(),
         converged: r.iter().map(|s| s.converged).collect(),
         mean_pressure: Some(r.iter().map(|s| s.mean_pressure).collect()),
+        full_contact: Some(r.iter().map(|s| s.full_contact).collect()),
     }
 }
 
@@ -309,6 +363,7 @@ pub fn surface_file(problem: &Problem, provenance: tack_io::Provenance) -> tack_
         provenance,
         curve: tack_io::Curve {
             mean_pressure: None,
+            full_contact: None,
             ..tack_io::Curve::default()
         },
         surface: Some((problem.surface.heights().clone(), problem.grid.dx())),

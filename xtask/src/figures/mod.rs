@@ -303,6 +303,7 @@ pub fn write_figure(
             active_set_iterations: zeros,
             converged: vec![true; table.x.len()],
             mean_pressure: Some(table.reference.clone()),
+            full_contact: None,
         },
         surface: None,
         snapshots: Vec::new(),
@@ -356,8 +357,11 @@ pub fn run(n: u8, ctx: &Ctx) -> Result<Summary> {
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PullOff {
-    /// Deepest approach below the mean surface, in units of (Rγ²/E*²)^(1/3) (REFERENCE §2: 6,
-    /// a contact of about 1.6 a_c).
+    /// Deepest approach below the highest point of the roughness (the `offset` of
+    /// [`sphere_scene`]), in units of (Rγ²/E*²)^(1/3). With one load step (the figures'
+    /// setting) every element with f ≤ d bonds, at least a disc of radius
+    /// sqrt(2·load_depth)·(R²γ/E*)^(1/3): load_depth = 3 gives about 1.6 a_c
+    /// (docs/theory.md §3.5).
     pub load_depth: f64,
     /// Number of load steps from the first touch.
     pub load_steps: usize,

@@ -6,7 +6,9 @@
 use anyhow::{Result, bail};
 use serde::Deserialize;
 use tack::scene::{Geometry, Roughness, SceneFile, Snapshots};
-use tack_analytics::{alpha_star, jkr_pull_off_approach, lambda_star};
+use tack_analytics::{
+    GaussianFit, fit_gaussian, jkr_pull_off_approach, lambda_star, rms_height_from_alpha_star,
+};
 use tack_geometry::{Boundary, Grid, RoughSpec, rough_surface};
 
 use super::{Ctx, PullOff, RunFiles, Summary, Table, crop_maps, sphere_scene, write_figure};
@@ -98,7 +100,7 @@ fn rough_scene(
     let (e, g) = (base.material.e_star, base.material.gamma);
     let grid = Grid::square(p.grid_n, radius / p.grid_n as f64, Boundary::Free)?;
     let band = RoughSpec::paper_defaults(grid, 1.0, hurst, seed);
-    let h = alpha_star(e, g, 1.0, hurst, band.q0, band.q1) / a;
+    let h = rms_height_from_alpha_star(e, g, a, hurst, band.q0, band.q1);
     let rough = rough_surface(grid, &RoughSpec { rms: h, ..band })?;
     let (top, range) = (rough.max(), rough.max() - rough.min());
     let mut f = base.clone();
@@ -185,73 +187,12 @@ fn points(ctx: &Ctx) -> Result<(Fig7, Vec<Point>, f64, Vec<String>)> {
     Ok((p, pts, jkr_pull_off_approach(e, g, radius).abs(), notes))
 }
 
-/// Least-squares fit of A·exp(−((x − c)/w)²) by damped Gauss–Newton from (1, 0.36, 0.12).
-pub fn fit_gaussian(pts: &[(f64, f64)]) -> (f64, f64, f64) {
-    let model = |p: [f64; 3], x: f64| p[0] * (-((x - p[1]) / p[2]).powi(2)).exp();
-    let cost = |p: [f64; 3]| {
-        pts.iter()
-            .map(|&(x, y)| (y - model(p, x)).powi(2))
-            .sum::<f64>()
-    };
-    let mut p = [1.0, 0.36, 0.12];
-    let mut mu = 1e-3;
-    for _ in 0..200 {
-        let (mut jtj, mut jtr) = ([[0.0; 3]; 3], [0.0; 3]);
-        for &(x, y) in pts {
-            let e = (-((x - p[1]) / p[2]).powi(2)).exp();
-            let u = (x - p[1]) / p[2];
-            let j = [e, p[0] * e * 2.0 * u / p[2], p[0] * e * 2.0 * u * u / p[2]];
-            let r = y - p[0] * e;
-            for a in 0..3 {
-                jtr[a] += j[a] * r;
-                for b in 0..3 {
-                    jtj[a][b] += j[a] * j[b];
-                }
-            }
-        }
-        for (a, row) in jtj.iter_mut().enumerate() {
-            row[a] *= 1.0 + mu;
-        }
-        let Some(step) = solve3(jtj, jtr) else { break };
-        let trial = [p[0] + step[0], p[1] + step[1], (p[2] + step[2]).abs()];
-        if cost(trial) < cost(p) {
-            let small = step.iter().map(|s| s.abs()).fold(0.0, f64::max) < 1e-12;
-            p = trial;
-            mu = (mu * 0.3).max(1e-12);
-            if small {
-                break;
-            }
-        } else {
-            mu *= 10.0;
-            if mu > 1e12 {
-                break;
-            }
-        }
-    }
-    (p[0], p[1], p[2])
-}
-
-/// Solves a 3×3 system by Cramer's rule; `None` if singular.
-fn solve3(m: [[f64; 3]; 3], r: [f64; 3]) -> Option<[f64; 3]> {
-    let det = |m: [[f64; 3]; 3]| {
-        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
-    };
-    let d = det(m);
-    if d.abs() < 1e-300 || !d.is_finite() {
-        return None;
-    }
-    let mut out = [0.0; 3];
-    for (c, o) in out.iter_mut().enumerate() {
-        let mut mc = m;
-        for row in 0..3 {
-            mc[row][c] = r[row];
-        }
-        *o = det(mc) / d;
-    }
-    Some(out)
-}
+/// Starting guess of Figure 7's Gaussian fit (near Eq. 12's 1.023, 0.3619, 0.1188).
+const FIT_START: GaussianFit = GaussianFit {
+    amplitude: 1.0,
+    centre: 0.36,
+    width: 0.12,
+};
 
 /// Figure 7: mean ± standard deviation of |F_ad/F_JKR| over realizations against h (A) and
 /// against α* with Eq. 12 and the fitted Gaussian (B).
@@ -313,7 +254,14 @@ pub fn fig7(ctx: &Ctx) -> Result<Summary> {
             s,
         ));
     }
-    let (a, c, w) = fit_gaussian(&fit_pts);
+    let fit = fit_gaussian(&fit_pts, FIT_START);
+    let (a, c, w) = match fit {
+        Ok(f) => (f.amplitude, f.centre, f.width),
+        Err(e) => {
+            summary.note(format!("no fit: {e}"));
+            (f64::NAN, f64::NAN, f64::NAN)
+        }
+    };
     summary.add_vs("fit_A", a, 1.023);
     summary.add_vs("fit_c", c, 0.3619);
     summary.add_vs("fit_w", w, 0.1188);
@@ -328,12 +276,14 @@ pub fn fig7(ctx: &Ctx) -> Result<Summary> {
     };
     by_a.series
         .push(Series::new("Eq. 12", curve(&lambda_star), Style::Dashed, 7));
-    by_a.series.push(Series::new(
-        format!("fit: {a:.3}·exp(−((α*−{c:.3})/{w:.3})²)"),
-        curve(&|x| a * (-((x - c) / w).powi(2)).exp()),
-        Style::Line,
-        9,
-    ));
+    if let Ok(f) = fit {
+        by_a.series.push(Series::new(
+            format!("fit: {a:.3}·exp(−((α*−{c:.3})/{w:.3})²)"),
+            curve(&|x| f.eval(x)),
+            Style::Line,
+            9,
+        ));
+    }
     write_figure(
         ctx,
         &spec,
@@ -538,22 +488,4 @@ pub fn fig8(ctx: &Ctx) -> Result<Summary> {
         |root| draw_maps(root, &maps, 3),
     )?;
     Ok(summary)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn gaussian_fit_recovers_parameters() {
-        let pts: Vec<(f64, f64)> = (0..20)
-            .map(|i| 0.1 + i as f64 * 0.02)
-            .map(|x| (x, 0.9 * (-((x - 0.3) / 0.1f64).powi(2)).exp()))
-            .collect();
-        let (a, c, w) = fit_gaussian(&pts);
-        assert!(
-            (a - 0.9).abs() < 1e-6 && (c - 0.3).abs() < 1e-6 && (w - 0.1).abs() < 1e-6,
-            "{a} {c} {w}"
-        );
-    }
 }

@@ -4,14 +4,15 @@
 //! parameter for several materials and geometries with Eq. 9 overlaid (Fig. 5, one tack sweep
 //! in `OUT/fig5/sweep-<mode>/`, resumable).
 
-use std::f64::consts::PI;
 use std::sync::Arc;
 
 use anyhow::{Context, Result, bail};
 use serde::Deserialize;
 use tack::Scene;
 use tack::scene::{Geometry, Roughness, SceneFile};
-use tack_analytics::{jkr_pull_off_approach, johnson_alpha, lambda_fit};
+use tack_analytics::{
+    jkr_pull_off_approach, johnson_alpha, lambda_fit, waviness_amplitude_from_alpha,
+};
 
 use super::{
     Ctx, PullOff, RunFiles, Summary, Table, crop_maps, jkr_curve, sphere_scene, write_figure,
@@ -70,7 +71,7 @@ fn geometry(file: &SceneFile) -> Result<(f64, f64)> {
 fn wavy_scene(base: &SceneFile, alpha: f64, p: &Fig4) -> Result<SceneFile> {
     let (lambda, _) = geometry(base)?;
     let (e, g) = (base.material.e_star, base.material.gamma);
-    let h = (2.0 * lambda * g / (PI * PI * e)).sqrt() / alpha;
+    let h = waviness_amplitude_from_alpha(e, g, alpha, lambda);
     let mut file = base.clone();
     file.roughness = Some(Roughness::Waviness2d { h, lambda });
     sphere_scene(
