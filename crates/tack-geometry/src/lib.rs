@@ -45,7 +45,7 @@ mod shapes;
 mod surface;
 
 pub use error::GeometryError;
-pub use grid::{Boundary, Grid};
+pub use grid::{Boundary, Grid, MAX_ELEMENTS_PER_AXIS};
 pub use heightmap::{height_map_surface, read_height_map_file, read_height_map_text};
 pub use rough::{RoughSpec, rough_surface};
 pub use shapes::{DEFAULT_PUNCH_LIFT, FlatPunch, PunchFace, Shape, Sphere, Waviness1d, Waviness2d};

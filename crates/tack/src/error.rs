@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use thiserror::Error;
 
-/// Everything [`crate::run`] and its neighbours can fail with. Every message names the field,
+/// Everything [`crate::run()`] and its neighbours can fail with. Every message names the field,
 /// the value and the allowed range, or the file.
 #[derive(Debug, Error)]
 pub enum Error {
