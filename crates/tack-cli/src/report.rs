@@ -163,12 +163,12 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
             String::new()
         }
     ));
-    let edge = path.records.iter().filter(|r| r.edge_contact).count();
-    if edge > 0 {
-        lines.push(format!(
-            "WARNING     contact reached the edge of the free grid in {edge} steps: the domain \
-             cuts it off; enlarge grid.n or grid.length"
-        ));
+    lines.push(format!(
+        "status      {}",
+        s.status.as_deref().unwrap_or("unknown")
+    ));
+    for warning in &s.warnings {
+        lines.push(format!("WARNING     {warning}"));
     }
     match outcome.coarse_wall_time {
         Some(coarse) => lines.push(format!(

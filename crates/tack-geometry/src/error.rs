@@ -6,7 +6,7 @@ use thiserror::Error;
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum GeometryError {
     /// A real-valued parameter is not finite or outside its range.
-    #[error("{field} = {value} is invalid: must be {allowed}")]
+    #[error("{field} = {} is invalid: must be {allowed}", num(*value))]
     OutOfRange {
         /// Name of the offending field, e.g. `grid.dx`.
         field: &'static str,
@@ -47,6 +47,16 @@ pub enum GeometryError {
     /// A height map could not be read; the message names the file, line and column.
     #[error("height map: {0}")]
     Parse(String),
+}
+
+/// A number as a message shows it: plain for moderate magnitudes, otherwise in scientific
+/// notation with the shortest digits that round-trip (`1e306`, not 307 digits).
+pub(crate) fn num(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-5..1e16).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
 }
 
 /// Checks that `value` is finite and strictly positive.

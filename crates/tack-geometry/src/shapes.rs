@@ -147,6 +147,17 @@ impl FlatPunch {
         Self::with_face(PunchFace::Square { half_side }, half_side)
     }
     fn with_face(face: PunchFace, size: f64) -> Result<Self, GeometryError> {
+        if !(DEFAULT_PUNCH_LIFT * size).is_finite() {
+            // The lift outside the face is DEFAULT_PUNCH_LIFT times the size: name the size.
+            return Err(GeometryError::OutOfRange {
+                field: match face {
+                    PunchFace::Circle { .. } => "geometry.punch_radius",
+                    PunchFace::Square { .. } => "geometry.punch_half_side",
+                },
+                value: size,
+                allowed: "a finite number > 0 and ≤ 1e300",
+            });
+        }
         Self { face, lift: 1.0 }.with_lift(DEFAULT_PUNCH_LIFT * size)
     }
     /// The same punch with another finite lift `> 0` outside the face (field `geometry.punch_lift`).
@@ -183,6 +194,16 @@ impl Shape for FlatPunch {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_punch_too_large_for_its_lift_names_its_size_compactly() {
+        let e = FlatPunch::circular(1e306).unwrap_err().to_string();
+        assert!(e.contains("geometry.punch_radius = 1e306"), "{e}");
+        assert!(!e.contains("inf"), "{e}");
+        let e = FlatPunch::square(1e306).unwrap_err().to_string();
+        assert!(e.contains("geometry.punch_half_side = 1e306"), "{e}");
+        assert!(FlatPunch::circular(1e300).is_ok());
+    }
 
     #[test]
     fn sphere_is_parabolic_and_validated() {

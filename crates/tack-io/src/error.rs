@@ -57,6 +57,20 @@ pub enum IoError {
         /// Its value.
         value: f64,
     },
+    /// A dataset or attribute declares more data than its file can hold, or than one read may
+    /// allocate ([`crate::MAX_DATASET_BYTES`]): the file is corrupt (or not tack's), and nothing
+    /// of the object was read.
+    #[error("{}: {object} declares shape {shape}: {why}", path.display())]
+    Oversized {
+        /// The file.
+        path: PathBuf,
+        /// The object, e.g. "dataset `/curve/approach`".
+        object: String,
+        /// The declared shape, e.g. "1048576 × 1048576".
+        shape: String,
+        /// Which bound it exceeds, with the numbers.
+        why: String,
+    },
     /// The data (to write, or read back) is inconsistent or out of range.
     #[error("{}: {what}", path.display())]
     Invalid {

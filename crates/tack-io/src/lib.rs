@@ -96,6 +96,7 @@ mod sweep;
 mod write;
 
 pub use error::IoError;
+pub use h5::MAX_DATASET_BYTES;
 pub use model::{Curve, Provenance, RunResult, Snapshot, Summary};
 pub use read::{describe, read_height_map_h5, read_result};
 pub use sweep::{

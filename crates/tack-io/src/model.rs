@@ -170,17 +170,38 @@ pub struct Summary {
     pub alpha_star: Option<f64>,
     /// Further named scalars; names must differ from the fields above. Read back in name order.
     pub extra: BTreeMap<String, f64>,
+    /// How the run ended ([`Summary::COMPLETE`], [`Summary::STOPPED_AT_MAX_STEPS`], ...), the
+    /// string attribute `status`; `None` in files written before it existed.
+    pub status: Option<String>,
+    /// What makes the result less than trustworthy (under-resolved pull-off, pull-off not
+    /// bracketed by the path, a closed-form reference that does not apply, ...), one sentence
+    /// each; the string attribute `warnings`, one per line (empty: none).
+    pub warnings: Vec<String>,
 }
 
 impl Summary {
+    /// `status` of a path that ran to its end (contact lost, or `retract_to` reached).
+    pub const COMPLETE: &'static str = "complete";
+    /// `status` of a path stopped by `protocol.max_steps` before it ended: the pull-off may lie
+    /// beyond the last step.
+    pub const STOPPED_AT_MAX_STEPS: &'static str = "stopped at protocol.max_steps";
+
     /// Names of the attributes modelled by fields, which `extra` may not use.
-    pub(crate) const RESERVED: [&'static str; 5] = [
+    pub(crate) const RESERVED: [&'static str; 7] = [
         "pull_off_force",
         "f_jkr",
         "pull_off_ratio",
         "johnson_alpha",
         "alpha_star",
+        "status",
+        "warnings",
     ];
+
+    /// Whether the run ended as planned (`status` is [`Summary::COMPLETE`]; files without a
+    /// status count as complete).
+    pub fn is_complete(&self) -> bool {
+        self.status.as_deref().is_none_or(|s| s == Self::COMPLETE)
+    }
 
     /// Every attribute to write: the fields that are set, then `extra`.
     pub(crate) fn attributes(&self) -> Vec<(&str, f64)> {

@@ -6,15 +6,26 @@ use std::path::Path;
 use hdf5::{File, Group, H5Type};
 use ndarray::{Array2, Ix1, Ix2};
 
-use crate::h5::{h5err, open_group, read_attr, read_dataset, read_opt_attr, read_str_attr};
+use crate::h5::{
+    Budget, check_extent, declared_shape, dims, h5err, has_attr, open_dataset, open_group,
+    read_attr, read_dataset, read_opt_attr, read_str_attr,
+};
 use crate::{Curve, IoError, Provenance, RunResult, Snapshot, Summary};
 
 /// Reads a result file written by [`crate::write_result`]; snapshots come back sorted by step.
 ///
 /// Errors name the file and the missing or malformed object (curve columns of unequal length
 /// included).
+///
+/// Declared sizes are checked before anything is read, so a corrupt file gives an error, never
+/// an allocation failure ([`IoError::Oversized`], [`IoError::ColumnLength`]): tack writes its
+/// datasets uncompressed, so together they hold at most the file's size on disk; no dataset may
+/// take more than [`crate::MAX_DATASET_BYTES`] in memory; curve columns all have the length of
+/// `approach`; and every snapshot field has the shape of the surface (or, without a stored
+/// surface, of the other snapshots).
 pub fn read_result(path: &Path) -> Result<RunResult, IoError> {
     let file = open(path)?;
+    let mut budget = Budget::of_file(path)?;
     let provenance = Provenance {
         tack_version: read_str_attr(&file, "tack_version", path)?,
         git_revision: read_str_attr(&file, "git_revision", path)?,
@@ -23,13 +34,15 @@ pub fn read_result(path: &Path) -> Result<RunResult, IoError> {
         created: read_str_attr(&file, "created", path)?,
         seed: read_opt_attr(&file, "seed", path)?,
     };
-    let curve = read_curve(&file, path)?;
+    let curve = read_curve(&file, path, &mut budget)?;
     let surface = if file.link_exists("surface/heights") {
-        Some(read_heights(&file, "/surface/heights", path)?)
+        let bound = Bound::Ours(&mut budget);
+        Some(read_heights(&file, "/surface/heights", None, bound, path)?)
     } else {
         None
     };
-    let snapshots = read_snapshots(&file, curve.len(), path)?;
+    let surface_shape = surface.as_ref().map(|(h, _)| h.dim());
+    let snapshots = read_snapshots(&file, curve.len(), surface_shape, path, &mut budget)?;
     let summary = read_summary(&file, path)?;
     Ok(RunResult {
         provenance,
@@ -91,8 +104,14 @@ pub fn describe(path: &Path) -> Result<String, IoError> {
         format!("snapshots: {} at steps {}", steps.len(), steps.join(", "))
     });
     lines.push("summary:".to_owned());
+    if let Some(status) = &r.summary.status {
+        lines.push(format!("  status = {status}"));
+    }
     for (name, value) in r.summary.attributes() {
         lines.push(format!("  {name} = {}", num(value)));
+    }
+    for warning in &r.summary.warnings {
+        lines.push(format!("  WARNING {warning}"));
     }
     Ok(lines.join("\n") + "\n")
 }
@@ -101,11 +120,19 @@ pub fn describe(path: &Path) -> Result<String, IoError> {
 /// to `/surface/heights` of tack's own result files) and its element size `dx`, an attribute of
 /// the dataset or, failing that, of the file root.
 ///
-/// Errors: missing file, missing dataset, not 2D or empty, missing or non-positive `dx`, and
-/// NaN or infinite heights (naming the first bad index in row-major order).
+/// `shape`, when known (the grid's `(nx, ny)`), is the shape the map must have: a map declaring
+/// another is refused before its data is read. Whatever the shape, a map whose data is stored
+/// uncompressed in the file (not chunked with filters, external or virtual) may not declare
+/// more than the file's size, and no map more than [`crate::MAX_DATASET_BYTES`]; compressed
+/// maps may be larger than their file.
+///
+/// Errors: missing file, missing dataset, not 2D or empty, not of `shape`, larger than the
+/// file or the limit ([`IoError::Oversized`]), missing or non-positive `dx`, and NaN or
+/// infinite heights (naming the first bad index in row-major order).
 pub fn read_height_map_h5(
     path: &Path,
     dataset: Option<&str>,
+    shape: Option<(usize, usize)>,
 ) -> Result<(Array2<f64>, f64), IoError> {
     let file = open(path)?;
     let name = match dataset {
@@ -118,7 +145,7 @@ pub fn read_height_map_h5(
                 what: "dataset `heights` (nor `/surface/heights`)".to_owned(),
             })?,
     };
-    read_heights(&file, name, path)
+    read_heights(&file, name, shape, Bound::Foreign, path)
 }
 
 /// Checks that `dx` (of the heights `dataset`) is a finite positive spacing.
@@ -141,7 +168,38 @@ fn open(path: &Path) -> Result<File, IoError> {
     File::open(path).map_err(h5err(path, "opening as an HDF5 file"))
 }
 
-fn read_heights(file: &File, name: &str, path: &Path) -> Result<(Array2<f64>, f64), IoError> {
+/// The size bound a height dataset is read under.
+enum Bound<'b> {
+    /// Part of a tack result file: the file's running [`Budget`].
+    Ours(&'b mut Budget),
+    /// Another program's file: bounded by the file's size when the data is stored in it
+    /// uncompressed; compressed (filtered), external or virtual data only by
+    /// [`crate::MAX_DATASET_BYTES`] and the expected shape.
+    Foreign,
+}
+
+/// Whether `ds` keeps its data uncompressed in its own file (contiguous, compact, or chunked
+/// without filters; not external, not virtual): then its declared size cannot exceed the file's.
+fn stored_plainly(ds: &hdf5::Dataset, name: &str, path: &Path) -> Result<bool, IoError> {
+    use hdf5::dataset::Layout;
+    let dcpl = ds.dcpl().map_err(h5err(
+        path,
+        format!("reading the storage properties of dataset `{name}`"),
+    ))?;
+    let layout = matches!(
+        dcpl.layout(),
+        Layout::Contiguous | Layout::Compact | Layout::Chunked
+    );
+    Ok(layout && dcpl.filters().is_empty() && dcpl.external().is_empty())
+}
+
+fn read_heights(
+    file: &File,
+    name: &str,
+    expected: Option<(usize, usize)>,
+    bound: Bound<'_>,
+    path: &Path,
+) -> Result<(Array2<f64>, f64), IoError> {
     let invalid = |what: String| IoError::Invalid {
         path: path.to_owned(),
         what,
@@ -155,17 +213,32 @@ fn read_heights(file: &File, name: &str, path: &Path) -> Result<(Array2<f64>, f6
     let ds = file
         .dataset(name)
         .map_err(h5err(path, format!("opening dataset `{name}`")))?;
-    let shape = ds.shape();
-    if shape.len() != 2 {
+    let shape = declared_shape(&ds, name, path)?;
+    let &[nx, ny] = &shape[..] else {
         return Err(invalid(format!(
             "dataset `{name}` has shape {shape:?}; expected 2D heights (nx, ny)"
         )));
-    }
+    };
     if shape.contains(&0) {
         return Err(invalid(format!(
             "dataset `{name}` is empty (shape {shape:?})"
         )));
     }
+    if let Some((gx, gy)) = expected.filter(|&e| e != (nx, ny)) {
+        return Err(invalid(format!(
+            "dataset `{name}` declares a {nx} × {ny} height map, but the grid is {gx} × {gy}; \
+             the map must have the grid's shape (nothing was read)"
+        )));
+    }
+    let object = format!("dataset `{name}`");
+    match bound {
+        Bound::Ours(budget) => check_extent::<f64>(&ds, &object, path, Some(budget))?,
+        Bound::Foreign if stored_plainly(&ds, name, path)? => {
+            let mut budget = Budget::of_file(path)?;
+            check_extent::<f64>(&ds, &object, path, Some(&mut budget))?
+        }
+        Bound::Foreign => check_extent::<f64>(&ds, &object, path, None)?,
+    };
     let heights: Array2<f64> = ds
         .read_2d()
         .map_err(h5err(path, format!("reading dataset `{name}` as f64")))?;
@@ -188,31 +261,91 @@ fn read_heights(file: &File, name: &str, path: &Path) -> Result<(Array2<f64>, f6
     Ok((heights, dx))
 }
 
-fn read_column<T: H5Type>(group: &Group, name: &str, path: &Path) -> Result<Vec<T>, IoError> {
-    Ok(read_dataset::<T, Ix1>(group, name, path)?
+fn read_column<T: H5Type>(
+    group: &Group,
+    name: &str,
+    path: &Path,
+    budget: &mut Budget,
+) -> Result<Vec<T>, IoError> {
+    Ok(read_dataset::<T, Ix1>(group, name, path, budget)?
         .into_raw_vec_and_offset()
         .0)
 }
 
-fn read_curve(file: &File, path: &Path) -> Result<Curve, IoError> {
+/// The columns of `/curve`, `approach` first, and whether each is optional.
+const CURVE_COLUMNS: [(&str, bool); 10] = [
+    ("approach", false),
+    ("force", false),
+    ("area", false),
+    ("n_bonded", false),
+    ("n_clusters", false),
+    ("iterations", false),
+    ("active_set_iterations", false),
+    ("converged", false),
+    ("mean_pressure", true),
+    ("full_contact", true),
+];
+
+/// Checks, before any is read, that `approach` fits the file (`budget`, not taken) and every
+/// curve column is 1D and declares its length.
+fn check_curve_shapes(g: &Group, path: &Path, budget: &Budget) -> Result<(), IoError> {
+    let mut expected = None;
+    for (column, optional) in CURVE_COLUMNS {
+        if optional && !g.link_exists(column) {
+            continue;
+        }
+        let full = format!("/curve/{column}");
+        let ds = open_dataset(g, column, path)?;
+        let shape = declared_shape(&ds, &full, path)?;
+        let &[len] = &shape[..] else {
+            return Err(IoError::Invalid {
+                path: path.to_owned(),
+                what: format!(
+                    "dataset `{full}` has shape {}; expected a 1D column",
+                    dims(&shape)
+                ),
+            });
+        };
+        match expected {
+            None => {
+                let object = format!("dataset `{full}`");
+                check_extent::<f64>(&ds, &object, path, Some(&mut budget.clone()))?;
+                expected = Some(len);
+            }
+            Some(expected) if len != expected => {
+                return Err(IoError::ColumnLength {
+                    path: path.to_owned(),
+                    column,
+                    len,
+                    expected,
+                });
+            }
+            Some(_) => {}
+        }
+    }
+    Ok(())
+}
+
+fn read_curve(file: &File, path: &Path, budget: &mut Budget) -> Result<Curve, IoError> {
     let g = open_group(file, "curve", path)?;
-    let converged: Vec<u8> = read_column(&g, "converged", path)?;
+    check_curve_shapes(&g, path, budget)?;
+    let converged: Vec<u8> = read_column(&g, "converged", path, budget)?;
     let curve = Curve {
-        approach: read_column(&g, "approach", path)?,
-        force: read_column(&g, "force", path)?,
-        area: read_column(&g, "area", path)?,
-        n_bonded: read_column(&g, "n_bonded", path)?,
-        n_clusters: read_column(&g, "n_clusters", path)?,
-        iterations: read_column(&g, "iterations", path)?,
-        active_set_iterations: read_column(&g, "active_set_iterations", path)?,
+        approach: read_column(&g, "approach", path, budget)?,
+        force: read_column(&g, "force", path, budget)?,
+        area: read_column(&g, "area", path, budget)?,
+        n_bonded: read_column(&g, "n_bonded", path, budget)?,
+        n_clusters: read_column(&g, "n_clusters", path, budget)?,
+        iterations: read_column(&g, "iterations", path, budget)?,
+        active_set_iterations: read_column(&g, "active_set_iterations", path, budget)?,
         converged: converged.into_iter().map(|c| c != 0).collect(),
         mean_pressure: if g.link_exists("mean_pressure") {
-            Some(read_column(&g, "mean_pressure", path)?)
+            Some(read_column(&g, "mean_pressure", path, budget)?)
         } else {
             None
         },
         full_contact: if g.link_exists("full_contact") {
-            let full: Vec<u8> = read_column(&g, "full_contact", path)?;
+            let full: Vec<u8> = read_column(&g, "full_contact", path, budget)?;
             Some(full.into_iter().map(|c| c != 0).collect())
         } else {
             None
@@ -222,33 +355,65 @@ fn read_curve(file: &File, path: &Path) -> Result<Curve, IoError> {
     Ok(curve)
 }
 
-fn read_snapshots(file: &File, curve_len: usize, path: &Path) -> Result<Vec<Snapshot>, IoError> {
+/// Reads `/snapshots`. Before the fields of a snapshot are read, their declared shapes must
+/// be 2D and equal `surface` (the stored surface's shape), or without one the first
+/// snapshot's.
+fn read_snapshots(
+    file: &File,
+    curve_len: usize,
+    surface: Option<(usize, usize)>,
+    path: &Path,
+    budget: &mut Budget,
+) -> Result<Vec<Snapshot>, IoError> {
     if !file.link_exists("snapshots") {
         return Ok(Vec::new());
     }
+    let invalid = |what: String| IoError::Invalid {
+        path: path.to_owned(),
+        what,
+    };
     let group = open_group(file, "snapshots", path)?;
     let names = group
         .member_names()
         .map_err(h5err(path, "listing `/snapshots`"))?;
-    let mut snapshots = names
-        .iter()
-        .map(|name| {
-            let step = name.parse().map_err(|_| IoError::Invalid {
-                path: path.to_owned(),
-                what: format!("group `/snapshots/{name}` is not named by a step number"),
-            })?;
-            let g = open_group(&group, name, path)?;
-            let bonded = read_dataset::<u8, Ix2>(&g, "bonded", path)?;
-            let snapshot = Snapshot {
-                step,
-                approach: read_attr(&g, "approach", path)?,
-                pressure: read_dataset(&g, "pressure", path)?,
-                bonded: bonded.mapv(|b| b != 0),
+    // The shape every field must have, and what set it (for the message).
+    let mut want = surface.map(|s| (s, "the surface".to_owned()));
+    let mut snapshots = Vec::with_capacity(names.len());
+    for name in &names {
+        let step = name.parse().map_err(|_| {
+            invalid(format!(
+                "group `/snapshots/{name}` is not named by a step number"
+            ))
+        })?;
+        let g = open_group(&group, name, path)?;
+        for field in ["pressure", "bonded"] {
+            let full = format!("/snapshots/{name}/{field}");
+            let shape = declared_shape(&open_dataset(&g, field, path)?, &full, path)?;
+            let &[nx, ny] = &shape[..] else {
+                return Err(invalid(format!(
+                    "dataset `{full}` has shape {}; expected 2D (nx, ny)",
+                    dims(&shape)
+                )));
             };
-            snapshot.check(curve_len, path)?;
-            Ok(snapshot)
-        })
-        .collect::<Result<Vec<_>, IoError>>()?;
+            let (expected, source) = want.get_or_insert_with(|| ((nx, ny), format!("`{full}`")));
+            if (nx, ny) != *expected {
+                return Err(invalid(format!(
+                    "dataset `{full}` is {nx} × {ny}, but {source} is {} × {}; every snapshot \
+                     field must have the surface's shape",
+                    expected.0, expected.1
+                )));
+            }
+        }
+        let bonded = read_dataset::<u8, Ix2>(&g, "bonded", path, budget)?;
+        let snapshot = Snapshot {
+            step,
+            approach: read_attr(&g, "approach", path)?,
+            pressure: read_dataset(&g, "pressure", path, budget)?,
+            bonded: bonded.mapv(|b| b != 0),
+        };
+        snapshot.check(curve_len, path)?;
+        snapshots.push(snapshot);
+    }
     snapshots.sort_by_key(|s| s.step);
     Ok(snapshots)
 }
@@ -270,6 +435,17 @@ fn read_summary(file: &File, path: &Path) -> Result<Summary, IoError> {
         johnson_alpha: read_opt_attr(&g, "johnson_alpha", path)?,
         alpha_star: read_opt_attr(&g, "alpha_star", path)?,
         extra,
+        status: if has_attr(&g, "status", path)? {
+            Some(read_str_attr(&g, "status", path)?)
+        } else {
+            None
+        },
+        warnings: if has_attr(&g, "warnings", path)? {
+            let text = read_str_attr(&g, "warnings", path)?;
+            text.lines().map(str::to_owned).collect()
+        } else {
+            Vec::new()
+        },
     })
 }
 

@@ -8,7 +8,10 @@ use hdf5::types::{TypeDescriptor, VarLenUnicode};
 use hdf5::{File, Group, Location};
 use ndarray::Array1;
 
-use crate::h5::{create_group, h5err, open_group, read_dataset, read_str_attr, write_str_attr};
+use crate::h5::{
+    Budget, check_extent, create_group, h5err, open_group, read_dataset, read_str_attr,
+    write_str_attr,
+};
 use crate::write::write_atomically;
 use crate::{IoError, Provenance};
 
@@ -181,6 +184,10 @@ pub fn write_sweep_table(path: &Path, table: &SweepTable) -> Result<(), IoError>
 
 /// Reads a sweep table written by [`write_sweep_table`]; parameters and results come back in
 /// the order of the `fields` and `names` attributes.
+///
+/// Like [`crate::read_result`], every column's declared size is checked before it is read
+/// (together at most the file's size, each at most [`crate::MAX_DATASET_BYTES`] in memory), so
+/// a corrupt table gives [`IoError::Oversized`], never an allocation failure.
 pub fn read_sweep_table(path: &Path) -> Result<SweepTable, IoError> {
     if !path.is_file() {
         return Err(IoError::MissingFile {
@@ -188,6 +195,7 @@ pub fn read_sweep_table(path: &Path) -> Result<SweepTable, IoError> {
         });
     }
     let file = File::open(path).map_err(h5err(path, "opening as an HDF5 file"))?;
+    let budget = &mut Budget::of_file(path)?;
     let provenance = Provenance {
         tack_version: read_str_attr(&file, "tack_version", path)?,
         git_revision: read_str_attr(&file, "git_revision", path)?,
@@ -198,27 +206,27 @@ pub fn read_sweep_table(path: &Path) -> Result<SweepTable, IoError> {
     };
     let point = open_group(&file, "point", path)?;
     let parameters_group = open_group(&file, "parameters", path)?;
-    let parameters = read_str_list_attr(&parameters_group, "fields", path)?
+    let parameters = read_str_list_attr(&parameters_group, "fields", path, budget)?
         .into_iter()
         .map(|name| {
-            let column = read_parameter(&parameters_group, &name, path)?;
+            let column = read_parameter(&parameters_group, &name, path, budget)?;
             Ok((name, column))
         })
         .collect::<Result<_, IoError>>()?;
     let results_group = open_group(&file, "results", path)?;
-    let results = read_str_list_attr(&results_group, "names", path)?
+    let results = read_str_list_attr(&results_group, "names", path, budget)?
         .into_iter()
         .map(|name| {
-            let values = read_vec(&results_group, &name, path)?;
+            let values = read_vec(&results_group, &name, path, budget)?;
             Ok((name, values))
         })
         .collect::<Result<_, IoError>>()?;
     let table = SweepTable {
         sweep: read_str_attr(&file, "sweep", path)?,
         provenance,
-        index: read_vec(&point, "index", path)?,
-        status: read_vec(&point, "status", path)?,
-        error: read_text(&point, "error", path)?,
+        index: read_vec(&point, "index", path, budget)?,
+        status: read_vec(&point, "status", path, budget)?,
+        error: read_text(&point, "error", path, budget)?,
         parameters,
         results,
     };
@@ -279,32 +287,56 @@ fn write_str_list_attr(
         ))
 }
 
-fn read_str_list_attr(loc: &Location, name: &str, path: &Path) -> Result<Vec<String>, IoError> {
+fn read_str_list_attr(
+    loc: &Location,
+    name: &str,
+    path: &Path,
+    budget: &mut Budget,
+) -> Result<Vec<String>, IoError> {
     if !crate::h5::has_attr(loc, name, path)? {
         return Err(IoError::Missing {
             path: path.to_owned(),
             what: format!("attribute `{name}` of `{}`", loc.name()),
         });
     }
-    let values: Vec<VarLenUnicode> = loc.attr(name).and_then(|a| a.read_raw()).map_err(h5err(
-        path,
-        format!("reading attribute `{name}` of `{}`", loc.name()),
-    ))?;
+    let what = format!("attribute `{name}` of `{}`", loc.name());
+    let attr = loc
+        .attr(name)
+        .map_err(h5err(path, format!("opening {what}")))?;
+    check_extent::<VarLenUnicode>(&attr, &what, path, Some(budget))?;
+    let values: Vec<VarLenUnicode> = attr
+        .read_raw()
+        .map_err(h5err(path, format!("reading {what}")))?;
     Ok(values.iter().map(|v| v.as_str().to_owned()).collect())
 }
 
-fn read_vec<T: hdf5::H5Type>(group: &Group, name: &str, path: &Path) -> Result<Vec<T>, IoError> {
-    Ok(read_dataset::<T, ndarray::Ix1>(group, name, path)?
+fn read_vec<T: hdf5::H5Type>(
+    group: &Group,
+    name: &str,
+    path: &Path,
+    budget: &mut Budget,
+) -> Result<Vec<T>, IoError> {
+    Ok(read_dataset::<T, ndarray::Ix1>(group, name, path, budget)?
         .into_raw_vec_and_offset()
         .0)
 }
 
-fn read_text(group: &Group, name: &str, path: &Path) -> Result<Vec<String>, IoError> {
-    let values: Vec<VarLenUnicode> = read_vec(group, name, path)?;
+fn read_text(
+    group: &Group,
+    name: &str,
+    path: &Path,
+    budget: &mut Budget,
+) -> Result<Vec<String>, IoError> {
+    let values: Vec<VarLenUnicode> = read_vec(group, name, path, budget)?;
     Ok(values.iter().map(|v| v.as_str().to_owned()).collect())
 }
 
-fn read_parameter(group: &Group, name: &str, path: &Path) -> Result<ParameterColumn, IoError> {
+fn read_parameter(
+    group: &Group,
+    name: &str,
+    path: &Path,
+    budget: &mut Budget,
+) -> Result<ParameterColumn, IoError> {
     let full = crate::h5::member(group, name);
     if !group.link_exists(name) {
         return Err(IoError::Missing {
@@ -319,10 +351,12 @@ fn read_parameter(group: &Group, name: &str, path: &Path) -> Result<ParameterCol
         .map_err(h5err(path, format!("reading the type of `{full}`")))?;
     Ok(match descriptor {
         TypeDescriptor::Integer(_) | TypeDescriptor::Unsigned(_) => {
-            ParameterColumn::Integer(read_vec(group, name, path)?)
+            ParameterColumn::Integer(read_vec(group, name, path, budget)?)
         }
-        TypeDescriptor::Float(_) => ParameterColumn::Float(read_vec(group, name, path)?),
-        TypeDescriptor::VarLenUnicode => ParameterColumn::Text(read_text(group, name, path)?),
+        TypeDescriptor::Float(_) => ParameterColumn::Float(read_vec(group, name, path, budget)?),
+        TypeDescriptor::VarLenUnicode => {
+            ParameterColumn::Text(read_text(group, name, path, budget)?)
+        }
         other => {
             return Err(IoError::Invalid {
                 path: path.to_owned(),

@@ -85,7 +85,8 @@ fn write_file(tmp: &Path, path: &Path, result: &RunResult) -> Result<(), IoError
         let heights = write_dataset(&surface, "heights", heights.view(), path)?;
         write_attr(&heights, "dx", dx, path)?;
     }
-    write_snapshots(&file, &result.snapshots, result.curve.len(), path)?;
+    let surface = result.surface.as_ref().map(|(h, _)| h.dim());
+    write_snapshots(&file, &result.snapshots, result.curve.len(), surface, path)?;
     write_summary(&file, &result.summary, path)?;
     file.close().map_err(h5err(path, "closing the file"))
 }
@@ -136,16 +137,33 @@ fn write_curve(file: &File, curve: &Curve, path: &Path) -> Result<(), IoError> {
     Ok(())
 }
 
+/// Writes `/snapshots`; every snapshot must have the shape of the `surface` (when stored, else
+/// of the first snapshot), as `read_result` requires.
 fn write_snapshots(
     file: &File,
     snapshots: &[Snapshot],
     curve_len: usize,
+    surface: Option<(usize, usize)>,
     path: &Path,
 ) -> Result<(), IoError> {
     let group = create_group(file, "snapshots", path)?;
     let mut seen = BTreeSet::new();
+    let mut want = surface.map(|s| (s, "the surface".to_owned()));
     for s in snapshots {
         s.check(curve_len, path)?;
+        let (nx, ny) = s.pressure.dim();
+        let (expected, source) =
+            want.get_or_insert_with(|| ((nx, ny), format!("snapshot {}", s.step)));
+        if (nx, ny) != *expected {
+            return Err(IoError::Invalid {
+                path: path.to_owned(),
+                what: format!(
+                    "snapshot {}: `pressure` is {nx} × {ny}, but {source} is {} × {}; every \
+                     snapshot must have the surface's shape",
+                    s.step, expected.0, expected.1
+                ),
+            });
+        }
         if !seen.insert(s.step) {
             return Err(IoError::Invalid {
                 path: path.to_owned(),
@@ -175,5 +193,16 @@ fn write_summary(file: &File, summary: &Summary, path: &Path) -> Result<(), IoEr
     summary
         .attributes()
         .into_iter()
-        .try_for_each(|(name, value)| write_attr(&group, name, &value, path))
+        .try_for_each(|(name, value)| write_attr(&group, name, &value, path))?;
+    if let Some(status) = &summary.status {
+        write_str_attr(&group, "status", status, path)?;
+    }
+    if summary.warnings.iter().any(|w| w.contains('\n')) {
+        return Err(IoError::Invalid {
+            path: path.to_owned(),
+            what: "a summary warning contains a line break (warnings are stored one per line)"
+                .into(),
+        });
+    }
+    write_str_attr(&group, "warnings", &summary.warnings.join("\n"), path)
 }

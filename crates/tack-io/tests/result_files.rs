@@ -83,6 +83,8 @@ fn sample() -> RunResult {
         pull_off_ratio: 0.1 + 0.2,
         johnson_alpha: Some(0.7),
         alpha_star: None,
+        status: Some(Summary::STOPPED_AT_MAX_STEPS.into()),
+        warnings: vec!["first warning".into(), "second, with ünïcode".into()],
         ..Summary::default()
     };
     summary.extra.insert("work_of_adhesion".into(), 5e-324);
@@ -340,13 +342,16 @@ fn height_map_reads_heights_and_dx() {
         ("topo", "root", Some("topo")),
     ] {
         height_file(&path, name, &h.view().into_dyn(), Some(dx_on));
-        assert_eq!(read_height_map_h5(&path, asked).unwrap(), (h.clone(), 0.5));
+        assert_eq!(
+            read_height_map_h5(&path, asked, None).unwrap(),
+            (h.clone(), 0.5)
+        );
     }
     // Our own result files: `/surface/heights` by default.
     let ours = dir.join("run.h5");
     write_result(&ours, &sample()).unwrap();
     assert_eq!(
-        read_height_map_h5(&ours, None).unwrap(),
+        read_height_map_h5(&ours, None, None).unwrap(),
         sample().surface.unwrap()
     );
 }
@@ -355,7 +360,11 @@ fn height_map_reads_heights_and_dx() {
 fn height_map_errors_are_clear() {
     let dir = TempDir::new("height-errors");
     let path = dir.join("map.h5");
-    let err = |asked: Option<&str>| read_height_map_h5(&path, asked).unwrap_err().to_string();
+    let err = |asked: Option<&str>| {
+        read_height_map_h5(&path, asked, None)
+            .unwrap_err()
+            .to_string()
+    };
 
     assert!(err(None).contains("no such file"));
     let good = array![[0.0, 1.0], [2.0, 3.0]].into_dyn();

@@ -9,16 +9,19 @@
 //! bonded set visited in the step; a revisit stops the loop and the step reports
 //! `converged = false`. The loop is also capped.
 
-use std::collections::{HashMap, HashSet};
+use std::collections::HashSet;
 use std::hash::{DefaultHasher, Hash, Hasher};
 
 use ndarray::{Array2, Zip};
 use tack_geometry::{Boundary, Surface, Window};
 use tack_kernels::{ElasticOperator, FreeOperator, padded_size};
 
-use crate::cg::{Work, pcg};
+use crate::base::SolverBase;
+use crate::cg::{PcgWork, Work, pcg};
 use crate::clusters::count_clusters;
-use crate::{SolverError, SolverOptions};
+use crate::state::Convergence;
+use crate::subgrid::{SubgridCache, free_operator};
+use crate::{SolverError, SolverOptions, StepRecord, validate};
 
 /// The Pohrt–Popov constant κ of `σ_c = sqrt(E*γ/(κΔx))`, from the mean displacement of a
 /// square element under its own pressure: κ = (2/π)[ln(1+√2) − (√2−1)/3] = 0.473201.
@@ -74,52 +77,22 @@ impl Default for AdhesiveOptions {
     }
 }
 
-/// What one approach step produced.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct StepRecord {
-    /// Prescribed approach `d` (positive = pressing; periodic: from the deformed mean plane).
-    pub approach: f64,
-    /// Total normal force `Σ p Δx²` (positive = compressive, negative = adhesive pull).
-    pub force: f64,
-    /// Force per domain area `Lx·Ly` (the mean pressure of periodic problems).
-    pub mean_pressure: f64,
-    /// Bonded (in-contact) area, `n_bonded · Δx²`.
-    pub area: f64,
-    /// Number of bonded elements.
-    pub n_bonded: usize,
-    /// Number of separate contact clusters (edge-connected).
-    pub n_clusters: usize,
-    /// Linear CG iterations summed over the step.
-    pub cg_iterations: usize,
-    /// Detach/attach rounds in the step.
-    pub active_set_iterations: usize,
-    /// Worst relative CG residual of the step's solves.
-    pub residual: f64,
-    /// Every solve met its tolerance and the bonded set settled without a cycle.
-    pub converged: bool,
-    /// Periodic grids: every element bonded (the mean pressure is then the least one that keeps
-    /// full contact admissible, see [`AdhesiveSolver::step`]).
-    pub full_contact: bool,
-    /// Free grids: a bonded element lies on the outer ring of the grid, so the contact may be
-    /// cut off by the domain (enlarge the grid or the crop).
-    pub edge_contact: bool,
-}
-
 /// Quasi-static adhesive contact along an approach path; owns operator, fields and scratch.
 pub struct AdhesiveSolver {
-    op: Box<dyn ElasticOperator>,
-    heights: Array2<f64>,
+    base: SolverBase,
     sigma_c: f64,
     options: AdhesiveOptions,
     bonded: Array2<bool>,
-    pressure: Array2<f64>,
-    gap: Array2<f64>,
-    work: Work,
-    boxes: HashMap<(usize, usize), SubProblem>,
+    pcg: PcgWork,
+    /// Bonded-set CGs on sub-grids of a free grid, by shape.
+    boxes: SubgridCache<SubProblem>,
     /// Pressure and approach of the previous step, for the secant predictor.
     history: Option<(Array2<f64>, f64)>,
     last_approach: Option<f64>,
 }
+
+/// Distinct sub-grid shapes kept by one solver.
+const SUBGRID_SHAPES: usize = 16;
 
 impl AdhesiveSolver {
     /// A solver for `surface` against the half-space `op` with work of adhesion `gamma ≥ 0`
@@ -131,47 +104,17 @@ impl AdhesiveSolver {
         kappa: f64,
         options: AdhesiveOptions,
     ) -> Result<Self, SolverError> {
-        options.cg.validate()?;
-        if !(gamma.is_finite() && gamma >= 0.0) {
-            return Err(SolverError::OutOfRange {
-                field: "material.gamma",
-                value: gamma,
-                allowed: "a finite number ≥ 0",
-            });
-        }
-        if !(kappa.is_finite() && kappa > 0.0) {
-            return Err(SolverError::OutOfRange {
-                field: "solver.kappa",
-                value: kappa,
-                allowed: "a finite number > 0",
-            });
-        }
-        if options.max_active_set_iterations == 0 {
-            return Err(SolverError::OutOfRange {
-                field: "solver.max_active_set_iterations",
-                value: 0.0,
-                allowed: "an integer ≥ 1",
-            });
-        }
-        let shape = op.grid().shape();
-        if surface.grid().shape() != shape {
-            return Err(SolverError::GridMismatch {
-                surface: surface.grid().shape(),
-                operator: shape,
-            });
-        }
-        let sigma_c = (op.e_star() * gamma / (kappa * op.grid().dx())).sqrt();
-        let z = Array2::zeros(shape);
+        validate::adhesion(gamma, kappa, &options)?;
+        let base = SolverBase::new(op, surface)?;
+        let sigma_c = (base.op.e_star() * gamma / (kappa * base.grid().dx())).sqrt();
+        let shape = base.grid().shape();
         Ok(Self {
-            op,
-            heights: surface.heights().clone(),
+            base,
             sigma_c,
             options,
             bonded: Array2::from_elem(shape, false),
-            pressure: z.clone(),
-            gap: z,
-            work: Work::new(shape),
-            boxes: HashMap::new(),
+            pcg: PcgWork::new(shape),
+            boxes: SubgridCache::new(SUBGRID_SHAPES),
             history: None,
             last_approach: None,
         })
@@ -183,7 +126,7 @@ impl AdhesiveSolver {
     }
     /// Current element pressures.
     pub fn pressure(&self) -> &Array2<f64> {
-        &self.pressure
+        &self.base.pressure
     }
     /// Current bonded mask.
     pub fn bonded(&self) -> &Array2<bool> {
@@ -191,11 +134,11 @@ impl AdhesiveSolver {
     }
     /// Current gap `f − d + u` (zero on the bonded set up to the tolerance).
     pub fn gap(&self) -> &Array2<f64> {
-        &self.gap
+        &self.base.gap
     }
     /// The grid of the problem.
     pub fn grid(&self) -> &tack_geometry::Grid {
-        self.op.grid()
+        self.base.grid()
     }
 
     /// Equilibrium at approach `d`, starting from the current bonded set and pressures.
@@ -205,18 +148,11 @@ impl AdhesiveSolver {
     /// tension exceeds `σ_c`; for `d < mean f` full contact is impossible (the mean gap is
     /// positive), so the most tensile element of the full-contact field is detached.
     pub fn step(&mut self, approach: f64) -> Result<StepRecord, SolverError> {
-        if !approach.is_finite() {
-            return Err(SolverError::OutOfRange {
-                field: "approach",
-                value: approach,
-                allowed: "a finite number",
-            });
-        }
-        let d = approach;
+        let d = validate::approach(approach)?;
         self.predict(d);
-        let periodic = self.op.grid().boundary() == Boundary::Periodic;
-        let n = self.heights.len();
-        let fmean = self.heights.mean().unwrap_or(0.0);
+        let periodic = self.base.periodic();
+        let n = self.base.heights().len();
+        let fmean = self.base.fmean;
         let (mut cg_total, mut worst, mut converged, mut full) = (0, 0.0f64, true, false);
         let mut visited = HashSet::new();
         let mut rounds = 0;
@@ -226,6 +162,7 @@ impl AdhesiveSolver {
         if closed {
             self.bonded.fill(true);
         }
+        let sigma_c = self.sigma_c;
         loop {
             if rounds == self.options.max_active_set_iterations {
                 converged = false;
@@ -234,44 +171,42 @@ impl AdhesiveSolver {
             rounds += 1;
             let n_bonded = self.bonded.iter().filter(|&&b| b).count();
             if periodic && n_bonded == n {
-                let p_min = self.full_contact_field();
+                let p_min = self.base.full_contact_field();
                 if closed {
-                    self.pressure.mapv_inplace(|p| p - p_min - self.sigma_c);
-                    self.gap.fill(0.0);
+                    self.base.pressure.mapv_inplace(|p| p - p_min - sigma_c);
+                    self.base.gap.fill(0.0);
                     full = true;
                     break;
                 }
-                let weakest = self.pressure.iter().position(|&p| p == p_min).unwrap_or(0);
-                let idx = (
-                    weakest / self.heights.ncols(),
-                    weakest % self.heights.ncols(),
-                );
-                self.bonded[idx] = false;
+                let ncols = self.bonded.ncols();
+                let weakest = self
+                    .base
+                    .pressure
+                    .iter()
+                    .position(|&p| p == p_min)
+                    .unwrap_or(0);
+                self.bonded[(weakest / ncols, weakest % ncols)] = false;
                 continue;
             }
             let cycle = !visited.insert(hash_mask(&self.bonded));
             if n_bonded == 0 {
-                self.pressure.fill(0.0);
-                self.work.disp.fill(0.0);
+                self.base.pressure.fill(0.0);
+                self.base.work.disp.fill(0.0);
             } else {
-                let (it, res, ok) = self.solve_bonded(d);
-                cg_total += it;
-                worst = worst.max(res);
-                converged &= ok;
+                let c = self.solve_bonded(d);
+                cg_total += c.iterations;
+                worst = worst.max(c.residual);
+                converged &= c.converged;
             }
-            Zip::from(&mut self.gap)
-                .and(&self.heights)
-                .and(&self.work.disp)
-                .for_each(|g, &f, &u| *g = f - d + u);
+            self.base.update_gap(d);
             if cycle {
                 converged = false;
                 break;
             }
-            let sigma_c = self.sigma_c;
             let mut changed = false;
             Zip::from(&mut self.bonded)
-                .and(&mut self.pressure)
-                .and(&self.gap)
+                .and(&mut self.base.pressure)
+                .and(&self.base.gap)
                 .for_each(|b, p, &g| {
                     if *b && *p < -sigma_c {
                         *b = false;
@@ -297,7 +232,7 @@ impl AdhesiveSolver {
             match &mut self.history {
                 Some((p0, d0)) if *d0 != d1 => {
                     let t = (d - d1) / (d1 - *d0);
-                    Zip::from(&mut self.pressure)
+                    Zip::from(&mut self.base.pressure)
                         .and(p0)
                         .and(&self.bonded)
                         .for_each(|p, q, &b| {
@@ -309,55 +244,41 @@ impl AdhesiveSolver {
                         });
                     *d0 = d1;
                 }
-                _ => self.history = Some((self.pressure.clone(), d1)),
+                _ => self.history = Some((self.base.pressure.clone(), d1)),
             }
         }
         self.last_approach = Some(d);
-    }
-
-    /// Fills `pressure` with the zero-mean periodic full-contact field and returns its minimum.
-    fn full_contact_field(&mut self) -> f64 {
-        let fmean = self.heights.mean().unwrap_or(0.0);
-        self.gap.assign(&self.heights.mapv(|f| fmean - f));
-        let periodic = self
-            .op
-            .solve_zero_mean(self.gap.view(), self.pressure.view_mut());
-        debug_assert!(periodic);
-        self.work.disp.assign(&self.gap);
-        self.pressure.iter().copied().fold(f64::INFINITY, f64::min)
     }
 
     /// Conjugate gradients for `K_CC p_C = (d − f)_C`, warm-started from the current pressure;
     /// leaves `work.disp = K p` on the full grid. On free grids whose bonded set fills little of
     /// the grid, the CG runs on a sub-grid around the bonded set (the free operator is exact on
     /// any sub-grid, so the linear problem is the same) and one full-grid product follows.
-    /// Returns (iterations, relative residual, converged).
-    fn solve_bonded(&mut self, d: f64) -> (usize, f64, bool) {
+    fn solve_bonded(&mut self, d: f64) -> Convergence {
         let (cg, pre) = (self.options.cg, self.options.preconditioned);
-        let Some(window) = self.bonded_window() else {
+        let window = self.bonded_window();
+        let base = &mut self.base;
+        let Some(window) = window else {
             return pcg(
-                self.op.as_mut(),
-                self.heights.view(),
+                base.op.as_mut(),
+                base.surface.heights().view(),
                 self.bonded.view(),
                 d,
-                self.pressure.view_mut(),
-                &mut self.work,
+                base.pressure.view_mut(),
+                &mut base.work,
+                &mut self.pcg,
                 &cg,
                 pre,
             );
         };
-        if self.boxes.len() > 16 {
-            self.boxes.clear();
-        }
         let shape = window.shape();
-        let (dx, e_star) = (self.op.grid().dx(), self.op.e_star());
+        let (dx, e_star) = (base.grid().dx(), base.op.e_star());
         let sub = self
             .boxes
-            .entry(shape)
-            .or_insert_with(|| SubProblem::new(shape, dx, e_star));
+            .get_or_insert_with(shape, || SubProblem::new(shape, dx, e_star));
         let block = ndarray::s![window.i0..window.i1, window.j0..window.j1];
-        sub.pressure.assign(&self.pressure.slice(block));
-        sub.heights.assign(&self.heights.slice(block));
+        sub.pressure.assign(&base.pressure.slice(block));
+        sub.heights.assign(&base.surface.heights().slice(block));
         sub.bonded.assign(&self.bonded.slice(block));
         let out = pcg(
             &mut sub.op,
@@ -366,13 +287,14 @@ impl AdhesiveSolver {
             d,
             sub.pressure.view_mut(),
             &mut sub.work,
+            &mut sub.pcg,
             &cg,
             pre,
         );
-        self.pressure.fill(0.0);
-        self.pressure.slice_mut(block).assign(&sub.pressure);
-        self.op
-            .apply(self.pressure.view(), self.work.disp.view_mut());
+        base.pressure.fill(0.0);
+        base.pressure.slice_mut(block).assign(&sub.pressure);
+        base.op
+            .apply(base.pressure.view(), base.work.disp.view_mut());
         out
     }
 
@@ -381,7 +303,7 @@ impl AdhesiveSolver {
     /// periodic, sub-grids are switched off, or the box's transform would not be clearly
     /// cheaper than the grid's.
     fn bonded_window(&self) -> Option<Window> {
-        let grid = self.op.grid();
+        let grid = self.base.grid();
         if grid.boundary() != Boundary::Free || !self.options.bonded_subgrid {
             return None;
         }
@@ -421,14 +343,14 @@ impl AdhesiveSolver {
         converged: bool,
         full: bool,
     ) -> StepRecord {
-        let grid = self.op.grid();
-        let force = self.pressure.sum() * grid.element_area();
+        let grid = self.base.grid();
         let n_bonded = self.bonded.iter().filter(|&&b| b).count();
+        let totals = self.base.totals(n_bonded);
         StepRecord {
             approach: d,
-            force,
-            mean_pressure: force / (grid.lx() * grid.ly()),
-            area: n_bonded as f64 * grid.element_area(),
+            force: totals.force,
+            mean_pressure: totals.mean_pressure,
+            area: totals.area,
             n_bonded,
             n_clusters: count_clusters(&self.bonded, grid.boundary() == Boundary::Periodic),
             cg_iterations: cg,
@@ -459,6 +381,7 @@ fn hash_mask(mask: &Array2<bool>) -> u64 {
 struct SubProblem {
     op: FreeOperator,
     work: Work,
+    pcg: PcgWork,
     pressure: Array2<f64>,
     heights: Array2<f64>,
     bonded: Array2<bool>,
@@ -466,15 +389,221 @@ struct SubProblem {
 
 impl SubProblem {
     fn new(shape: (usize, usize), dx: f64, e_star: f64) -> Self {
-        let grid = tack_geometry::Grid::new(shape.0, shape.1, dx, Boundary::Free)
-            .expect("a sub-grid of a valid grid is valid");
         Self {
-            op: FreeOperator::new(grid, e_star)
-                .expect("the modulus was validated with the operator"),
+            op: free_operator(shape, dx, e_star),
             work: Work::new(shape),
+            pcg: PcgWork::new(shape),
             pressure: Array2::zeros(shape),
             heights: Array2::zeros(shape),
             bonded: Array2::from_elem(shape, false),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tack_geometry::{Grid, Sphere, Waviness2d};
+
+    /// A smooth sphere in JKR units (R = E* = γ = 1) on a free 23² grid, a_c/Δx = 5.
+    fn sphere(options: AdhesiveOptions) -> AdhesiveSolver {
+        let a_c = (9.0 * std::f64::consts::PI / 8.0_f64).powf(1.0 / 3.0);
+        let grid = Grid::square(23, a_c / 5.0, Boundary::Free).unwrap();
+        let surface = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
+        let op = tack_kernels::operator_for(grid, 1.0).unwrap();
+        AdhesiveSolver::new(op, &surface, 1.0, KAPPA, options).unwrap()
+    }
+
+    /// Pillars on a free 9 × 9 grid (Δx = 0.1, E* = 1, γ = 10⁻³): every element at height 1
+    /// (never touched) except the given ones.
+    fn pillars(tops: &[((usize, usize), f64)]) -> AdhesiveSolver {
+        let grid = Grid::square(9, 0.1, Boundary::Free).unwrap();
+        let mut heights = Array2::from_elem((9, 9), 1.0);
+        for &(at, f) in tops {
+            heights[at] = f;
+        }
+        let surface = Surface::new(grid, heights).unwrap();
+        let op = tack_kernels::operator_for(grid, 1.0).unwrap();
+        AdhesiveSolver::new(op, &surface, 1e-3, KAPPA, AdhesiveOptions::default()).unwrap()
+    }
+
+    /// Entry `K[to, from]` of the influence matrix.
+    fn influence(s: &mut AdhesiveSolver, from: (usize, usize), to: (usize, usize)) -> f64 {
+        let mut p = Array2::zeros((9, 9));
+        p[from] = 1.0;
+        let mut u = Array2::zeros((9, 9));
+        s.base.op.apply(p.view(), u.view_mut());
+        u[to]
+    }
+
+    #[test]
+    fn bonded_set_is_unchanged_by_a_small_approach_change() {
+        let mut s = sphere(AdhesiveOptions::default());
+        let r1 = s.step(1.0).unwrap();
+        let set = s.bonded().clone();
+        // From d = 1 to 2 the pinned adhesive contact keeps its set (69 elements): the pressure
+        // is affine in d there, with the secant stiffness k.
+        let r2 = s.step(2.0).unwrap();
+        assert_eq!(s.bonded(), &set);
+        assert_eq!((r1.n_bonded, r2.active_set_iterations), (69, 1));
+        let k = (r2.force - r1.force) / (2.0 - 1.0);
+        // The margins at d = 2: bonded tension ≥ 2.8 below σ_c, free gaps ≥ 0.056; a change of
+        // 10⁻⁴ in d moves neither across. One round, no set change, and the secant predictor is
+        // exact, so CG has nothing left to do.
+        for d in [2.0 + 1e-4, 2.0 + 2e-4] {
+            let r = s.step(d).unwrap();
+            assert_eq!(s.bonded(), &set, "d = {d}");
+            assert!(r.converged && r.active_set_iterations == 1 && r.cg_iterations == 0);
+            let predicted = r2.force + k * (d - 2.0);
+            assert!(
+                (r.force / predicted - 1.0).abs() < 1e-9,
+                "{} vs {predicted}",
+                r.force
+            );
+        }
+        // A large change does move the set.
+        s.step(3.0).unwrap();
+        assert_ne!(s.bonded(), &set);
+    }
+
+    #[test]
+    fn an_element_above_the_critical_stress_detaches() {
+        // Two pillars far apart, tops at f = 0 (A) and 0.01 (B): B is pulled harder.
+        let (a, b) = ((2, 2), (6, 6));
+        let mut s = pillars(&[(a, 0.0), (b, 0.01)]);
+        let sigma_c = s.critical_stress();
+        let expected = (1.0e-3_f64 / (KAPPA * 0.1)).sqrt();
+        assert!((sigma_c / expected - 1.0).abs() < 1e-15);
+        let (kaa, kab) = (influence(&mut s, a, a), influence(&mut s, b, a));
+        // Both bonded: p = K₂⁻¹(d − f), K₂ = [[kaa, kab], [kab, kaa]]. Choose d with p_B = −1.2σ_c.
+        let det = kaa * kaa - kab * kab;
+        let p_of = |d: f64| {
+            let (ra, rb) = (d - 0.0, d - 0.01);
+            ((kaa * ra - kab * rb) / det, (kaa * rb - kab * ra) / det)
+        };
+        let d = {
+            // p_B is affine in d.
+            let (p0, p1) = (p_of(0.0).1, p_of(1.0).1);
+            (-1.2 * sigma_c - p0) / (p1 - p0)
+        };
+        let (pa, pb) = p_of(d);
+        assert!(
+            (pb / sigma_c + 1.2).abs() < 1e-12 && pa > -sigma_c,
+            "{pa} {pb}"
+        );
+        // A alone afterwards: p_A = d/kaa, still below σ_c in tension.
+        assert!(d / kaa > -sigma_c);
+
+        let loaded = s.step(0.05).unwrap();
+        assert_eq!(loaded.n_bonded, 2);
+        let r = s.step(d).unwrap();
+        assert!(r.converged);
+        // Round 1 detaches B (tension 1.2σ_c), round 2 solves A alone and settles.
+        assert_eq!((r.n_bonded, r.active_set_iterations), (1, 2));
+        assert!(s.bonded()[a] && !s.bonded()[b]);
+        assert_eq!(s.pressure()[b], 0.0);
+        assert!(
+            (s.pressure()[a] / (d / kaa) - 1.0).abs() < 1e-9,
+            "{}",
+            s.pressure()[a]
+        );
+        assert!(s.gap()[b] > 0.0);
+
+        // One pillar: held below σ_c, let go above it.
+        let d_c = -sigma_c * kaa;
+        let mut s = pillars(&[(a, 0.0)]);
+        s.step(0.01).unwrap();
+        let held = s.step(0.9 * d_c).unwrap();
+        assert_eq!(held.n_bonded, 1);
+        assert!((s.pressure()[a] / (-0.9 * sigma_c) - 1.0).abs() < 1e-9);
+        assert!((held.force / (-0.9 * sigma_c * 0.01) - 1.0).abs() < 1e-9);
+        let released = s.step(1.1 * d_c).unwrap();
+        assert_eq!((released.n_bonded, released.force), (0, 0.0));
+        assert!(released.converged && s.gap()[a] > 0.0);
+    }
+
+    #[test]
+    fn the_round_cap_reports_not_converged() {
+        // From nothing, d = 2 takes two rounds: attach what penetrates (137 elements), then
+        // solve on that set, which stays.
+        let free = sphere(AdhesiveOptions::default()).step(2.0).unwrap();
+        assert!(free.converged && free.force > 0.0);
+        assert_eq!((free.active_set_iterations, free.n_bonded), (2, 137));
+        let capped = AdhesiveOptions {
+            max_active_set_iterations: 1,
+            ..AdhesiveOptions::default()
+        };
+        let r = sphere(capped).step(2.0).unwrap();
+        assert!(!r.converged);
+        // Stopped after the attach round: the set is bonded but never solved on.
+        assert_eq!((r.active_set_iterations, r.cg_iterations), (1, 0));
+        assert_eq!((r.n_bonded, r.force), (137, 0.0));
+        // A CG cap is reported the same way.
+        let cg_capped = AdhesiveOptions {
+            cg: SolverOptions {
+                max_iterations: 1,
+                ..AdhesiveOptions::default().cg
+            },
+            ..AdhesiveOptions::default()
+        };
+        let r = sphere(cg_capped).step(2.0).unwrap();
+        assert!(!r.converged && r.residual > 1e-9);
+    }
+
+    #[test]
+    fn periodic_full_contact_holds_at_the_least_admissible_pressure() {
+        let grid = Grid::square(16, 1.0 / 16.0, Boundary::Periodic).unwrap();
+        let surface = Surface::from_shape(grid, &Waviness2d::new(0.01, 1.0).unwrap());
+        let mean = surface.heights().mean().unwrap();
+        let op = tack_kernels::operator_for(grid, 1.0).unwrap();
+        let mut s =
+            AdhesiveSolver::new(op, &surface, 1e-4, KAPPA, AdhesiveOptions::default()).unwrap();
+        let r = s.step(mean).unwrap();
+        assert!(r.full_contact && r.converged && r.n_bonded == 256);
+        // Shifted so that the most tensile element sits exactly at σ_c.
+        let p_min = s.pressure().iter().fold(f64::INFINITY, |m, &p| m.min(p));
+        assert_eq!(p_min, -s.critical_stress());
+        assert!(s.gap().iter().all(|&g| g == 0.0));
+        // Below the mean height full contact opens at its most tensile element and goes on
+        // detaching until the tensions are admissible.
+        let r = s.step(mean - 0.004).unwrap();
+        assert!(!r.full_contact && r.converged && r.n_bonded < 256);
+        let sigma_c = s.critical_stress();
+        assert!(s.pressure().iter().all(|&p| p >= -sigma_c));
+    }
+
+    #[test]
+    fn inputs_are_checked_once_in_order() {
+        let grid = Grid::square(5, 1.0, Boundary::Free).unwrap();
+        let surface = Surface::flat(grid);
+        let new = |gamma, kappa, options| {
+            let op = tack_kernels::operator_for(grid, 1.0).unwrap();
+            AdhesiveSolver::new(op, &surface, gamma, kappa, options).err()
+        };
+        let ok = AdhesiveOptions::default();
+        let message = |e: Option<SolverError>| e.unwrap().to_string();
+        assert_eq!(
+            message(new(-1.0, KAPPA, ok)),
+            "material.gamma = -1 is invalid: must be a finite number ≥ 0"
+        );
+        assert_eq!(
+            message(new(1.0, 0.0, ok)),
+            "solver.kappa = 0 is invalid: must be a finite number > 0"
+        );
+        let no_rounds = AdhesiveOptions {
+            max_active_set_iterations: 0,
+            ..ok
+        };
+        assert_eq!(
+            message(new(1.0, KAPPA, no_rounds)),
+            "solver.max_active_set_iterations = 0 is invalid: must be an integer ≥ 1"
+        );
+        let other = Grid::square(6, 1.0, Boundary::Free).unwrap();
+        let op = tack_kernels::operator_for(other, 1.0).unwrap();
+        assert!(matches!(
+            AdhesiveSolver::new(op, &surface, 1.0, KAPPA, ok),
+            Err(SolverError::GridMismatch { .. })
+        ));
+        assert!(new(0.0, KAPPA, ok).is_none());
     }
 }

@@ -1,17 +1,20 @@
-//! Preconditioned conjugate gradients for the bonded-set problem `K_CC p_C = (d − f)_C`.
+//! Conjugate-gradient building blocks: the CG vectors both solvers allocate once ([`Work`]) and
+//! the preconditioned CG for the bonded-set problem `K_CC p_C = (d − f)_C` of the adhesive
+//! solver ([`pcg`]). The non-adhesive solver's constrained CG (Polonsky–Keer) projects onto
+//! `p ≥ 0` inside its iteration and lives in `contact.rs`.
 
 use ndarray::{Array2, ArrayView2, ArrayViewMut2, Zip};
 use tack_kernels::ElasticOperator;
 
 use crate::SolverOptions;
+use crate::state::Convergence;
 
-/// CG vectors on one grid; `disp = K p` is kept up to date.
+/// The CG vectors on one grid, allocated once: `disp = K p` (kept up to date by the iterations
+/// that own it), the search direction `dir` and its image `kdir = K dir`.
 pub(crate) struct Work {
     pub(crate) disp: Array2<f64>,
-    resid: Array2<f64>,
-    dir: Array2<f64>,
-    kdir: Array2<f64>,
-    zres: Array2<f64>,
+    pub(crate) dir: Array2<f64>,
+    pub(crate) kdir: Array2<f64>,
 }
 
 impl Work {
@@ -19,9 +22,23 @@ impl Work {
         let z = Array2::zeros(shape);
         Self {
             disp: z.clone(),
-            resid: z.clone(),
             dir: z.clone(),
-            kdir: z.clone(),
+            kdir: z,
+        }
+    }
+}
+
+/// The two further vectors of the preconditioned CG: the residual and its preconditioned image.
+pub(crate) struct PcgWork {
+    resid: Array2<f64>,
+    zres: Array2<f64>,
+}
+
+impl PcgWork {
+    pub(crate) fn new(shape: (usize, usize)) -> Self {
+        let z = Array2::zeros(shape);
+        Self {
+            resid: z.clone(),
             zres: z,
         }
     }
@@ -30,7 +47,7 @@ impl Work {
 /// Solves `K_CC p_C = (d − f)_C` (`p = 0` off the bonded set `C`), warm-started from `pressure`,
 /// with the masked spectral preconditioner when `preconditioned`. Converged when the rms
 /// residual over `C` is below `tolerance` times the rms right-hand side (floored at 1e-3 of
-/// the height range over `C`). Returns (iterations, relative residual, converged).
+/// the height range over `C`). Leaves `work.disp = K p`.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn pcg(
     op: &mut dyn ElasticOperator,
@@ -39,9 +56,10 @@ pub(crate) fn pcg(
     d: f64,
     mut pressure: ArrayViewMut2<f64>,
     w: &mut Work,
+    pw: &mut PcgWork,
     options: &SolverOptions,
     preconditioned: bool,
-) -> (usize, f64, bool) {
+) -> Convergence {
     Zip::from(&mut pressure).and(&bonded).for_each(|p, &b| {
         if !b {
             *p = 0.0
@@ -68,7 +86,7 @@ pub(crate) fn pcg(
     op.apply(pressure.view(), w.disp.view_mut());
     loop {
         let mut rr = 0.0;
-        Zip::from(&mut w.resid)
+        Zip::from(&mut pw.resid)
             .and(&heights)
             .and(&w.disp)
             .and(&bonded)
@@ -76,15 +94,16 @@ pub(crate) fn pcg(
                 *r = if b { d - f - u } else { 0.0 };
                 rr += *r * *r;
             });
-        let rel = (rr / n_c as f64).sqrt() / scale;
-        if rr <= target {
-            return (it, rel, true);
+        let residual = (rr / n_c as f64).sqrt() / scale;
+        if rr <= target || it >= max_it {
+            return Convergence {
+                iterations: it,
+                residual,
+                converged: rr <= target,
+            };
         }
-        if it >= max_it {
-            return (it, rel, false);
-        }
-        let mut rz = precondition(op, w, bonded, preconditioned);
-        w.dir.assign(&w.zres);
+        let mut rz = precondition(op, pw, bonded, preconditioned);
+        w.dir.assign(&pw.zres);
         while it < max_it {
             it += 1;
             op.apply(w.dir.view(), w.kdir.view_mut());
@@ -100,7 +119,7 @@ pub(crate) fn pcg(
             let alpha = rz / sq;
             let mut rr_new = 0.0;
             Zip::from(&mut pressure)
-                .and(&mut w.resid)
+                .and(&mut pw.resid)
                 .and(&mut w.disp)
                 .and(&w.dir)
                 .and(&w.kdir)
@@ -116,11 +135,11 @@ pub(crate) fn pcg(
             if rr_new <= target {
                 break;
             }
-            let rz_new = precondition(op, w, bonded, preconditioned);
+            let rz_new = precondition(op, pw, bonded, preconditioned);
             let beta = rz_new / rz;
             rz = rz_new;
             Zip::from(&mut w.dir)
-                .and(&w.zres)
+                .and(&pw.zres)
                 .for_each(|s, &z| *s = z + beta * *s);
             if it % REFRESH == 0 {
                 // Long runs: refresh `K p` so round-off in the carried product cannot build up.
@@ -139,7 +158,7 @@ const REFRESH: usize = 200;
 /// `z = P_C M r` (or `z = r` without preconditioning); returns `r·z`.
 fn precondition(
     op: &mut dyn ElasticOperator,
-    w: &mut Work,
+    w: &mut PcgWork,
     bonded: ArrayView2<bool>,
     on: bool,
 ) -> f64 {
@@ -160,4 +179,170 @@ fn precondition(
             }
         });
     rz
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tack_geometry::{Boundary, Grid};
+    use tack_kernels::FreeOperator;
+
+    const N: usize = 10;
+
+    /// A paraboloid `f = r²/2` on a free 10 × 10 grid (Δx = 0.1, E* = 1) bonded on a disc of 29
+    /// elements around its apex, pressed by d = 0.05: a symmetric positive definite `K_CC`.
+    fn problem() -> (FreeOperator, Array2<f64>, Array2<bool>, f64) {
+        let dx = 0.1;
+        let op = FreeOperator::new(Grid::square(N, dx, Boundary::Free).unwrap(), 1.0).unwrap();
+        let c = (N / 2) as f64;
+        let r2 = |i: usize, j: usize| ((i as f64 - c).powi(2) + (j as f64 - c).powi(2)) * dx * dx;
+        let heights = Array2::from_shape_fn((N, N), |(i, j)| r2(i, j) / 2.0);
+        let bonded = Array2::from_shape_fn((N, N), |(i, j)| r2(i, j) <= 0.09 + 1e-12);
+        (op, heights, bonded, 0.05)
+    }
+
+    /// `K_CC p_C = (d − f)_C` by dense Gaussian elimination (columns of K from unit loads).
+    fn dense_solution(
+        op: &mut FreeOperator,
+        heights: &Array2<f64>,
+        bonded: &Array2<bool>,
+        d: f64,
+    ) -> Array2<f64> {
+        let idx: Vec<(usize, usize)> = bonded
+            .indexed_iter()
+            .filter(|(_, b)| **b)
+            .map(|(k, _)| k)
+            .collect();
+        let m = idx.len();
+        let mut a = vec![vec![0.0; m + 1]; m];
+        let (mut unit, mut col) = (Array2::zeros((N, N)), Array2::zeros((N, N)));
+        for (c, &e) in idx.iter().enumerate() {
+            unit[e] = 1.0;
+            op.apply(unit.view(), col.view_mut());
+            unit[e] = 0.0;
+            for (r, &row) in idx.iter().enumerate() {
+                a[r][c] = col[row];
+            }
+        }
+        for (r, &row) in idx.iter().enumerate() {
+            a[r][m] = d - heights[row];
+        }
+        for k in 0..m {
+            let pivot = a[k].clone();
+            for row in &mut a[k + 1..] {
+                let f = row[k] / pivot[k];
+                for (x, &y) in row[k..].iter_mut().zip(&pivot[k..]) {
+                    *x -= f * y;
+                }
+            }
+        }
+        let mut x = vec![0.0; m];
+        for k in (0..m).rev() {
+            let s: f64 = (k + 1..m).map(|c| a[k][c] * x[c]).sum();
+            x[k] = (a[k][m] - s) / a[k][k];
+        }
+        let mut p = Array2::zeros((N, N));
+        for (k, &e) in idx.iter().enumerate() {
+            p[e] = x[k];
+        }
+        p
+    }
+
+    #[test]
+    fn solves_a_small_spd_system_to_the_tolerance() {
+        let (mut op, heights, bonded, d) = problem();
+        assert_eq!(bonded.iter().filter(|&&b| b).count(), 29);
+        let exact = dense_solution(&mut op, &heights, &bonded, d);
+        let p_max = exact.iter().fold(0.0f64, |m, p| m.max(p.abs()));
+        let options = SolverOptions {
+            tolerance: 1e-12,
+            max_iterations: 200,
+        };
+        for preconditioned in [true, false] {
+            // Start from a pressure that is wrong everywhere, also off the bonded set.
+            let mut p = Array2::from_elem((N, N), 1.0);
+            let (mut w, mut pw) = (Work::new((N, N)), PcgWork::new((N, N)));
+            let c = pcg(
+                &mut op,
+                heights.view(),
+                bonded.view(),
+                d,
+                p.view_mut(),
+                &mut w,
+                &mut pw,
+                &options,
+                preconditioned,
+            );
+            assert!(
+                c.converged && c.residual <= 1e-12,
+                "{preconditioned}: {c:?}"
+            );
+            assert!(c.iterations >= 3 && c.iterations <= 29, "{c:?}");
+            // Off the bonded set p = 0 exactly; on it, the dense solution.
+            assert!(p.iter().zip(&bonded).all(|(&p, &b)| b || p == 0.0));
+            let err = (&p - &exact).iter().fold(0.0f64, |m, e| m.max(e.abs()));
+            assert!(
+                err <= 1e-9 * p_max,
+                "{preconditioned}: error {err} of {p_max}"
+            );
+            // `disp` is the product K p, and closes the gap on C to the tolerance.
+            let mut u = Array2::zeros((N, N));
+            op.apply(p.view(), u.view_mut());
+            let du = (&u - &w.disp).iter().fold(0.0f64, |m, e| m.max(e.abs()));
+            assert!(du <= 1e-12 * d, "carried K p off by {du}");
+            let (mut rr, mut bb, mut n) = (0.0, 0.0, 0.0);
+            for ((&f, &u), &b) in heights.iter().zip(&u).zip(&bonded) {
+                if b {
+                    rr += (d - f - u).powi(2);
+                    bb += (d - f).powi(2);
+                    n += 1.0;
+                }
+            }
+            let rel = (rr / n).sqrt() / (bb / n).sqrt();
+            assert!(rel <= 1e-12, "true residual {rel}");
+            // A warm start from the solution needs no iteration.
+            let again = pcg(
+                &mut op,
+                heights.view(),
+                bonded.view(),
+                d,
+                p.view_mut(),
+                &mut w,
+                &mut pw,
+                &options,
+                preconditioned,
+            );
+            assert_eq!(again.iterations, 0);
+            assert!(again.converged);
+        }
+    }
+
+    #[test]
+    fn reports_non_convergence_at_the_iteration_cap() {
+        let (mut op, heights, bonded, d) = problem();
+        let mut p = Array2::zeros((N, N));
+        let (mut w, mut pw) = (Work::new((N, N)), PcgWork::new((N, N)));
+        let capped = SolverOptions {
+            tolerance: 1e-12,
+            max_iterations: 2,
+        };
+        let c = pcg(
+            &mut op,
+            heights.view(),
+            bonded.view(),
+            d,
+            p.view_mut(),
+            &mut w,
+            &mut pw,
+            &capped,
+            true,
+        );
+        assert!(!c.converged);
+        assert_eq!(c.iterations, 2);
+        assert!(c.residual > 1e-6 && c.residual < 1.0, "{c:?}");
+        // The capped solve still leaves `disp = K p` for the pressure it stopped at.
+        let mut u = Array2::zeros((N, N));
+        op.apply(p.view(), u.view_mut());
+        assert!((&u - &w.disp).iter().all(|e| e.abs() <= 1e-12 * d));
+    }
 }

@@ -82,6 +82,7 @@
 //! ```
 
 mod adhesive;
+mod base;
 mod cg;
 mod clusters;
 mod contact;
@@ -90,8 +91,10 @@ mod extrapolate;
 mod options;
 mod path;
 mod state;
+mod subgrid;
+mod validate;
 
-pub use adhesive::{AdhesiveOptions, AdhesiveSolver, KAPPA, KAPPA_LINE, StepRecord};
+pub use adhesive::{AdhesiveOptions, AdhesiveSolver, KAPPA, KAPPA_LINE};
 pub use clusters::count_clusters;
 pub use contact::ContactSolver;
 pub use crop::{contact_window, touches_edge};
@@ -100,4 +103,4 @@ pub use options::{SolverError, SolverOptions};
 pub use path::{
     ApproachPath, Observer, PathResult, Phase, SnapshotRequest, StepFields, pull_off_step,
 };
-pub use state::ContactState;
+pub use state::{ContactState, StepRecord};

@@ -53,20 +53,8 @@ impl Default for SolverOptions {
 impl SolverOptions {
     /// Checks `0 < tolerance < 1` and `max_iterations ≥ 1`.
     pub fn validate(&self) -> Result<(), SolverError> {
-        if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
-            return Err(SolverError::OutOfRange {
-                field: "solver.tolerance",
-                value: self.tolerance,
-                allowed: "a number in (0, 1)",
-            });
-        }
-        if self.max_iterations == 0 {
-            return Err(SolverError::OutOfRange {
-                field: "solver.max_iterations",
-                value: 0.0,
-                allowed: "an integer ≥ 1",
-            });
-        }
+        crate::validate::fraction("solver.tolerance", self.tolerance)?;
+        crate::validate::at_least_one("solver.max_iterations", self.max_iterations)?;
         Ok(())
     }
 }

@@ -4,7 +4,7 @@
 
 use ndarray::Array2;
 
-use crate::{AdhesiveSolver, SolverError, StepRecord};
+use crate::{AdhesiveSolver, SolverError, StepRecord, validate};
 
 /// A load–unload path under approach control.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -98,53 +98,29 @@ impl ApproachPath {
 
     /// Checks finiteness and ordering; errors name the `protocol.*` field.
     pub fn validate(&self) -> Result<(), SolverError> {
-        let bad = |field, value, allowed| {
-            Err(SolverError::OutOfRange {
-                field,
-                value,
-                allowed,
-            })
-        };
-        for (field, v) in [
-            ("protocol.start", self.start),
-            ("protocol.max_approach", self.max_approach),
-        ] {
-            if !v.is_finite() {
-                return bad(field, v, "a finite number");
-            }
-        }
-        for (field, v) in [
-            ("protocol.load_step", self.load_step),
-            ("protocol.unload_step", self.unload_step),
-        ] {
-            if !(v.is_finite() && v > 0.0) {
-                return bad(field, v, "a finite number > 0");
-            }
-        }
-        if let Some(c) = self.coarse_unload_step
-            && !(c.is_finite() && c > 0.0)
-        {
-            return bad("protocol.coarse_unload_step", c, "a finite number > 0");
+        validate::finite("protocol.start", self.start)?;
+        validate::finite("protocol.max_approach", self.max_approach)?;
+        validate::positive("protocol.load_step", self.load_step)?;
+        validate::positive("protocol.unload_step", self.unload_step)?;
+        if let Some(c) = self.coarse_unload_step {
+            validate::positive("protocol.coarse_unload_step", c)?;
         }
         if self.max_approach < self.start {
-            return bad(
-                "protocol.max_approach",
-                self.max_approach,
-                "≥ protocol.start",
-            );
+            return Err(SolverError::OutOfRange {
+                field: "protocol.max_approach",
+                value: self.max_approach,
+                allowed: "≥ protocol.start",
+            });
         }
-        if let Some(r) = self.retract_to
-            && !(r.is_finite() && r < self.max_approach)
-        {
-            return bad(
+        if let Some(r) = self.retract_to {
+            validate::below(
                 "protocol.retract_to",
                 r,
+                self.max_approach,
                 "a finite number < protocol.max_approach",
-            );
+            )?;
         }
-        if self.max_steps == 0 {
-            return bad("protocol.max_steps", 0.0, "an integer ≥ 1");
-        }
+        validate::at_least_one("protocol.max_steps", self.max_steps)?;
         Ok(())
     }
 }
@@ -207,7 +183,7 @@ pub enum SnapshotRequest {
 
 impl SnapshotRequest {
     /// Whether step `step` is kept by a rule that needs no look at the path (`PullOff` decides
-    /// as the path goes, see [`Keeper`]).
+    /// as the path goes, see [`SnapshotKeeper`]).
     fn wants(&self, step: usize) -> bool {
         match self {
             Self::None | Self::PullOff => false,
@@ -218,50 +194,32 @@ impl SnapshotRequest {
     }
 }
 
-/// The fields of [`SnapshotRequest::PullOff`] while the path runs: the least force so far
+/// Snapshot keeping as an [`Observer`]: the fields a [`SnapshotRequest`] asks for. The rules that
+/// name steps keep them as they come; [`SnapshotRequest::PullOff`] keeps the least force so far
 /// (fields cloned only when a new minimum is found) and the latest step with a bonded element
 /// (copied into buffers allocated once).
-#[derive(Default)]
-struct Keeper {
+struct SnapshotKeeper<'r> {
+    request: &'r SnapshotRequest,
+    steps: Vec<StepFields>,
     pull_off: Option<(f64, StepFields)>,
     last_contact: Option<StepFields>,
 }
 
-impl Keeper {
-    fn observe(&mut self, step: usize, record: &StepRecord, solver: &AdhesiveSolver) {
-        if !record.full_contact
-            && self
-                .pull_off
-                .as_ref()
-                .is_none_or(|(force, _)| record.force < *force)
-        {
-            let snap = StepFields {
-                step,
-                pressure: solver.pressure().clone(),
-                bonded: solver.bonded().clone(),
-            };
-            self.pull_off = Some((record.force, snap));
-        }
-        if record.n_bonded > 0 {
-            match &mut self.last_contact {
-                Some(s) => {
-                    s.step = step;
-                    s.pressure.assign(solver.pressure());
-                    s.bonded.assign(solver.bonded());
-                }
-                None => {
-                    self.last_contact = Some(StepFields {
-                        step,
-                        pressure: solver.pressure().clone(),
-                        bonded: solver.bonded().clone(),
-                    });
-                }
-            }
+impl<'r> SnapshotKeeper<'r> {
+    fn new(request: &'r SnapshotRequest) -> Self {
+        Self {
+            request,
+            steps: Vec::new(),
+            pull_off: None,
+            last_contact: None,
         }
     }
 
     /// The kept snapshots in step order, one per step.
     fn into_snapshots(self) -> Vec<StepFields> {
+        if *self.request != SnapshotRequest::PullOff {
+            return self.steps;
+        }
         let mut out: Vec<StepFields> = self.pull_off.map(|(_, s)| s).into_iter().collect();
         if let Some(last) = self.last_contact
             && out.first().is_none_or(|p| p.step != last.step)
@@ -270,6 +228,86 @@ impl Keeper {
         }
         out.sort_by_key(|s| s.step);
         out
+    }
+}
+
+impl Observer for SnapshotKeeper<'_> {
+    fn on_fields(
+        &mut self,
+        step: usize,
+        _phase: Phase,
+        record: &StepRecord,
+        pressure: &Array2<f64>,
+        bonded: &Array2<bool>,
+    ) {
+        let fields = || StepFields {
+            step,
+            pressure: pressure.clone(),
+            bonded: bonded.clone(),
+        };
+        if self.request.wants(step) {
+            self.steps.push(fields());
+        }
+        if *self.request != SnapshotRequest::PullOff {
+            return;
+        }
+        if !record.full_contact
+            && self
+                .pull_off
+                .as_ref()
+                .is_none_or(|(force, _)| record.force < *force)
+        {
+            self.pull_off = Some((record.force, fields()));
+        }
+        if record.n_bonded > 0 {
+            match &mut self.last_contact {
+                Some(s) => {
+                    s.step = step;
+                    s.pressure.assign(pressure);
+                    s.bonded.assign(bonded);
+                }
+                None => self.last_contact = Some(fields()),
+            }
+        }
+    }
+
+    fn on_restart(&mut self) {
+        self.steps.clear();
+        (self.pull_off, self.last_contact) = (None, None);
+    }
+}
+
+/// Two observers in turn: every hook goes to `first`, then to `second`; either may cancel.
+struct Both<'a> {
+    first: &'a mut dyn Observer,
+    second: &'a mut dyn Observer,
+}
+
+impl Observer for Both<'_> {
+    fn on_step(&mut self, index: usize, phase: Phase, record: &StepRecord) {
+        self.first.on_step(index, phase, record);
+        self.second.on_step(index, phase, record);
+    }
+    fn on_fields(
+        &mut self,
+        index: usize,
+        phase: Phase,
+        record: &StepRecord,
+        pressure: &Array2<f64>,
+        bonded: &Array2<bool>,
+    ) {
+        self.first.on_fields(index, phase, record, pressure, bonded);
+        self.second
+            .on_fields(index, phase, record, pressure, bonded);
+    }
+    fn on_restart(&mut self) {
+        self.first.on_restart();
+        self.second.on_restart();
+    }
+    fn cancelled(&mut self) -> bool {
+        // Both are asked: neither should miss a poll it counts on.
+        let first = self.first.cancelled();
+        self.second.cancelled() || first
     }
 }
 
@@ -348,12 +386,29 @@ impl AdhesiveSolver {
         observer: &mut dyn Observer,
     ) -> Result<PathResult, SolverError> {
         path.validate()?;
+        let mut keeper = SnapshotKeeper::new(snapshots);
+        let mut out = self.drive(
+            path,
+            &mut Both {
+                first: &mut keeper,
+                second: observer,
+            },
+        )?;
+        out.snapshots = keeper.into_snapshots();
+        Ok(out)
+    }
+
+    /// The steps of `path`: load, then retract; every step goes to `observer`.
+    fn drive(
+        &mut self,
+        path: &ApproachPath,
+        observer: &mut dyn Observer,
+    ) -> Result<PathResult, SolverError> {
         let mut out = PathResult::default();
-        let mut keeper = (*snapshots == SnapshotRequest::PullOff).then(Keeper::default);
         let mut k = 0usize;
         loop {
             let d = (path.start + k as f64 * path.load_step).min(path.max_approach);
-            self.record_step(d, Phase::Load, snapshots, &mut keeper, observer, &mut out)?;
+            self.record_step(d, Phase::Load, observer, &mut out)?;
             if d >= path.max_approach || out.records.len() >= path.max_steps {
                 break;
             }
@@ -378,41 +433,26 @@ impl AdhesiveSolver {
                 out.completed = true;
                 break;
             }
-            let rec =
-                self.record_step(d, Phase::Unload, snapshots, &mut keeper, observer, &mut out)?;
+            let rec = self.record_step(d, Phase::Unload, observer, &mut out)?;
             if rec.n_bonded == 0 && path.retract_to.is_none() {
                 out.completed = true;
                 break;
             }
             k += 1;
         }
-        if let Some(keeper) = keeper {
-            out.snapshots = keeper.into_snapshots();
-        }
         Ok(out)
     }
 
+    /// One step at `d`: solve, tell the observer (fields, then record), append the record.
     fn record_step(
         &mut self,
         d: f64,
         phase: Phase,
-        snapshots: &SnapshotRequest,
-        keeper: &mut Option<Keeper>,
         observer: &mut dyn Observer,
         out: &mut PathResult,
     ) -> Result<StepRecord, SolverError> {
         let rec = self.step(d)?;
         let index = out.records.len();
-        if snapshots.wants(index) {
-            out.snapshots.push(StepFields {
-                step: index,
-                pressure: self.pressure().clone(),
-                bonded: self.bonded().clone(),
-            });
-        }
-        if let Some(keeper) = keeper {
-            keeper.observe(index, &rec, self);
-        }
         observer.on_fields(index, phase, &rec, self.pressure(), self.bonded());
         observer.on_step(index, phase, &rec);
         out.records.push(rec);
@@ -622,5 +662,61 @@ mod tests {
             .unwrap();
         assert_eq!(seen.0.len(), r.records.len());
         assert!(seen.0.iter().enumerate().all(|(k, s)| s.0 == k && s.2));
+    }
+
+    #[test]
+    fn snapshots_are_kept_beside_the_callers_observer() {
+        /// Counts steps and cancels after `stop` of them.
+        struct Stop {
+            stop: usize,
+            seen: usize,
+        }
+        impl Observer for Stop {
+            fn on_step(&mut self, _: usize, _: Phase, _: &StepRecord) {
+                self.seen += 1;
+            }
+            fn cancelled(&mut self) -> bool {
+                self.seen >= self.stop
+            }
+        }
+        let p = path(Some(COARSE));
+        let all = sphere_solver()
+            .run_path(&p, &SnapshotRequest::All, &mut ())
+            .unwrap();
+        let mut counting = Stop {
+            stop: usize::MAX,
+            seen: 0,
+        };
+        let every = sphere_solver()
+            .run_path(&p, &SnapshotRequest::Every(3), &mut counting)
+            .unwrap();
+        assert_eq!(counting.seen, all.records.len());
+        let steps: Vec<usize> = every.snapshots.iter().map(|s| s.step).collect();
+        assert_eq!(steps, (0..all.records.len()).step_by(3).collect::<Vec<_>>());
+        for s in &every.snapshots {
+            assert_eq!(s, &all.snapshots[s.step]);
+        }
+        let listed = sphere_solver()
+            .run_path(&p, &SnapshotRequest::Steps(vec![4, 1, 10_000]), &mut ())
+            .unwrap();
+        let steps: Vec<usize> = listed.snapshots.iter().map(|s| s.step).collect();
+        assert_eq!(steps, [1, 4]);
+        // The caller's observer still cancels.
+        let mut stop = Stop { stop: 3, seen: 0 };
+        let e = sphere_solver()
+            .run_path(&p, &SnapshotRequest::All, &mut stop)
+            .unwrap_err();
+        assert_eq!(e, SolverError::Cancelled { steps: 3 });
+        // A restart forgets what was kept.
+        let request = SnapshotRequest::PullOff;
+        let mut keeper = SnapshotKeeper::new(&request);
+        let mut solver = sphere_solver();
+        let rec = solver.step(1.0).unwrap();
+        keeper.on_fields(0, Phase::Load, &rec, solver.pressure(), solver.bonded());
+        assert_eq!(keeper.into_snapshots().len(), 1);
+        let mut keeper = SnapshotKeeper::new(&request);
+        keeper.on_fields(0, Phase::Load, &rec, solver.pressure(), solver.bonded());
+        keeper.on_restart();
+        assert!(keeper.into_snapshots().is_empty());
     }
 }

@@ -40,6 +40,8 @@
 //! - [`problem`]: validation into grid, surface, crop window, path and closed-form references;
 //! - [`run()`](run::run): the solve in memory, with progress and cancellation through a
 //!   [`solver::Observer`], the summary and the Richardson coarse run;
+//! - [`heights`]: runs on a body given as a height array in memory, with a default pull-off
+//!   path (what the Python package's `tack.pull_off` calls);
 //! - [`provenance`]: git revision, timestamps, command line;
 //! - [`sweep`]: parameter sweeps (sharded, parallel, resumable), [`merge`] into one table.
 //!
@@ -48,6 +50,7 @@
 //! uses.
 
 pub mod error;
+pub mod heights;
 pub mod merge;
 pub mod overrides;
 pub mod problem;

@@ -19,6 +19,7 @@ use tack_solver::{
 
 use crate::scene::{
     BoundaryKind, DEFAULT_MAX_STEPS, Geometry, GridSpec, PunchKind, Roughness, Scene, SceneError,
+    num,
 };
 
 /// Relative tolerance on a height map's `dx` against `grid.dx`.
@@ -85,11 +86,34 @@ pub struct Problem {
     pub seed: Option<u64>,
     /// Closed-form references.
     pub references: References,
+    /// What makes this scene's answer less than trustworthy, known before it runs (an
+    /// under-resolved pull-off, a closed-form reference that does not apply); the summary
+    /// carries them on, with the run's own.
+    pub warnings: Vec<String>,
 }
+
+/// Least pull-off contact radius over element size, a_c/Δx (JKR radius for spheres, the punch
+/// radius for circular punches), below which a run is flagged as under-resolved: the
+/// detachment criterion's error grows like Δx/a_c and is +33% at 5 (`docs/theory.md` §9).
+pub const MIN_PULL_OFF_RADIUS_ELEMENTS: f64 = 5.0;
+
+/// Least number of grid elements a periodic cell must span along each side, measured in
+/// pull-off contact diameters 2a_c, for the isolated sphere's F_JKR to be the reference: a
+/// closer neighbour (the periodic image) changes the pull-off.
+pub const MIN_PERIOD_CONTACT_DIAMETERS: f64 = 2.0;
 
 impl Problem {
     /// Validates `scene` and builds grid, surface and path.
     pub fn from_scene(scene: &Scene) -> Result<Self, SceneError> {
+        Self::build(scene, None)
+    }
+
+    /// [`Problem::from_scene`] with `extra` heights added to the scene's body and their
+    /// roughness range added to the crop rule's (`crate::heights`: bodies held in memory).
+    pub(crate) fn build(
+        scene: &Scene,
+        extra: Option<(&ndarray::Array2<f64>, f64)>,
+    ) -> Result<Self, SceneError> {
         let f = &scene.file;
         let (e_star, gamma) = (f.material.e_star, f.material.gamma);
         if !(e_star.is_finite() && e_star > 0.0) {
@@ -137,18 +161,59 @@ impl Problem {
                     Some(tack_analytics::alpha_star(e_star, gamma, h, hurst, q0, q1));
             }
         }
+        if let Some((heights, range)) = extra {
+            surface.add(&crate::heights::surface(grid, heights)?)?;
+            roughness_range += range;
+        }
+        let mut warnings = Vec::new();
+        check_scales(
+            e_star,
+            gamma,
+            &grid,
+            &f.geometry,
+            f.solver.kappa.unwrap_or(KAPPA),
+        )?;
+        let dx = grid.dx();
         match f.geometry {
-            Geometry::Sphere { radius } => {
-                references.f_jkr = Some(tack_analytics::jkr_pull_off_force(gamma, radius));
-                references.d_jkr =
-                    Some(tack_analytics::jkr_pull_off_approach(e_star, gamma, radius));
+            Geometry::Sphere { radius } if gamma > 0.0 => {
+                let a_c = tack_analytics::jkr_pull_off_radius(e_star, gamma, radius);
+                let (lx, ly) = (grid.lx(), grid.ly());
+                let span = lx.min(ly) / (2.0 * a_c);
+                if grid.nx() == 1 || grid.ny() == 1 {
+                    warnings.push(format!(
+                        "no F_JKR reference: a sphere on a {} × {} grid is a strip of spheres, \
+                         not the isolated sphere of Eq. 7",
+                        grid.nx(),
+                        grid.ny()
+                    ));
+                } else if grid.boundary() == Boundary::Periodic
+                    && span < MIN_PERIOD_CONTACT_DIAMETERS
+                {
+                    warnings.push(format!(
+                        "no F_JKR reference: the periodic cell {lx:.4e} × {ly:.4e} spans \
+                         {span:.2} pull-off contact diameters 2a_c = {:.4e} (at least \
+                         {MIN_PERIOD_CONTACT_DIAMETERS} for the isolated sphere of Eq. 7)",
+                        2.0 * a_c
+                    ));
+                } else {
+                    references.f_jkr = Some(tack_analytics::jkr_pull_off_force(gamma, radius));
+                    references.d_jkr =
+                        Some(tack_analytics::jkr_pull_off_approach(e_star, gamma, radius));
+                }
+                under_resolved(
+                    &mut warnings,
+                    "the JKR pull-off contact radius a_c",
+                    a_c,
+                    dx,
+                );
             }
             Geometry::FlatPunch {
                 punch: PunchKind::Circle,
                 radius: Some(a),
                 ..
-            } => {
+            } if gamma > 0.0 => {
                 references.f_kendall = Some(-tack_analytics::kendall_pull_off(e_star, gamma, a));
+                under_resolved(&mut warnings, "the punch radius a", a, dx);
             }
             _ => {}
         }
@@ -242,6 +307,7 @@ impl Problem {
             first_touch,
             seed,
             references,
+            warnings,
         })
     }
 
@@ -261,6 +327,106 @@ impl Problem {
             self.options,
         )?)
     }
+}
+
+/// Flags a pull-off radius of fewer than [`MIN_PULL_OFF_RADIUS_ELEMENTS`] elements.
+fn under_resolved(warnings: &mut Vec<String>, what: &str, radius: f64, dx: f64) {
+    let elements = radius / dx;
+    if elements < MIN_PULL_OFF_RADIUS_ELEMENTS {
+        warnings.push(format!(
+            "under-resolved pull-off: {what} spans {elements:.3} elements (a_c/Δx < \
+             {MIN_PULL_OFF_RADIUS_ELEMENTS}), where the detachment criterion's error exceeds \
+             +33%; refine grid.dx"
+        ));
+    }
+}
+
+/// Checks that the scales a run derives from its inputs are finite, normal floating-point
+/// numbers: the element area Δx², the detachment stress σ_c = sqrt(E*γ/(κΔx)), and for spheres
+/// F_JKR, d_JKR and a_c. Huge or tiny inputs (E* = 1e308, Δx = 1e-160) pass their own range
+/// checks but overflow or underflow here, and a run would end in NaN or subnormal forces; the
+/// error names the input fields the failing scale comes from.
+fn check_scales(
+    e_star: f64,
+    gamma: f64,
+    grid: &Grid,
+    geometry: &Geometry,
+    kappa: f64,
+) -> Result<(), SceneError> {
+    let dx = grid.dx();
+    let normal = |name: &str, value: f64, fields: &str| {
+        if value.is_normal() && value.abs() < 1e300 {
+            Ok(())
+        } else {
+            Err(SceneError::Inconsistent(format!(
+                "{fields} give {name} = {value:e}, outside what double precision can carry \
+                 through a run (finite, between 1e-300 and 1e300 in magnitude); rescale the \
+                 units of the scene (e.g. mm and MPa instead of m and Pa)"
+            )))
+        }
+    };
+    normal(
+        "the element area Δx²",
+        dx * dx,
+        &format!("grid.dx = {}", num(dx)),
+    )?;
+    normal(
+        "the stiffness scale E*·Δx",
+        e_star * dx,
+        &format!(
+            "material.e_star = {} and grid.dx = {}",
+            num(e_star),
+            num(dx)
+        ),
+    )?;
+    // (An invalid κ is refused, naming solver.kappa, after this.)
+    if gamma > 0.0 && kappa.is_finite() && kappa > 0.0 {
+        let sigma_c = (e_star * gamma / (kappa * dx)).sqrt();
+        normal(
+            "σ_c = sqrt(E*γ/(κΔx))",
+            sigma_c,
+            &format!(
+                "material.e_star = {}, material.gamma = {} and grid.dx = {}",
+                num(e_star),
+                num(gamma),
+                num(dx)
+            ),
+        )?;
+        normal(
+            "the adhesive force per element σ_c·Δx²",
+            sigma_c * dx * dx,
+            &format!(
+                "material.e_star = {}, material.gamma = {} and grid.dx = {}",
+                num(e_star),
+                num(gamma),
+                num(dx)
+            ),
+        )?;
+        if let Geometry::Sphere { radius } = *geometry {
+            let fields = format!(
+                "material.e_star = {}, material.gamma = {} and geometry.radius = {}",
+                num(e_star),
+                num(gamma),
+                num(radius)
+            );
+            normal(
+                "F_JKR",
+                tack_analytics::jkr_pull_off_force(gamma, radius),
+                &fields,
+            )?;
+            normal(
+                "d_JKR",
+                tack_analytics::jkr_pull_off_approach(e_star, gamma, radius),
+                &fields,
+            )?;
+            normal(
+                "a_c",
+                tack_analytics::jkr_pull_off_radius(e_star, gamma, radius),
+                &fields,
+            )?;
+        }
+    }
+    Ok(())
 }
 
 /// The roughness band with the paper's defaults: `q0 = 2π/L` (longer side), `q1 = π/Δx`.
@@ -525,7 +691,9 @@ fn read_map(
         )));
     }
     let (heights, dx) = if is_h5 {
-        tack_io::read_height_map_h5(full, dataset).map_err(|e| field(e.to_string()))?
+        // The grid's shape: a map declaring another is refused before its data is read.
+        tack_io::read_height_map_h5(full, dataset, Some(grid.shape()))
+            .map_err(|e| field(e.to_string()))?
     } else {
         if dataset.is_some() {
             return Err(field(

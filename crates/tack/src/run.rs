@@ -266,6 +266,11 @@ pub fn summary(problem: &Problem, path: &PathResult) -> tack_io::Summary {
         extra.insert("crop_rows".to_owned(), w.shape().0 as f64);
         extra.insert("crop_cols".to_owned(), w.shape().1 as f64);
     }
+    let status = if path.completed {
+        tack_io::Summary::COMPLETE
+    } else {
+        tack_io::Summary::STOPPED_AT_MAX_STEPS
+    };
     tack_io::Summary {
         pull_off_force: pull_off,
         f_jkr,
@@ -273,8 +278,74 @@ pub fn summary(problem: &Problem, path: &PathResult) -> tack_io::Summary {
         johnson_alpha: r.johnson_alpha,
         alpha_star: r.alpha_star,
         extra,
+        status: Some(status.to_owned()),
+        warnings: warnings(problem, path),
     }
 }
+
+/// Least number of bonded elements at the pull-off step below which the pull-off is flagged
+/// as carried by too few elements to mean anything (a disc of radius 2.5 elements).
+pub const MIN_PULL_OFF_ELEMENTS: usize = 20;
+
+/// The warnings of a run: the problem's own (under-resolved, reference not applicable), then
+/// what the path shows (stopped at `max_steps`, steps that did not converge, contact at the
+/// edge of a free grid, a pull-off not resolved by the path or carried by a handful of
+/// elements).
+pub fn warnings(problem: &Problem, path: &PathResult) -> Vec<String> {
+    let mut out = problem.warnings.clone();
+    let records = &path.records;
+    if !path.completed {
+        out.push(format!(
+            "incomplete: the path stopped at protocol.max_steps = {} before contact was lost; \
+             the pull-off may lie beyond the last step (raise protocol.max_steps)",
+            problem.path.max_steps
+        ));
+    }
+    let bad = records.iter().filter(|r| !r.converged).count();
+    if bad > 0 {
+        out.push(format!(
+            "{bad} of {} steps did not converge (solver caps): their forces are not solutions",
+            records.len()
+        ));
+    }
+    let edge = records.iter().filter(|r| r.edge_contact).count();
+    if edge > 0 {
+        out.push(format!(
+            "contact reached the edge of the free grid in {edge} steps: the domain cuts it \
+             off (enlarge grid.n or grid.length)"
+        ));
+    }
+    if problem.gamma > 0.0 && path.completed {
+        let tensile = records
+            .iter()
+            .zip(&path.phases)
+            .filter(|(r, phase)| {
+                **phase == Phase::Unload && r.force < 0.0 && r.n_bonded > 0 && !r.full_contact
+            })
+            .count();
+        if tensile < MIN_TENSILE_STEPS {
+            out.push(format!(
+                "pull-off not resolved by the path: {tensile} retraction steps with contact \
+                 have a tensile force (at least {MIN_TENSILE_STEPS} bracket the pull-off), so the \
+                 retraction stepped over the tensile part; lower protocol.unload_step (or \
+                 protocol.coarse_unload_step)"
+            ));
+        } else if let Some(i) = path.pull_off_step() {
+            let n = records[i].n_bonded;
+            if n < MIN_PULL_OFF_ELEMENTS {
+                out.push(format!(
+                    "the pull-off is carried by {n} bonded elements (fewer than \
+                     {MIN_PULL_OFF_ELEMENTS}): the mesh does not resolve it (refine grid.dx)"
+                ));
+            }
+        }
+    }
+    out
+}
+
+/// Least number of retraction steps with contact and a tensile force for the path to bracket
+/// the pull-off (the least force) with steps on both sides.
+pub const MIN_TENSILE_STEPS: usize = 3;
 
 /// Names of every scalar [`summary`] can record: the [`tack_io::Summary`] fields, then its
 /// `extra` keys. A run need not have all of them (`d_jkr` only for spheres, `crop_rows` only
@@ -375,6 +446,8 @@ pub fn surface_file(problem: &Problem, provenance: tack_io::Provenance) -> tack_
             johnson_alpha: problem.references.johnson_alpha,
             alpha_star: problem.references.alpha_star,
             extra: Default::default(),
+            status: None,
+            warnings: problem.warnings.clone(),
         },
     }
 }
@@ -503,6 +576,113 @@ unload_step = 0.002
         let back = tack_io::read_result(&out).unwrap();
         assert_eq!(back.summary.extra["pull_off_force_richardson"], 2.0 * f - c);
         std::fs::remove_dir_all(&dir).ok();
+    }
+
+    fn run_with(sets: &[&str]) -> RunOutcome {
+        let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        let scene = Scene::parse(JKR_EXAMPLE, ".", &sets).unwrap();
+        run(&scene, &RunOptions::default(), &mut ()).unwrap()
+    }
+
+    const JKR_EXAMPLE: &str = include_str!("../../../data/examples/smooth_jkr_sphere.toml");
+
+    #[test]
+    fn a_run_says_whether_it_is_complete() {
+        let done = run_with(&[]);
+        let s = &done.result.summary;
+        assert_eq!(s.status.as_deref(), Some(tack_io::Summary::COMPLETE));
+        assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+        // Stopped before detachment: not complete, and said so.
+        let stopped = run_with(&["protocol.max_steps=30"]);
+        let s = &stopped.result.summary;
+        assert_eq!(
+            s.status.as_deref(),
+            Some(tack_io::Summary::STOPPED_AT_MAX_STEPS)
+        );
+        assert!(!s.is_complete());
+        assert!(
+            s.warnings
+                .iter()
+                .any(|w| w.contains("protocol.max_steps = 30")),
+            "{s:?}"
+        );
+    }
+
+    #[test]
+    fn a_pull_off_the_path_steps_over_is_flagged() {
+        // Retracting by 3 (|d_JKR| = 0.39) leaves one tensile step: F/F_JKR came out 0.90.
+        let coarse = run_with(&["protocol.unload_step=3"]);
+        let w = &coarse.result.summary.warnings;
+        assert!(
+            w.iter().any(|w| w.contains("pull-off not resolved")),
+            "{w:?}"
+        );
+        let fine = run_with(&["protocol.unload_step=0.1"]);
+        assert!(fine.result.summary.warnings.is_empty());
+    }
+
+    #[test]
+    fn an_under_resolved_pull_off_is_flagged() {
+        // a_c = 3.05, Δx = 2: 1.5 elements across the pull-off contact radius.
+        let coarse = run_with(&["grid.dx=2", "grid.n=16"]);
+        let w = &coarse.result.summary.warnings;
+        assert!(
+            w.iter().any(|w| w.contains("under-resolved pull-off")),
+            "{w:?}"
+        );
+        // The bound is documented as 5 elements: 3.05/0.6 = 5.1 passes.
+        let ok = run_with(&["grid.dx=0.6", "grid.n=24"]);
+        assert!(
+            ok.result.summary.warnings.is_empty(),
+            "{:?}",
+            ok.result.summary.warnings
+        );
+    }
+
+    #[test]
+    fn a_sphere_whose_reference_does_not_apply_has_no_ratio() {
+        // A periodic cell of 2.4 against 2a_c = 6.1, and a periodic 64 × 1 strip of spheres.
+        let small_cell = JKR_EXAMPLE.replace("n = 48", "n = 8\nboundary = \"periodic\"");
+        let strip = JKR_EXAMPLE.replace("n = 48", "nx = 64\nny = 1\nboundary = \"periodic\"");
+        for text in [small_cell, strip] {
+            let text = text.replace("boundary = \"free\"", "");
+            let scene = Scene::parse(&text, ".", &[]).unwrap();
+            let outcome = run(&scene, &RunOptions::default(), &mut ()).unwrap();
+            let s = &outcome.result.summary;
+            assert!(
+                s.f_jkr.is_nan() && s.pull_off_ratio.is_nan(),
+                "{text}: {s:?}"
+            );
+            let w = &s.warnings;
+            assert!(w.iter().any(|w| w.contains("no F_JKR reference")), "{w:?}");
+        }
+    }
+
+    #[test]
+    fn scales_that_overflow_or_underflow_are_refused_naming_the_fields() {
+        let refused = |sets: &[&str], field: &str| {
+            let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+            let scene = Scene::parse(JKR_EXAMPLE, ".", &sets).unwrap();
+            let e = Problem::from_scene(&scene).unwrap_err().to_string();
+            assert!(e.contains(field), "{sets:?}: {e}");
+        };
+        refused(
+            &["material.e_star=1.797e308"],
+            "material.e_star = 1.797e308",
+        );
+        refused(&["material.e_star=5e-324"], "material.e_star = 5e-324");
+        refused(&["grid.dx=1e300"], "grid.dx = 1e300");
+        // Every length 1e-160 of its value: Δx² = 9e-322 is subnormal.
+        refused(
+            &[
+                "grid.dx=3e-161",
+                "geometry.radius=8e-160",
+                "protocol.max_approach=3e-160",
+                "protocol.load_step=1.5e-161",
+                "protocol.unload_step=5e-163",
+            ],
+            "grid.dx = 3e-161",
+        );
     }
 
     #[test]

@@ -80,11 +80,27 @@ impl SceneError {
         value: impl fmt::Display,
         allowed: impl Into<String>,
     ) -> Self {
+        let value = value.to_string();
+        // A huge or tiny f64 displays as hundreds of digits: show it as 1.797e308 instead.
+        let value = match value.parse::<f64>() {
+            Ok(x) if value.len() > 17 => num(x),
+            _ => value,
+        };
         Self::OutOfRange {
             field: field.into(),
-            value: value.to_string(),
+            value,
             allowed: allowed.into(),
         }
+    }
+}
+
+/// A number as a person reads it in a message: plain for moderate magnitudes, otherwise in
+/// scientific notation with the shortest digits that round-trip (`1.797e308`, not 309 digits).
+pub fn num(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-5..1e16).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
     }
 }
 

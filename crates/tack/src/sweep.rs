@@ -824,8 +824,21 @@ pub fn point_path(dir: &Path, index: usize, total: usize, ext: &str) -> PathBuf 
 
 /// Checks that `path` is a complete result file made from `scene_text` (the scene recorded in
 /// the file equals it) and returns it; otherwise the reason.
+///
+/// A file that does not read back (corrupt, truncated, declaring more data than it holds) is
+/// such a reason, never a crash: `tack_io::read_result` checks declared sizes before reading,
+/// and a panic while reading is caught and reported, so one bad point file costs that point
+/// only (`tack sweep` reruns it, `tack merge` lists it as missing).
 pub fn verify_point(path: &Path, scene_text: &str) -> Result<tack_io::RunResult, String> {
-    let result = tack_io::read_result(path).map_err(|e| e.to_string())?;
+    let result = catch_unwind(|| tack_io::read_result(path))
+        .map_err(|panic| {
+            format!(
+                "{}: reading it panicked: {}",
+                path.display(),
+                panic_message(panic.as_ref())
+            )
+        })?
+        .map_err(|e| e.to_string())?;
     if result.provenance.scene != scene_text {
         return Err(format!(
             "{}: made from another scene than this sweep's point (stale or foreign file)",
@@ -1008,15 +1021,21 @@ fn run_point(sweep: &Sweep, dir: &Path, index: usize, command_line: &str) -> Poi
             PointOutcome::Ran
         }
         Ok(Err(e)) => fail_point(&h5, &err, format!("{e:#}")),
-        Err(panic) => {
-            let what = panic
-                .downcast_ref::<&str>()
-                .map(|s| s.to_string())
-                .or_else(|| panic.downcast_ref::<String>().cloned())
-                .unwrap_or_else(|| "unknown panic".to_owned());
-            fail_point(&h5, &err, format!("panicked: {what}"))
-        }
+        Err(panic) => fail_point(
+            &h5,
+            &err,
+            format!("panicked: {}", panic_message(panic.as_ref())),
+        ),
     }
+}
+
+/// The message a panic carried (`&str` or `String`), else "unknown panic".
+fn panic_message(panic: &(dyn std::any::Any + Send)) -> String {
+    panic
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| panic.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "unknown panic".to_owned())
 }
 
 /// Records a failure: the (unverified) result file goes, the error file holds the message.

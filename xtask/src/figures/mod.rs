@@ -314,6 +314,7 @@ pub fn write_figure(
             johnson_alpha: None,
             alpha_star: None,
             extra,
+            ..Default::default()
         },
     };
     let h5 = ctx.out.join(format!("fig{n}.h5"));
@@ -419,7 +420,8 @@ pub fn jkr_curve(x_max: f64) -> Vec<(f64, f64)> {
         jkr_pull_off_force(1.0, 1.0).abs(),
         jkr_pull_off_approach(1.0, 1.0, 1.0).abs(),
     );
-    let mut a = (PI / 8.0).cbrt();
+    // In JKR units (E* = γ = R = 1) the jump-off radius is â itself.
+    let mut a = tack_analytics::jkr_jump_off(1.0, 1.0, 1.0).radius;
     let mut pts = Vec::new();
     while pts.last().is_none_or(|&(x, _)| x < x_max) && pts.len() < 5000 {
         pts.push((jkr_approach_hat(a) / d, jkr_force_hat(a) / f));

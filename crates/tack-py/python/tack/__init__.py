@@ -1,0 +1,368 @@
+"""tack: the adhesive strength of rough elastic contacts, from Python.
+
+A boundary-element solver for an elastic half-space pressed against, and pulled off, a rigid
+rough body, with JKR-limit adhesion (the Pohrt-Popov detachment criterion; Li, Pohrt & Popov
+2019). The numerical work runs in Rust (the ``tack`` crates) with the GIL released; arrays go
+in and come out as numpy arrays.
+
+- :func:`run` runs a scene (a TOML file or text, ``docs/scenes.md``) and returns a
+  :class:`Result`; :func:`read` reads a result file.
+- :func:`pull_off` pulls a body given as a numpy height array off the half-space, with a
+  default load-then-retract path.
+- :func:`contact` solves non-adhesive contact of a height array.
+- :mod:`tack.surface` makes height arrays (seeded random roughness, spheres);
+  :mod:`tack.analytics` holds the closed forms (Hertz, JKR, Kendall, Johnson, the paper's fits).
+
+Conventions (as in the Rust crates): arrays are ``(nx, ny)``; element ``(i, j)`` is centred at
+``((i - nx//2)*dx, (j - ny//2)*dx)``; a height is the gap at zero approach (higher = farther
+from the half-space); the approach is positive when pressing; pressure and force are positive
+when compressive, so the pull-off force is negative. Units are any consistent set.
+
+Errors in the input raise :class:`TackError` (a ``ValueError``) or a subclass, with a message
+that names the field, the value and the allowed range. Ctrl-C stops a running solve within
+about 0.1 s with ``KeyboardInterrupt``.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+import os
+import sys
+import warnings
+from typing import Any, Callable, Dict, Mapping, Optional, Sequence, Union, overload
+
+import numpy as np
+
+from . import _tack
+from ._tack import (
+    ContactResult,
+    InternalError,
+    Result,
+    ResultFileError,
+    SceneError,
+    SolverError,
+    TackError,
+)
+from . import analytics, surface
+
+__version__: str = _tack.__version__
+
+#: Largest value accepted for ``threads``.
+MAX_THREADS: int = _tack.MAX_THREADS
+
+__all__ = [
+    "ContactResult",
+    "InternalError",
+    "MAX_THREADS",
+    "Result",
+    "ResultFileError",
+    "SceneError",
+    "SolverError",
+    "TackError",
+    "analytics",
+    "contact",
+    "pull_off",
+    "read",
+    "run",
+    "surface",
+]
+
+PathLike = Union[str, "os.PathLike[str]"]
+Progress = Union[bool, Callable[[Dict[str, Any]], Any], None]
+
+
+class _StderrProgress:
+    """``progress=True``: one line on ``sys.stderr``, rewritten in place."""
+
+    def __init__(self) -> None:
+        self.width = 0
+
+    def __call__(self, info: Dict[str, Any]) -> None:
+        line = (
+            f"tack: step {info['step']} ({info['phase']}), d = {info['approach']:.6g}, "
+            f"F = {info['force']:.6g}, bonded = {info['n_bonded']}"
+        )
+        pad = max(self.width - len(line), 0)
+        self.width = len(line)
+        sys.stderr.write("\r" + line + " " * pad)
+        sys.stderr.flush()
+
+    def close(self) -> None:
+        if self.width:
+            sys.stderr.write("\n")
+            sys.stderr.flush()
+
+
+def _progress(progress: Progress) -> Optional[Callable[[Dict[str, Any]], Any]]:
+    if progress is None or progress is False:
+        return None
+    if progress is True:
+        return _StderrProgress()
+    if callable(progress):
+        return progress
+    raise TypeError("progress: expected True/False or a callable taking one dict")
+
+
+def _threads(threads: Optional[int]) -> Optional[int]:
+    if threads is None:
+        return None
+    if isinstance(threads, bool) or not isinstance(threads, numbers.Integral):
+        raise TypeError(f"threads: expected an int, got {type(threads).__name__}")
+    return int(threads)
+
+
+def _heights(heights: Any) -> np.ndarray:
+    array = np.ascontiguousarray(heights, dtype=np.float64)
+    if array.ndim != 2:
+        raise TackError(
+            f"heights of shape {array.shape} is invalid: must be a 2-D array (nx, ny)"
+        )
+    return array
+
+
+def _snapshots(snapshots: Union[str, int, Sequence[int]]) -> Any:
+    if isinstance(snapshots, str):
+        return snapshots
+    if isinstance(snapshots, numbers.Integral) and not isinstance(snapshots, bool):
+        return {"every": int(snapshots)}
+    if isinstance(snapshots, (list, tuple, np.ndarray)):
+        return {"steps": [int(s) for s in snapshots]}
+    raise TypeError(
+        "snapshots: expected 'pull_off', 'all', 'none', an int k (every k-th step) or a list "
+        "of step indices"
+    )
+
+
+def _closing(callback: Optional[Callable[[Dict[str, Any]], Any]]) -> None:
+    if isinstance(callback, _StderrProgress):
+        callback.close()
+
+
+def run(
+    scene: PathLike,
+    *,
+    overrides: Optional[Mapping[str, Any]] = None,
+    threads: Optional[int] = None,
+    progress: Progress = False,
+    richardson: bool = False,
+) -> Result:
+    """Runs a scene in memory and returns its :class:`Result` (no file is written).
+
+    Args:
+        scene: the scene, as a path (``str`` or ``os.PathLike``) of a TOML scene file, or as
+            TOML text (a ``str`` containing a newline; relative paths in it, such as
+            ``roughness.path``, resolve against the current directory). The schema is
+            ``docs/scenes.md``.
+        overrides: ``{"dotted.key": value}`` applied before validation, exactly as the CLI's
+            ``--set dotted.key=value``; values are written as TOML literals (bool, int, float,
+            str, lists and dicts of them), e.g. ``{"grid.n": 96, "material.gamma": 0.1,
+            "output.snapshots": "pull_off"}``.
+        threads: worker threads, 1..``MAX_THREADS`` (validated). A single run is sequential
+            today and gives the same bits on any thread count, so this does not change the
+            speed; it is the worker count reserved for parallel solves and sweeps.
+        progress: ``True`` draws a progress line on ``sys.stderr``; a callable is called with a
+            dict (``step``, ``phase``, ``approach``, ``force``, ``area``, ``n_bonded``,
+            ``converged``) at most every 0.1 s and after the last step. An exception it raises
+            stops the run and propagates.
+        richardson: also run the scene at twice the element size and record the Richardson
+            extrapolation ``2F(dx) - F(2dx)`` in the summary (``pull_off_force_richardson``).
+
+    Raises:
+        SceneError: the scene is unreadable or invalid (the message names the field).
+        KeyboardInterrupt: Ctrl-C during the run.
+    """
+    if isinstance(scene, os.PathLike):
+        where: Dict[str, Any] = {"path": os.fspath(scene)}
+    elif isinstance(scene, str):
+        if "\n" in scene:
+            where = {"text": scene, "base_dir": os.getcwd()}
+        else:
+            where = {"path": scene}
+    else:
+        raise TypeError(
+            f"scene: expected a path or TOML text, got {type(scene).__name__}"
+        )
+    if overrides is not None and not isinstance(overrides, Mapping):
+        raise TypeError("overrides: expected a dict of dotted keys to values")
+    callback = _progress(progress)
+    try:
+        return _tack.run_scene(
+            **where,
+            overrides=dict(overrides) if overrides is not None else None,
+            richardson=bool(richardson),
+            threads=_threads(threads),
+            progress=callback,
+        )
+    finally:
+        _closing(callback)
+
+
+def read(path: PathLike) -> Result:
+    """Reads a result file (written by :meth:`Result.write`, ``tack run`` or ``tack surface``).
+
+    Raises:
+        ResultFileError: the file is missing, not HDF5, or not a tack result.
+    """
+    return _tack.read(os.fspath(path))
+
+
+def pull_off(
+    heights: Any,
+    *,
+    dx: float,
+    e_star: float,
+    gamma: float,
+    periodic: bool = False,
+    radius: Optional[float] = None,
+    max_approach: Optional[float] = None,
+    unload_step: Optional[float] = None,
+    coarse_unload_step: Optional[float] = None,
+    kappa: Optional[float] = None,
+    snapshots: Union[str, int, Sequence[int]] = "pull_off",
+    threads: Optional[int] = None,
+    progress: Progress = False,
+) -> Result:
+    """Pulls a rigid body given as a height array off the elastic half-space (JKR-limit
+    adhesion) and returns the :class:`Result` of the run.
+
+    Args:
+        heights: 2-D array ``(nx, ny)`` of the body's heights, the gap at zero approach
+            (higher = farther from the half-space), element ``(i, j)`` centred at
+            ``((i - nx//2)*dx, (j - ny//2)*dx)``; e.g. ``tack.surface.sphere(...) +
+            tack.surface.random(...)``.
+        dx: element size.
+        e_star: effective modulus E*.
+        gamma: work of adhesion (> 0).
+        periodic: the array is one period of a periodic body (default: free, non-periodic).
+        radius: radius R of the sphere the body approximates; default: fitted by least squares
+            (a paraboloid with free vertex), accepted when its rise over the grid is at least
+            half the roughness range.
+        max_approach, unload_step, coarse_unload_step: the path, instead of the default rule.
+        kappa: the Pohrt-Popov constant (default 0.473201, curved crack fronts).
+        snapshots: which steps keep pressure and bonded fields: ``"pull_off"`` (the pull-off
+            step and the last contact), ``"all"``, ``"none"``, every k-th step (an int) or a
+            list of step indices.
+        threads, progress: as for :func:`run`.
+
+    The default path (the paper's rough-sphere runs): with d_s = (R gamma^2/E*^2)^(1/3), one
+    load step to ``max_approach = apex + top of the roughness + 3 d_s`` (apex and roughness
+    relative to the fitted paraboloid; a smooth sphere bonds a disc of about 1.6 a_c, deep
+    enough for the JKR pull-off), then retraction by 0.2 d_s while the force is compressive
+    and by 0.02 d_s through the tensile part until nothing is bonded. On a free grid the Hertz
+    radius at that depth plus 30% must fit in the array. A body without a radius (flat, wavy)
+    needs ``max_approach`` and ``unload_step``. The summary's ``f_jkr`` and
+    ``pull_off_ratio`` refer to the sphere of radius R; ``provenance["scene"]`` records the
+    rule's numbers, and the heights are stored in ``result.surface``.
+
+    Warns:
+        RuntimeWarning: contact reached the edge of a free array, or steps did not converge.
+    """
+    array = _heights(heights)
+    callback = _progress(progress)
+    try:
+        result = _tack.pull_off(
+            array,
+            dx=float(dx),
+            e_star=float(e_star),
+            gamma=float(gamma),
+            periodic=bool(periodic),
+            radius=None if radius is None else float(radius),
+            max_approach=None if max_approach is None else float(max_approach),
+            unload_step=None if unload_step is None else float(unload_step),
+            coarse_unload_step=(
+                None if coarse_unload_step is None else float(coarse_unload_step)
+            ),
+            kappa=None if kappa is None else float(kappa),
+            snapshots=_snapshots(snapshots),
+            threads=_threads(threads),
+            progress=callback,
+        )
+    finally:
+        _closing(callback)
+    summary = result.summary
+    edge = summary.get("edge_contact_steps", 0.0)
+    if edge and not math.isnan(edge):
+        warnings.warn(
+            f"tack.pull_off: contact reached the edge of the {array.shape[0]} x "
+            f"{array.shape[1]} array in {int(edge)} steps; the domain cuts the contact off "
+            "(use a larger array or a smaller max_approach)",
+            RuntimeWarning,
+            stacklevel=2,
+        )
+    bad = summary.get("non_converged_steps", 0.0)
+    if bad and not math.isnan(bad):
+        warnings.warn(
+            f"tack.pull_off: {int(bad)} steps did not converge (solver caps)",
+            RuntimeWarning,
+            stacklevel=2,
+        )
+    return result
+
+
+@overload
+def contact(
+    heights: Any,
+    *,
+    dx: float,
+    e_star: float,
+    approach: float,
+    periodic: bool = ...,
+    tolerance: Optional[float] = ...,
+    max_iterations: Optional[int] = ...,
+) -> ContactResult: ...
+@overload
+def contact(
+    heights: Any,
+    *,
+    dx: float,
+    e_star: float,
+    approach: Sequence[float],
+    periodic: bool = ...,
+    tolerance: Optional[float] = ...,
+    max_iterations: Optional[int] = ...,
+) -> "list[ContactResult]": ...
+def contact(
+    heights: Any,
+    *,
+    dx: float,
+    e_star: float,
+    approach: Union[float, Sequence[float]],
+    periodic: bool = False,
+    tolerance: Optional[float] = None,
+    max_iterations: Optional[int] = None,
+) -> Union[ContactResult, "list[ContactResult]"]:
+    """Frictionless non-adhesive contact of a height array pressed by ``approach``.
+
+    Args:
+        heights: 2-D array ``(nx, ny)`` of the rigid body's heights (the gap at zero approach).
+        dx: element size.
+        e_star: effective modulus E*.
+        approach: the prescribed approach d (positive = pressing), or a sequence of them
+            (solved in turn, each warm-started from the previous; Ctrl-C is checked between
+            them).
+        periodic: the array is one period of a periodic body (the approach is then measured
+            from the deformed mean plane).
+        tolerance, max_iterations: the conjugate-gradient stopping rule (defaults 1e-10, 5000).
+
+    Returns:
+        A :class:`ContactResult` (``pressure`` and ``gap`` arrays of the heights' shape,
+        ``force``, ``area``, ``converged``, ``iterations``, ...), or a list of them when
+        ``approach`` is a sequence.
+    """
+    array = _heights(heights)
+    scalar = np.ndim(approach) == 0
+    if scalar:
+        approaches = [float(approach)]  # type: ignore[arg-type]
+    else:
+        approaches = [float(d) for d in approach]  # type: ignore[union-attr]
+    states = _tack.contact(
+        array,
+        dx=float(dx),
+        e_star=float(e_star),
+        approaches=approaches,
+        periodic=bool(periodic),
+        tolerance=None if tolerance is None else float(tolerance),
+        max_iterations=None if max_iterations is None else int(max_iterations),
+    )
+    return states[0] if scalar else states

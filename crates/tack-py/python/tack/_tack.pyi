@@ -1,0 +1,161 @@
+"""Type stubs of the compiled extension ``tack._tack`` (use the public API in ``tack``)."""
+
+import os
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+GIT_REVISION: str
+MAX_THREADS: int
+
+class TackError(ValueError):
+    """Invalid input: the message names the field, the value and the allowed range."""
+
+class SceneError(TackError):
+    """A scene that cannot be read, parsed or validated."""
+
+class SolverError(TackError):
+    """The solver refused its input."""
+
+class ResultFileError(TackError):
+    """A result file that cannot be written or read."""
+
+class InternalError(RuntimeError):
+    """A bug in tack (a Rust panic caught before it reached Python)."""
+
+class Result:
+    """A run's result: curve, summary, snapshots, surface, provenance."""
+
+    @property
+    def curve(self) -> Dict[str, npt.NDArray[Any]]:
+        """1-D arrays per step: approach, force, area, n_bonded, n_clusters, iterations,
+        active_set_iterations, converged, mean_pressure, full_contact (where present)."""
+    @property
+    def summary(self) -> Dict[str, Optional[float]]:
+        """pull_off_force, f_jkr, pull_off_ratio, johnson_alpha, alpha_star, then extras."""
+    @property
+    def snapshots(self) -> Dict[int, Dict[str, Any]]:
+        """{step: {"pressure": 2-D float array, "bonded": 2-D bool array, "approach": float}}."""
+    @property
+    def surface(self) -> Optional[Dict[str, Any]]:
+        """{"heights": 2-D array, "dx": float}, or None."""
+    @property
+    def provenance(self) -> Dict[str, Any]:
+        """tack_version, git_revision, command_line, scene, created, seed."""
+    @property
+    def pull_off_force(self) -> float: ...
+    @property
+    def pull_off_ratio(self) -> float: ...
+    @property
+    def pull_off_step(self) -> Optional[int]: ...
+    @property
+    def wall_time(self) -> Optional[float]: ...
+    @property
+    def scene(self) -> str: ...
+    def write(self, path: Union[str, os.PathLike[str]]) -> None:
+        """Writes the HDF5 result file atomically."""
+    def __len__(self) -> int: ...
+
+class ContactResult:
+    """Equilibrium of non-adhesive contact at one approach."""
+
+    @property
+    def pressure(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def gap(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def approach(self) -> float: ...
+    @property
+    def force(self) -> float: ...
+    @property
+    def mean_pressure(self) -> float: ...
+    @property
+    def area(self) -> float: ...
+    @property
+    def n_contact(self) -> int: ...
+    @property
+    def iterations(self) -> int: ...
+    @property
+    def residual(self) -> float: ...
+    @property
+    def converged(self) -> bool: ...
+    @property
+    def full_contact(self) -> bool: ...
+
+def run_scene(
+    *,
+    path: Optional[Union[str, os.PathLike[str]]] = ...,
+    text: Optional[str] = ...,
+    base_dir: Optional[Union[str, os.PathLike[str]]] = ...,
+    overrides: Optional[Dict[str, Any]] = ...,
+    richardson: bool = ...,
+    threads: Optional[int] = ...,
+    progress: Optional[Callable[[Dict[str, Any]], Any]] = ...,
+) -> Result: ...
+def pull_off(
+    heights: npt.NDArray[np.float64],
+    *,
+    dx: float,
+    e_star: float,
+    gamma: float,
+    periodic: bool = ...,
+    radius: Optional[float] = ...,
+    max_approach: Optional[float] = ...,
+    unload_step: Optional[float] = ...,
+    coarse_unload_step: Optional[float] = ...,
+    kappa: Optional[float] = ...,
+    snapshots: Any = ...,
+    threads: Optional[int] = ...,
+    progress: Optional[Callable[[Dict[str, Any]], Any]] = ...,
+) -> Result: ...
+def read(path: Union[str, os.PathLike[str]]) -> Result: ...
+def contact(
+    heights: npt.NDArray[np.float64],
+    *,
+    dx: float,
+    e_star: float,
+    approaches: Sequence[float],
+    periodic: bool = ...,
+    tolerance: Optional[float] = ...,
+    max_iterations: Optional[int] = ...,
+) -> List[ContactResult]: ...
+def rough(
+    nx: int,
+    ny: int,
+    *,
+    dx: float,
+    rms: float,
+    hurst: float,
+    seed: int = ...,
+    q0: Optional[float] = ...,
+    q1: Optional[float] = ...,
+) -> npt.NDArray[np.float64]: ...
+def sphere(nx: int, ny: int, *, dx: float, radius: float) -> npt.NDArray[np.float64]: ...
+def coordinates(
+    nx: int, ny: int, *, dx: float
+) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
+def band(nx: int, ny: int, *, dx: float) -> Tuple[float, float]: ...
+def _panic_for_tests() -> None: ...
+def hertz_force(e_star: float, radius: float, d: float) -> float: ...
+def hertz_contact_radius(radius: float, d: float) -> float: ...
+def hertz_max_pressure(e_star: float, radius: float, d: float) -> float: ...
+def jkr_pull_off_force(gamma: float, radius: float) -> float: ...
+def jkr_pull_off_approach(e_star: float, gamma: float, radius: float) -> float: ...
+def jkr_pull_off_radius(e_star: float, gamma: float, radius: float) -> float: ...
+def jkr_approach_scale(e_star: float, gamma: float, radius: float) -> float: ...
+def jkr_force_from_radius(e_star: float, gamma: float, radius: float, a: float) -> float: ...
+def jkr_approach_from_radius(e_star: float, gamma: float, radius: float, a: float) -> float: ...
+def jkr_force_from_approach(e_star: float, gamma: float, radius: float, d: float) -> float: ...
+def kendall_pull_off(e_star: float, gamma: float, a: float) -> float: ...
+def johnson_alpha(e_star: float, gamma: float, h: float, wavelength: float) -> float: ...
+def westergaard_p_star(e_star: float, h: float, wavelength: float) -> float: ...
+def johnson_2d_p_star(e_star: float, h: float, wavelength: float) -> float: ...
+def lambda_fit(alpha: float) -> float: ...
+def alpha_star(e_star: float, gamma: float, h: float, hurst: float, q0: float, q1: float) -> float: ...
+def rms_height_from_alpha_star(
+    e_star: float, gamma: float, alpha_star: float, hurst: float, q0: float, q1: float
+) -> float: ...
+def lambda_star(alpha_star: float) -> float: ...
+def critical_stress(e_star: float, gamma: float, dx: float, kappa: float) -> float: ...

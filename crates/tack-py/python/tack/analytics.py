@@ -1,0 +1,172 @@
+"""Closed forms of tack (the ``tack::analytics`` crate), numbered as in Li, Pohrt & Popov (2019).
+
+Every function takes floats and returns a float; give numpy arrays (or anything array-like)
+for any argument and it is applied elementwise (numpy broadcasting), returning an array.
+Signs follow tack: approach positive = pressing, force positive = compressive, so pull-off
+forces and approaches are negative. ``docs/theory.md`` derives each formula.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Callable, Union
+
+import numpy as np
+
+from . import _tack
+
+__all__ = [
+    "alpha_star",
+    "critical_stress",
+    "hertz_contact_radius",
+    "hertz_force",
+    "hertz_max_pressure",
+    "jkr_approach_from_radius",
+    "jkr_approach_scale",
+    "jkr_force_from_approach",
+    "jkr_force_from_radius",
+    "jkr_pull_off_approach",
+    "jkr_pull_off_force",
+    "jkr_pull_off_radius",
+    "johnson_2d_p_star",
+    "johnson_alpha",
+    "kendall_pull_off",
+    "lambda_fit",
+    "lambda_star",
+    "rms_height_from_alpha_star",
+    "westergaard_p_star",
+]
+
+ArrayLike = Union[float, "np.ndarray[Any, Any]", Any]
+
+
+def _apply(f: Callable[..., float], *args: Any) -> Any:
+    if all(np.ndim(a) == 0 for a in args):
+        return f(*(float(a) for a in args))
+    return np.vectorize(f, otypes=[float])(*args)
+
+
+def hertz_force(e_star: ArrayLike, radius: ArrayLike, d: ArrayLike) -> Any:
+    """Hertz force F = (4/3) E* sqrt(R) d^(3/2) of a sphere pressed by d; 0 for d <= 0."""
+    return _apply(_tack.hertz_force, e_star, radius, d)
+
+
+def hertz_contact_radius(radius: ArrayLike, d: ArrayLike) -> Any:
+    """Hertz contact radius a = sqrt(R d); 0 for d <= 0."""
+    return _apply(_tack.hertz_contact_radius, radius, d)
+
+
+def hertz_max_pressure(e_star: ArrayLike, radius: ArrayLike, d: ArrayLike) -> Any:
+    """Hertz central pressure p0 = 2 E* a / (pi R), a = sqrt(R d)."""
+    return _apply(_tack.hertz_max_pressure, e_star, radius, d)
+
+
+def jkr_pull_off_force(gamma: ArrayLike, radius: ArrayLike) -> Any:
+    """JKR pull-off force F_JKR = -(3/2) pi gamma R (Eq. 7; negative = tensile)."""
+    return _apply(_tack.jkr_pull_off_force, gamma, radius)
+
+
+def jkr_pull_off_approach(e_star: ArrayLike, gamma: ArrayLike, radius: ArrayLike) -> Any:
+    """Approach at the JKR pull-off, d_JKR = -(3 pi^2 gamma^2 R / (64 E*^2))^(1/3) (Eq. 8)."""
+    return _apply(_tack.jkr_pull_off_approach, e_star, gamma, radius)
+
+
+def jkr_pull_off_radius(e_star: ArrayLike, gamma: ArrayLike, radius: ArrayLike) -> Any:
+    """Contact radius at the JKR pull-off, a_c = (9 pi gamma R^2 / (8 E*))^(1/3)."""
+    return _apply(_tack.jkr_pull_off_radius, e_star, gamma, radius)
+
+
+def jkr_approach_scale(e_star: ArrayLike, gamma: ArrayLike, radius: ArrayLike) -> Any:
+    """JKR approach scale d_s = (R gamma^2 / E*^2)^(1/3)."""
+    return _apply(_tack.jkr_approach_scale, e_star, gamma, radius)
+
+
+def jkr_force_from_radius(
+    e_star: ArrayLike, gamma: ArrayLike, radius: ArrayLike, a: ArrayLike
+) -> Any:
+    """JKR force at contact radius a: F = 4 E* a^3 / (3 R) - sqrt(8 pi gamma E* a^3)."""
+    return _apply(_tack.jkr_force_from_radius, e_star, gamma, radius, a)
+
+
+def jkr_approach_from_radius(
+    e_star: ArrayLike, gamma: ArrayLike, radius: ArrayLike, a: ArrayLike
+) -> Any:
+    """JKR approach at contact radius a: d = a^2 / R - sqrt(2 pi gamma a / E*)."""
+    return _apply(_tack.jkr_approach_from_radius, e_star, gamma, radius, a)
+
+
+def jkr_force_from_approach(
+    e_star: ArrayLike, gamma: ArrayLike, radius: ArrayLike, d: ArrayLike
+) -> Any:
+    """JKR force on the stable branch at approach d (approach control); NaN below the
+    jump-off approach, where the sphere has detached."""
+    return _apply(_tack.jkr_force_from_approach, e_star, gamma, radius, d)
+
+
+def kendall_pull_off(e_star: ArrayLike, gamma: ArrayLike, a: ArrayLike) -> Any:
+    """Kendall pull-off force magnitude of a flat circular punch of radius a,
+    sqrt(8 pi a^3 E* gamma) (positive number; the force itself is tensile)."""
+    return _apply(_tack.kendall_pull_off, e_star, gamma, a)
+
+
+def johnson_alpha(
+    e_star: ArrayLike, gamma: ArrayLike, h: ArrayLike, wavelength: ArrayLike
+) -> Any:
+    """Johnson's adhesion parameter of a waviness of amplitude h and wavelength lambda,
+    alpha = sqrt(2 lambda gamma / (pi^2 h^2 E*)) (Eq. 3)."""
+    return _apply(_tack.johnson_alpha, e_star, gamma, h, wavelength)
+
+
+def westergaard_p_star(e_star: ArrayLike, h: ArrayLike, wavelength: ArrayLike) -> Any:
+    """Mean pressure of complete contact of a 1D waviness, p*_1D = pi E* h / lambda."""
+    return _apply(_tack.westergaard_p_star, e_star, h, wavelength)
+
+
+def johnson_2d_p_star(e_star: ArrayLike, h: ArrayLike, wavelength: ArrayLike) -> Any:
+    """Mean pressure of complete contact of a 2D waviness, p*_2D = sqrt(2) pi E* h / lambda
+    (Eq. 5)."""
+    return _apply(_tack.johnson_2d_p_star, e_star, h, wavelength)
+
+
+def lambda_fit(alpha: ArrayLike) -> Any:
+    """Pull-off enhancement of a sphere with 2D waviness, F_ad/F_JKR = Lambda(alpha) (Eq. 9):
+    0.27/alpha^2 exp(-0.14/alpha^2) + 1 for alpha >= 0.24, 0.65 alpha - 0.025 below."""
+    return _apply(_tack.lambda_fit, alpha)
+
+
+def alpha_star(
+    e_star: ArrayLike,
+    gamma: ArrayLike,
+    h: ArrayLike,
+    hurst: ArrayLike,
+    q0: ArrayLike,
+    q1: ArrayLike,
+) -> Any:
+    """Adhesion parameter of random roughness of rms height h, Hurst exponent H on the band
+    q0..q1: alpha* = sqrt(4 gamma q1^(0.8H - 1) / (pi E* h^2 q0^(0.8H))) (Eq. 11)."""
+    return _apply(_tack.alpha_star, e_star, gamma, h, hurst, q0, q1)
+
+
+def rms_height_from_alpha_star(
+    e_star: ArrayLike,
+    gamma: ArrayLike,
+    alpha_star: ArrayLike,
+    hurst: ArrayLike,
+    q0: ArrayLike,
+    q1: ArrayLike,
+) -> Any:
+    """The rms height h of random roughness with adhesion parameter alpha* (Eq. 11 inverted)."""
+    return _apply(_tack.rms_height_from_alpha_star, e_star, gamma, alpha_star, hurst, q0, q1)
+
+
+def lambda_star(alpha_star: ArrayLike) -> Any:
+    """Pull-off of a randomly rough sphere relative to JKR, |F_ad/F_JKR| ~ Lambda*(alpha*) =
+    1.023 exp(-((alpha* - 0.3619)/0.1188)^2) (Eq. 12)."""
+    return _apply(_tack.lambda_star, alpha_star)
+
+
+def critical_stress(
+    e_star: ArrayLike, gamma: ArrayLike, dx: ArrayLike, kappa: ArrayLike = 0.473201
+) -> Any:
+    """Detachment stress of a bonded element of size dx, sigma_c = sqrt(E* gamma / (kappa dx))
+    (Pohrt & Popov; kappa defaults to tack's 0.473201)."""
+    return _apply(_tack.critical_stress, e_star, gamma, dx, kappa)

@@ -1,0 +1,220 @@
+//! Scene runs and pull-offs of height arrays: `tack.run` and `tack.pull_off`.
+
+use std::path::PathBuf;
+
+use numpy::PyReadonlyArray2;
+use pyo3::exceptions::PyTypeError;
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
+use tack::{RunOptions, Scene};
+
+use crate::errors::{to_py, value_error};
+use crate::guard::detached;
+use crate::result::Result;
+
+/// Largest accepted `threads`.
+pub const MAX_THREADS: usize = 1024;
+
+/// Checks `threads` (1..=[`MAX_THREADS`]). A run is sequential today (bit-identical on any
+/// thread count), so the value is only validated: it is the worker count reserved for parallel
+/// solves and sweeps.
+fn check_threads(threads: Option<i64>) -> PyResult<()> {
+    match threads {
+        Some(n) if !(1..=MAX_THREADS as i64).contains(&n) => Err(value_error(format!(
+            "threads = {n} is invalid: must be an integer in 1..={MAX_THREADS}"
+        ))),
+        _ => Ok(()),
+    }
+}
+
+/// A Python value as a TOML value, for `overrides`; errors name `overrides['key']`.
+fn toml_value(key: &str, value: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
+    let bad = |what: String| PyTypeError::new_err(format!("overrides['{key}']: {what}"));
+    if value.is_instance_of::<PyBool>() {
+        return Ok(toml::Value::Boolean(value.extract()?));
+    }
+    if value.is_instance_of::<PyInt>() {
+        return value
+            .extract::<i64>()
+            .map(toml::Value::Integer)
+            .map_err(|_| {
+                value_error(format!(
+                    "overrides['{key}'] = {value} is invalid: must be an integer in the range of a \
+                 64-bit signed integer"
+                ))
+            });
+    }
+    if value.is_instance_of::<PyFloat>() {
+        return Ok(toml::Value::Float(value.extract()?));
+    }
+    if value.is_instance_of::<PyString>() {
+        return Ok(toml::Value::String(value.extract()?));
+    }
+    if value.is_instance_of::<PyList>() || value.is_instance_of::<PyTuple>() {
+        let items = value
+            .try_iter()?
+            .map(|item| toml_value(key, &item?))
+            .collect::<PyResult<Vec<_>>>()?;
+        return Ok(toml::Value::Array(items));
+    }
+    if let Ok(dict) = value.cast::<PyDict>() {
+        let mut table = toml::Table::new();
+        for (k, v) in dict.iter() {
+            let k: String = k
+                .extract()
+                .map_err(|_| bad("table keys must be strings".into()))?;
+            let sub = toml_value(&format!("{key}.{k}"), &v)?;
+            table.insert(k, sub);
+        }
+        return Ok(toml::Value::Table(table));
+    }
+    // numpy scalars and other numbers: booleans, integers (__index__), then floats.
+    let type_name = value.get_type().name()?.to_string();
+    if type_name.starts_with("bool") {
+        if let Ok(b) = value.extract::<bool>() {
+            return Ok(toml::Value::Boolean(b));
+        }
+    }
+    if value.hasattr("__index__")? {
+        if let Ok(i) = value.extract::<i64>() {
+            return Ok(toml::Value::Integer(i));
+        }
+    }
+    if let Ok(f) = value.extract::<f64>() {
+        return Ok(toml::Value::Float(f));
+    }
+    Err(bad(format!(
+        "a value of type {type_name} has no TOML form (use bool, int, float, str, list or dict)"
+    )))
+}
+
+/// `overrides` as `--set key=value` assignments, values as TOML literals.
+fn assignments(overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<String>> {
+    let Some(overrides) = overrides else {
+        return Ok(Vec::new());
+    };
+    overrides
+        .iter()
+        .map(|(k, v)| {
+            let key: String = k
+                .extract()
+                .map_err(|_| PyTypeError::new_err("overrides: keys must be dotted strings"))?;
+            let value = toml_value(&key, &v)?;
+            Ok(format!("{key}={value}"))
+        })
+        .collect()
+}
+
+/// Runs a scene given as a file (`path`) or as TOML text (`text`, relative paths against
+/// `base_dir`) in memory.
+#[pyfunction]
+#[pyo3(signature = (*, path=None, text=None, base_dir=None, overrides=None, richardson=false, threads=None, progress=None))]
+#[allow(clippy::too_many_arguments)]
+pub fn run_scene(
+    py: Python<'_>,
+    path: Option<PathBuf>,
+    text: Option<String>,
+    base_dir: Option<PathBuf>,
+    overrides: Option<Bound<'_, PyDict>>,
+    richardson: bool,
+    threads: Option<i64>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Result> {
+    check_threads(threads)?;
+    let overrides = assignments(overrides.as_ref())?;
+    let scene = match (path, text) {
+        (Some(path), None) => Scene::load(&path, &overrides),
+        (None, Some(text)) => Scene::parse(
+            &text,
+            base_dir.unwrap_or_else(|| PathBuf::from(".")),
+            &overrides,
+        ),
+        _ => return Err(value_error("run_scene: give exactly one of path and text")),
+    }
+    .map_err(|e| to_py(&e.into()))?;
+    let options = RunOptions {
+        command_line: Some(command_line(py)),
+        richardson,
+    };
+    let outcome = detached(py, progress, |observer| {
+        tack::run(&scene, &options, observer)
+    })?;
+    let wall_time = outcome.total_wall_time().as_secs_f64();
+    Ok(Result::new(outcome.result, Some(wall_time)))
+}
+
+/// The command line recorded in provenance: the Python process's `sys.argv`.
+fn command_line(py: Python<'_>) -> String {
+    let argv: Vec<String> = py
+        .import("sys")
+        .and_then(|sys| sys.getattr("argv"))
+        .and_then(|argv| argv.extract())
+        .unwrap_or_default();
+    let mut line = String::from("python");
+    for a in argv {
+        line.push(' ');
+        if a.is_empty() || a.contains(char::is_whitespace) {
+            line.push_str(&format!("{a:?}"));
+        } else {
+            line.push_str(&a);
+        }
+    }
+    line
+}
+
+/// The pull-off of a body given as heights (`tack::heights::pull_off`).
+#[pyfunction]
+#[pyo3(signature = (heights, *, dx, e_star, gamma, periodic=false, radius=None, max_approach=None, unload_step=None, coarse_unload_step=None, kappa=None, snapshots=None, threads=None, progress=None))]
+#[allow(clippy::too_many_arguments)]
+pub fn pull_off(
+    py: Python<'_>,
+    heights: PyReadonlyArray2<'_, f64>,
+    dx: f64,
+    e_star: f64,
+    gamma: f64,
+    periodic: bool,
+    radius: Option<f64>,
+    max_approach: Option<f64>,
+    unload_step: Option<f64>,
+    coarse_unload_step: Option<f64>,
+    kappa: Option<f64>,
+    snapshots: Option<Bound<'_, PyAny>>,
+    threads: Option<i64>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Result> {
+    check_threads(threads)?;
+    let snapshots = match snapshots {
+        None => tack::scene::Snapshots::PullOff,
+        Some(value) => {
+            let value = toml_value("snapshots", &value)?;
+            tack::scene::Snapshots::try_from(value)
+                .map_err(|e| value_error(e.replacen("output.snapshots", "snapshots", 1)))?
+        }
+    };
+    let spec = tack::heights::PullOffSpec {
+        dx,
+        boundary: if periodic {
+            tack::geometry::Boundary::Periodic
+        } else {
+            tack::geometry::Boundary::Free
+        },
+        e_star,
+        gamma,
+        radius,
+        max_approach,
+        unload_step,
+        coarse_unload_step,
+        kappa,
+        snapshots,
+    };
+    let heights = heights.as_array().to_owned();
+    let options = RunOptions {
+        command_line: Some(command_line(py)),
+        richardson: false,
+    };
+    let outcome = detached(py, progress, |observer| {
+        tack::heights::pull_off(&heights, &spec, &options, observer)
+    })?;
+    let wall_time = outcome.total_wall_time().as_secs_f64();
+    Ok(Result::new(outcome.result, Some(wall_time)))
+}

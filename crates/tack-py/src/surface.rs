@@ -1,0 +1,94 @@
+//! Height arrays on tack's grids: seeded random roughness, spheres, coordinates, the paper's
+//! roughness band (`tack.surface`).
+
+use numpy::{IntoPyArray, PyArray1, PyArray2};
+use pyo3::prelude::*;
+use tack::geometry::{Boundary, Grid, RoughSpec, Sphere, Surface, rough_surface};
+
+use crate::errors::value_error;
+use crate::guard::released;
+
+fn grid(nx: usize, ny: usize, dx: f64) -> PyResult<Grid> {
+    Grid::new(nx, ny, dx, Boundary::Free).map_err(value_error)
+}
+
+/// Seeded random roughness (`tack::geometry::rough_surface`): zero mean, rms `rms`, power law
+/// of Hurst exponent `hurst` on the band `q0..q1` (default the paper's 2π/L .. π/dx).
+#[pyfunction]
+#[pyo3(signature = (nx, ny, *, dx, rms, hurst, seed=0, q0=None, q1=None))]
+#[allow(clippy::too_many_arguments)]
+fn rough(
+    py: Python<'_>,
+    nx: usize,
+    ny: usize,
+    dx: f64,
+    rms: f64,
+    hurst: f64,
+    seed: u64,
+    q0: Option<f64>,
+    q1: Option<f64>,
+) -> PyResult<Bound<'_, PyArray2<f64>>> {
+    let grid = grid(nx, ny, dx)?;
+    let defaults = RoughSpec::paper_defaults(grid, rms, hurst, seed);
+    let spec = RoughSpec {
+        q0: q0.unwrap_or(defaults.q0),
+        q1: q1.unwrap_or(defaults.q1),
+        ..defaults
+    };
+    let heights = released(py, || {
+        rough_surface(grid, &spec)
+            .map(Surface::into_heights)
+            .map_err(value_error)
+    })?;
+    Ok(heights.into_pyarray(py))
+}
+
+/// The paraboloid `(x² + y²)/(2R)` sampled at the element centres.
+#[pyfunction]
+#[pyo3(signature = (nx, ny, *, dx, radius))]
+fn sphere(
+    py: Python<'_>,
+    nx: usize,
+    ny: usize,
+    dx: f64,
+    radius: f64,
+) -> PyResult<Bound<'_, PyArray2<f64>>> {
+    let grid = grid(nx, ny, dx)?;
+    let shape = Sphere::new(radius).map_err(value_error)?;
+    Ok(Surface::from_shape(grid, &shape)
+        .into_heights()
+        .into_pyarray(py))
+}
+
+/// Element-centre coordinates `(x, y)`: `x[i] = (i − ⌊nx/2⌋)·dx`, `y[j] = (j − ⌊ny/2⌋)·dx`.
+#[pyfunction]
+#[pyo3(signature = (nx, ny, *, dx))]
+#[allow(clippy::type_complexity)]
+fn coordinates(
+    py: Python<'_>,
+    nx: usize,
+    ny: usize,
+    dx: f64,
+) -> PyResult<(Bound<'_, PyArray1<f64>>, Bound<'_, PyArray1<f64>>)> {
+    let grid = grid(nx, ny, dx)?;
+    let x: Vec<f64> = (0..nx).map(|i| grid.x(i)).collect();
+    let y: Vec<f64> = (0..ny).map(|j| grid.y(j)).collect();
+    Ok((x.into_pyarray(py), y.into_pyarray(py)))
+}
+
+/// The paper's roughness band on the grid: `(q0, q1) = (2π/L, π/dx)`, L the longer side.
+#[pyfunction]
+#[pyo3(signature = (nx, ny, *, dx))]
+fn band(nx: usize, ny: usize, dx: f64) -> PyResult<(f64, f64)> {
+    let grid = grid(nx, ny, dx)?;
+    Ok(tack::problem::band(&grid, None, None))
+}
+
+/// Registers the surface functions with the module.
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(rough, m)?)?;
+    m.add_function(wrap_pyfunction!(sphere, m)?)?;
+    m.add_function(wrap_pyfunction!(coordinates, m)?)?;
+    m.add_function(wrap_pyfunction!(band, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,206 @@
+"""Scene runs, results, result files, pull-offs of height arrays, the non-adhesive solver."""
+
+import math
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import tack
+
+
+def test_hertz_against_the_closed_form():
+    radius, d = 1.0, 0.01
+    a = math.sqrt(radius * d)  # Hertz contact radius 0.1
+    dx = a / 10
+    heights = tack.surface.sphere(41, dx=dx, radius=radius)
+    state = tack.contact(heights, dx=dx, e_star=1.0, approach=d)
+    assert state.converged
+    hertz = tack.analytics.hertz_force(1.0, radius, d)
+    assert state.force == pytest.approx(hertz, rel=0.01)
+    assert abs(math.sqrt(state.area / math.pi) - a) < dx
+    assert state.pressure.shape == heights.shape == state.gap.shape
+    assert (state.pressure >= 0).all()
+    # In contact the gap closes; elsewhere it is open.
+    assert np.abs(state.gap[state.pressure > 0]).max() < 1e-6 * d
+    assert (state.gap[state.pressure == 0] >= -1e-9 * d).all()
+
+
+def test_contact_over_several_approaches_follows_hertz():
+    dx = 0.01
+    heights = tack.surface.sphere(41, dx=dx, radius=1.0)
+    ds = [0.0025, 0.005, 0.01]
+    states = tack.contact(heights, dx=dx, e_star=2.0, approach=ds)
+    assert [s.approach for s in states] == ds
+    forces = np.array([s.force for s in states])
+    expected = tack.analytics.hertz_force(2.0, 1.0, np.array(ds))
+    np.testing.assert_allclose(forces, expected, rtol=0.03)
+
+
+def test_the_jkr_example_ratio(repo):
+    result = tack.run(repo / "data/examples/smooth_jkr_sphere.toml")
+    assert round(result.pull_off_ratio, 4) == 1.1343
+    assert result.summary["pull_off_ratio"] == result.pull_off_ratio
+    assert result.pull_off_force == result.curve["force"].min()
+    assert result.curve["force"][result.pull_off_step] == result.pull_off_force
+    assert result.wall_time is not None and result.wall_time > 0
+    # A path given as a str works too, and so do overrides.
+    finer = tack.run(
+        str(repo / "data/examples/smooth_jkr_sphere.toml"),
+        overrides={"grid.n": 96, "grid.dx": 0.15, "output.snapshots": "none"},
+    )
+    assert finer.pull_off_ratio < result.pull_off_ratio
+    assert finer.snapshots == {}
+    assert 'snapshots = "none"' in finer.scene
+
+
+def test_result_fields(small_sphere):
+    result = tack.run(small_sphere, overrides={"output.snapshots": "pull_off"})
+    curve = result.curve
+    n = len(result)
+    for name in ["approach", "force", "area", "mean_pressure"]:
+        assert curve[name].dtype == np.float64 and curve[name].shape == (n,)
+    for name in ["n_bonded", "n_clusters", "iterations", "active_set_iterations"]:
+        assert curve[name].dtype == np.int64
+    assert curve["converged"].dtype == np.bool_ and curve["converged"].all()
+    assert curve["full_contact"].dtype == np.bool_
+    summary = result.summary
+    assert summary["f_jkr"] == pytest.approx(-1.5 * math.pi * 0.125 * 8.0)
+    assert summary["johnson_alpha"] is None and summary["alpha_star"] is None
+    assert summary["d_jkr"] == pytest.approx(
+        tack.analytics.jkr_pull_off_approach(1.0, 0.125, 8.0)
+    )
+    steps = list(result.snapshots)
+    assert steps[0] == result.pull_off_step
+    snap = result.snapshots[steps[0]]
+    assert snap["pressure"].shape == snap["bonded"].shape == (32, 32)
+    assert snap["bonded"].dtype == np.bool_
+    assert snap["bonded"].sum() == curve["n_bonded"][steps[0]]
+    assert snap["approach"] == curve["approach"][steps[0]]
+    surface = result.surface
+    np.testing.assert_array_equal(
+        surface["heights"], tack.surface.sphere(32, dx=0.45, radius=8.0)
+    )
+    assert surface["dx"] == 0.45
+    prov = result.provenance
+    assert prov["tack_version"] == tack.__version__
+    assert prov["seed"] is None and "version = 1" in prov["scene"]
+    assert result.curve is result.curve  # built once
+    assert "pull_off_ratio" in repr(result)
+
+
+def test_write_read_round_trip(small_sphere, tmp_path):
+    result = tack.run(
+        small_sphere,
+        overrides={"output.snapshots": {"every": 10}, "roughness.kind": "random",
+                   "roughness.h": 0.01, "roughness.hurst": 0.7, "roughness.seed": 4},
+    )
+    out = tmp_path / "run.h5"
+    result.write(out)
+    back = tack.read(out)
+    assert back.wall_time is None
+    assert back.curve.keys() == result.curve.keys()
+    for name, column in result.curve.items():
+        np.testing.assert_array_equal(back.curve[name], column)
+    assert back.summary.keys() == result.summary.keys()
+    for name, value in result.summary.items():
+        other = back.summary[name]
+        assert other == value or (math.isnan(other) and math.isnan(value)), name
+    assert back.snapshots.keys() == result.snapshots.keys()
+    for step, snap in result.snapshots.items():
+        np.testing.assert_array_equal(back.snapshots[step]["pressure"], snap["pressure"])
+        np.testing.assert_array_equal(back.snapshots[step]["bonded"], snap["bonded"])
+    np.testing.assert_array_equal(back.surface["heights"], result.surface["heights"])
+    assert back.provenance == result.provenance
+    assert back.provenance["seed"] == 4
+    # The scene's random roughness is tack.surface.random with the same seed.
+    expected = tack.surface.sphere(32, dx=0.45, radius=8.0) + tack.surface.random(
+        32, dx=0.45, rms=0.01, hurst=0.7, seed=4
+    )
+    np.testing.assert_allclose(back.surface["heights"], expected, rtol=0, atol=1e-15)
+
+
+def test_pull_off_of_a_sphere_given_as_an_array(tmp_path):
+    dx, radius = 0.45, 8.0
+    heights = tack.surface.sphere(32, dx=dx, radius=radius)
+    result = tack.pull_off(heights, dx=dx, e_star=1.0, gamma=0.125)
+    # The radius is fitted, so F_JKR applies; a_c/dx ≈ 7 overshoots by about 20%.
+    assert result.summary["f_jkr"] == pytest.approx(-1.5 * math.pi * 0.125 * radius)
+    assert 1.0 < result.pull_off_ratio < 1.4
+    assert "(fitted)" in result.scene
+    np.testing.assert_array_equal(result.surface["heights"], heights)
+    assert len(result.snapshots) == 2
+    result.write(tmp_path / "pull_off.h5")
+    back = tack.read(tmp_path / "pull_off.h5")
+    np.testing.assert_array_equal(back.surface["heights"], heights)
+    assert back.scene == result.scene and back.pull_off_force == result.pull_off_force
+    # The default path: one load step to 3 d_s, then retraction.
+    d_s = tack.analytics.jkr_approach_scale(1.0, 0.125, radius)
+    assert result.curve["approach"][0] == pytest.approx(3 * d_s)
+    # Any array-like of numbers works (here float32 and a list of lists).
+    again = tack.pull_off(heights.astype(np.float32).tolist(), dx=dx, e_star=1.0,
+                          gamma=0.125, radius=radius, snapshots="none")
+    assert again.snapshots == {}
+    assert again.pull_off_ratio == pytest.approx(result.pull_off_ratio, rel=0.02)
+
+
+def test_pull_off_of_a_rough_sphere_is_deterministic():
+    n, radius = 64, 1.0
+    dx = radius / n
+    e_star, gamma = 1.0, 5e-4
+    heights = tack.surface.sphere(n, dx=dx, radius=radius) + tack.surface.random(
+        n, dx=dx, hurst=0.5, alpha_star=0.4, e_star=e_star, gamma=gamma, seed=2
+    )
+    a = tack.pull_off(heights, dx=dx, e_star=e_star, gamma=gamma, radius=radius)
+    b = tack.pull_off(heights, dx=dx, e_star=e_star, gamma=gamma, radius=radius)
+    np.testing.assert_array_equal(a.curve["force"], b.curve["force"])
+    assert a.pull_off_force < 0 and a.curve["converged"].all()
+
+
+def test_progress_callback_sees_steps_and_can_stop_the_run(repo):
+    seen = []
+    tack.run(repo / "data/examples/smooth_jkr_sphere.toml", progress=seen.append)
+    assert seen and seen[-1]["step"] == 804
+    assert set(seen[-1]) >= {"step", "phase", "approach", "force", "n_bonded"}
+
+    class Stop(Exception):
+        pass
+
+    def stop(info):
+        raise Stop(info["step"])
+
+    with pytest.raises(Stop):
+        tack.run(repo / "data/examples/smooth_jkr_sphere.toml",
+                 overrides={"grid.n": 96, "grid.dx": 0.15}, progress=stop)
+
+
+def test_the_gil_is_released_during_a_run(repo):
+    done = threading.Event()
+    ticks = 0
+
+    def work():
+        try:
+            tack.run(repo / "data/examples/smooth_jkr_sphere.toml",
+                     overrides={"grid.n": 96, "grid.dx": 0.15})
+        finally:
+            done.set()
+
+    thread = threading.Thread(target=work)
+    started = time.perf_counter()
+    thread.start()
+    while not done.is_set():
+        ticks += 1
+        time.sleep(0.001)
+    thread.join()
+    elapsed = time.perf_counter() - started
+    # The main thread kept running Python while the solve ran.
+    assert elapsed > 0.1 and ticks > 0.1 * elapsed / 0.0011, (ticks, elapsed)
+
+
+def test_richardson(small_sphere):
+    result = tack.run(small_sphere, richardson=True)
+    extra = result.summary
+    assert extra["pull_off_force_richardson"] == pytest.approx(
+        2 * result.pull_off_force - extra["pull_off_force_coarse"]
+    )

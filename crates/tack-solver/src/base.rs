@@ -1,0 +1,99 @@
+//! What both solvers own and do alike: the operator and surface (checked to share a grid), the
+//! pressure and gap fields and the CG vectors, all allocated once; the gap update
+//! `g = f − d + K p`; the periodic full-contact field; the integrals of a record.
+
+use ndarray::{Array2, Zip};
+use tack_geometry::{Boundary, Grid, Surface};
+use tack_kernels::ElasticOperator;
+
+use crate::SolverError;
+use crate::cg::Work;
+use crate::state::Totals;
+
+/// Operator, surface, fields and CG vectors of one solver.
+pub(crate) struct SolverBase {
+    pub(crate) op: Box<dyn ElasticOperator>,
+    pub(crate) surface: Surface,
+    /// Lowest height: the approach of the first touch.
+    pub(crate) fmin: f64,
+    /// Mean height: periodic grids are in full contact from `d = fmean` on.
+    pub(crate) fmean: f64,
+    pub(crate) pressure: Array2<f64>,
+    pub(crate) gap: Array2<f64>,
+    /// `work.disp = K p` whenever a solve has finished.
+    pub(crate) work: Work,
+}
+
+impl SolverBase {
+    /// Checks that `surface` lives on the operator's grid.
+    pub(crate) fn new(
+        op: Box<dyn ElasticOperator>,
+        surface: &Surface,
+    ) -> Result<Self, SolverError> {
+        let shape = crate::validate::same_grid(op.as_ref(), surface)?;
+        let z = Array2::zeros(shape);
+        Ok(Self {
+            fmin: surface.min(),
+            fmean: mean_height(surface),
+            op,
+            surface: surface.clone(),
+            pressure: z.clone(),
+            gap: z,
+            work: Work::new(shape),
+        })
+    }
+
+    /// Replaces the surface by another on the same grid (a cached sub-problem moved to a new
+    /// window of the same shape); fields and vectors are kept.
+    pub(crate) fn set_surface(&mut self, surface: Surface) {
+        debug_assert_eq!(surface.grid(), self.op.grid());
+        self.fmin = surface.min();
+        self.fmean = mean_height(&surface);
+        self.surface = surface;
+    }
+
+    pub(crate) fn heights(&self) -> &Array2<f64> {
+        self.surface.heights()
+    }
+
+    pub(crate) fn grid(&self) -> &Grid {
+        self.op.grid()
+    }
+
+    pub(crate) fn periodic(&self) -> bool {
+        self.grid().boundary() == Boundary::Periodic
+    }
+
+    /// `gap = f − d + disp` at every element (`disp = K p` from the last product).
+    pub(crate) fn update_gap(&mut self, d: f64) {
+        Zip::from(&mut self.gap)
+            .and(self.surface.heights())
+            .and(&self.work.disp)
+            .for_each(|g, &f, &u| *g = f - d + u);
+    }
+
+    /// Periodic grids: fills `pressure` with the zero-mean pressure that closes every gap
+    /// (`K p = mean f − f`; `disp` and `gap` hold that displacement) and returns its minimum.
+    /// The mean pressure is then free: each solver shifts it by its own admissibility rule.
+    pub(crate) fn full_contact_field(&mut self) -> f64 {
+        let fmean = self.fmean;
+        Zip::from(&mut self.gap)
+            .and(self.surface.heights())
+            .for_each(|g, &f| *g = fmean - f);
+        let periodic = self
+            .op
+            .solve_zero_mean(self.gap.view(), self.pressure.view_mut());
+        debug_assert!(periodic, "full contact is only reached on periodic grids");
+        self.work.disp.assign(&self.gap);
+        self.pressure.iter().copied().fold(f64::INFINITY, f64::min)
+    }
+
+    /// Force, mean pressure and area of the current pressure with `n_contact` elements in contact.
+    pub(crate) fn totals(&self, n_contact: usize) -> Totals {
+        Totals::new(self.grid(), &self.pressure, n_contact)
+    }
+}
+
+fn mean_height(surface: &Surface) -> f64 {
+    surface.heights().mean().unwrap_or(0.0)
+}

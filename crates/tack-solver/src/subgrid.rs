@@ -1,0 +1,76 @@
+//! Sub-grid problems on free grids, cached by shape: the free operator is exact on any
+//! sub-grid, so a solver can iterate on a window (the non-adhesive crop of `{f ≤ d}`, the
+//! adhesive solver's box around the bonded set) with an operator built once per window shape.
+
+use std::collections::HashMap;
+
+use tack_geometry::{Boundary, Grid};
+use tack_kernels::FreeOperator;
+
+/// The free operator of an `nx × ny` sub-grid with spacing `dx` of a grid whose operator was
+/// built with `e_star` (so both are valid).
+pub(crate) fn free_operator(shape: (usize, usize), dx: f64, e_star: f64) -> FreeOperator {
+    let grid = Grid::new(shape.0, shape.1, dx, Boundary::Free)
+        .expect("a sub-grid of a valid grid is valid");
+    FreeOperator::new(grid, e_star).expect("the modulus was validated with the operator")
+}
+
+/// Sub-problems keyed by their shape (an operator with its FFT plans, spectra and buffers is
+/// costly to build); at most `capacity` are kept: a new shape beyond that starts afresh.
+pub(crate) struct SubgridCache<T> {
+    entries: HashMap<(usize, usize), T>,
+    capacity: usize,
+}
+
+impl<T> SubgridCache<T> {
+    pub(crate) fn new(capacity: usize) -> Self {
+        Self {
+            entries: HashMap::new(),
+            capacity: capacity.max(1),
+        }
+    }
+
+    /// The sub-problem of `shape`, built by `build` when it is not cached.
+    pub(crate) fn get_or_insert_with(
+        &mut self,
+        shape: (usize, usize),
+        build: impl FnOnce() -> T,
+    ) -> &mut T {
+        if !self.entries.contains_key(&shape) && self.entries.len() >= self.capacity {
+            self.entries.clear();
+        }
+        self.entries.entry(shape).or_insert_with(build)
+    }
+
+    /// Number of cached sub-problems.
+    #[cfg(test)]
+    pub(crate) fn len(&self) -> usize {
+        self.entries.len()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tack_kernels::ElasticOperator;
+
+    #[test]
+    fn builds_once_per_shape_and_starts_afresh_beyond_capacity() {
+        let mut cache = SubgridCache::new(2);
+        let mut built = 0;
+        for shape in [(3, 4), (3, 4), (5, 5), (3, 4), (6, 2), (6, 2)] {
+            let v = cache.get_or_insert_with(shape, || {
+                built += 1;
+                shape.0 * shape.1
+            });
+            assert_eq!(*v, shape.0 * shape.1);
+        }
+        // (3,4) and (5,5) built once each; (6,2) is a third shape: the cache is cleared.
+        assert_eq!(built, 3);
+        assert_eq!(cache.len(), 1);
+        let op = free_operator((4, 7), 0.5, 2.0);
+        assert_eq!(op.grid().shape(), (4, 7));
+        assert_eq!((op.grid().dx(), op.e_star()), (0.5, 2.0));
+        assert_eq!(op.grid().boundary(), Boundary::Free);
+    }
+}
