@@ -79,7 +79,9 @@ impl Result {
 
     /// The scalar results: `pull_off_force`, `f_jkr`, `pull_off_ratio` (NaN where F_JKR does
     /// not apply), `johnson_alpha`, `alpha_star` (None where they do not apply), then the
-    /// extras (`d_jkr`, `sigma_c`, `kappa`, `first_touch`, `non_converged_steps`, ...).
+    /// extras (`d_jkr`, `sigma_c`, `kappa`, `first_touch`, `non_converged_steps`, ...), then
+    /// `status` (`"complete"`, `"stopped at protocol.max_steps"`; None in old files) and
+    /// `warnings` (a list of sentences: why the result may not be trusted).
     #[getter]
     fn summary(&self, py: Python<'_>) -> PyResult<Py<PyDict>> {
         let dict = self
@@ -95,6 +97,8 @@ impl Result {
                 for (name, value) in &s.extra {
                     d.set_item(name, value)?;
                 }
+                d.set_item("status", s.status.as_deref())?;
+                d.set_item("warnings", &s.warnings)?;
                 Ok(d.unbind())
             })?;
         Ok(dict.clone_ref(py))

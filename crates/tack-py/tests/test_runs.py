@@ -42,6 +42,8 @@ def test_the_jkr_example_ratio(repo):
     result = tack.run(repo / "data/examples/smooth_jkr_sphere.toml")
     assert round(result.pull_off_ratio, 4) == 1.1343
     assert result.summary["pull_off_ratio"] == result.pull_off_ratio
+    assert result.summary["status"] == "complete"
+    assert result.summary["warnings"] == []
     assert result.pull_off_force == result.curve["force"].min()
     assert result.curve["force"][result.pull_off_step] == result.pull_off_force
     assert result.wall_time is not None and result.wall_time > 0
@@ -204,3 +206,12 @@ def test_richardson(small_sphere):
     assert extra["pull_off_force_richardson"] == pytest.approx(
         2 * result.pull_off_force - extra["pull_off_force_coarse"]
     )
+
+
+def test_a_stopped_run_says_so(repo):
+    result = tack.run(
+        repo / "data/examples/smooth_jkr_sphere.toml",
+        overrides={"protocol.max_steps": 30},
+    )
+    assert result.summary["status"] == "stopped at protocol.max_steps"
+    assert any("protocol.max_steps = 30" in w for w in result.summary["warnings"])

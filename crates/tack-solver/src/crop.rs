@@ -31,8 +31,15 @@ pub fn contact_window(
     let core = surface.window_below(geometric, 0)?;
     let (rows, cols) = core.shape();
     let ell = 0.5 * grid.dx() * ((rows * rows + cols * cols) as f64).sqrt();
-    let reach = (2.0 * std::f64::consts::PI * gamma * ell / e_star).sqrt();
-    surface.window_below(geometric + reach, 2)
+    surface.window_below(geometric + adhesive_reach(e_star, gamma, ell), 2)
+}
+
+/// How far above the approach adhesion can pull the surface into contact around a contact of
+/// radius at most `ell`: `sqrt(2πγℓ/E*)` (the JKR edge gap scale without its factor ½, so an
+/// over-estimate); the margin [`contact_window`] adds, and what a grid sized in advance for
+/// a contact must leave room for.
+pub fn adhesive_reach(e_star: f64, gamma: f64, ell: f64) -> f64 {
+    (2.0 * std::f64::consts::PI * gamma * ell / e_star).sqrt()
 }
 
 /// True when a bonded element lies on the outer ring of the grid: on a cropped problem this

@@ -97,7 +97,7 @@ mod validate;
 pub use adhesive::{AdhesiveOptions, AdhesiveSolver, KAPPA, KAPPA_LINE};
 pub use clusters::count_clusters;
 pub use contact::ContactSolver;
-pub use crop::{contact_window, touches_edge};
+pub use crop::{adhesive_reach, contact_window, touches_edge};
 pub use extrapolate::richardson_first_order;
 pub use options::{SolverError, SolverOptions};
 pub use path::{

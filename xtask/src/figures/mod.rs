@@ -16,7 +16,6 @@ mod rough_sphere;
 mod surfaces;
 mod wavy_sphere;
 
-use std::f64::consts::PI;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -397,7 +396,7 @@ pub fn sphere_scene(
         // contact_window: f ≤ d_max + range + sqrt(2πγℓ/E*), ℓ the window's half-diagonal.
         let level = d_max + range;
         let ell = (2.0 * radius * level).sqrt() * std::f64::consts::SQRT_2;
-        let reach = (2.0 * PI * g * ell / e).sqrt();
+        let reach = tack_solver::adhesive_reach(e, g, ell);
         2 * ((2.0 * radius * (level + reach)).sqrt() / dx).ceil() as usize + 11
     });
     file.grid.n = Some(n);

@@ -33,7 +33,7 @@ class Result:
         """1-D arrays per step: approach, force, area, n_bonded, n_clusters, iterations,
         active_set_iterations, converged, mean_pressure, full_contact (where present)."""
     @property
-    def summary(self) -> Dict[str, Optional[float]]:
+    def summary(self) -> Dict[str, Any]:
         """pull_off_force, f_jkr, pull_off_ratio, johnson_alpha, alpha_star, then extras."""
     @property
     def snapshots(self) -> Dict[int, Dict[str, Any]]:
