@@ -70,7 +70,7 @@ fn bad_overrides_fail_through_the_schema() {
         ("material.e_star=-1", "material.e_star = -1 is invalid"),
         ("material.e_star=nan", "material.e_star = NaN is invalid"),
         ("grid.n=0", "grid.n = 0 is invalid"),
-        ("material=3", "invalid type"),
+        ("material=3", "material = 3 is invalid: must be a table"),
         ("material.gamma", "expected key=value"),
         ("version=3", "version = 3 is not supported"),
         ("geometry.shape=cube", "unknown variant `cube`"),

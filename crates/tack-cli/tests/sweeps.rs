@@ -563,3 +563,21 @@ fn zipped_sweep_runs_and_merges_every_field_as_a_column() {
     );
     assert!(!other.exists());
 }
+
+#[test]
+fn an_absurd_thread_count_is_refused_before_anything_is_written() {
+    let dir = Scratch::new("threads");
+    let sweep = write_sweep(&dir.0, 0.05, "material.gamma = [0.05, 0.1]");
+    let out = dir.join("out");
+    let run = tack()
+        .args(["sweep", s(&sweep), "-o", s(&out), "--threads", "30000"])
+        .output()
+        .unwrap();
+    assert_eq!(run.status.code(), Some(1), "{run:?}");
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        err.contains("--threads: 30000") && err.contains("1 to 1024"),
+        "{err}"
+    );
+    assert!(!out.exists(), "nothing may be written");
+}

@@ -6,7 +6,7 @@ use thiserror::Error;
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum SolverError {
     /// A parameter is outside its allowed range.
-    #[error("{field} = {value} is invalid: must be {allowed}")]
+    #[error("{field} = {} is invalid: must be {allowed}", num(*value))]
     OutOfRange {
         /// The offending field.
         field: &'static str,
@@ -56,5 +56,15 @@ impl SolverOptions {
         crate::validate::fraction("solver.tolerance", self.tolerance)?;
         crate::validate::at_least_one("solver.max_iterations", self.max_iterations)?;
         Ok(())
+    }
+}
+
+/// A number as a message shows it: plain for moderate magnitudes, otherwise in scientific
+/// notation with the shortest digits that round-trip (`1e308`, not 309 digits).
+fn num(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-5..1e16).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
     }
 }

@@ -121,6 +121,26 @@ impl ApproachPath {
             )?;
         }
         validate::at_least_one("protocol.max_steps", self.max_steps)?;
+        // Every approach of the path, max_approach − k·step for k ≤ max_steps, must be a
+        // finite number: a step of 1e308 passed the checks above and ran into d = −inf.
+        let steps = [
+            ("protocol.load_step", Some(self.load_step)),
+            ("protocol.unload_step", Some(self.unload_step)),
+            ("protocol.coarse_unload_step", self.coarse_unload_step),
+        ];
+        for (field, step) in steps {
+            let reach = |v: f64| v * self.max_steps as f64 + self.max_approach.abs();
+            if let Some(v) = step
+                && (reach(v).is_nan() || reach(v) > 1e300)
+            {
+                return Err(SolverError::OutOfRange {
+                    field,
+                    value: v,
+                    allowed: "a finite number > 0 with protocol.max_steps × step + \
+                              |protocol.max_approach| ≤ 1e300 (every approach of the path finite)",
+                });
+            }
+        }
         Ok(())
     }
 }
@@ -502,6 +522,16 @@ mod tests {
             .filter(|(_, p)| **p == Phase::Unload)
             .map(|(s, _)| s.approach)
             .collect()
+    }
+
+    #[test]
+    fn a_step_that_would_overflow_the_path_is_refused() {
+        let e = ApproachPath::load_retract(0.0, 1.0, 0.1, 1e308)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("protocol.unload_step = 1e308"), "{e}");
+        assert!(e.contains("≤ 1e300"), "{e}");
+        assert!(ApproachPath::load_retract(0.0, 1.0, 0.1, 1e290).is_ok());
     }
 
     #[test]

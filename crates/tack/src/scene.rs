@@ -507,6 +507,7 @@ impl Scene {
             })?
         };
         check_version(&table)?;
+        check_sections(&table)?;
         let file: SceneFile = toml::from_str(&text).map_err(syntax)?;
         Ok(Self {
             file,
@@ -515,6 +516,42 @@ impl Scene {
             origin,
         })
     }
+}
+
+/// The sections of a scene file: each must be a table. serde would otherwise take an array
+/// (`material = [1.0, 0.125]`) field by field in declaration order, silently.
+const SECTIONS: [&str; 7] = [
+    "material",
+    "geometry",
+    "roughness",
+    "grid",
+    "solver",
+    "protocol",
+    "output",
+];
+
+fn check_sections(table: &toml::Table) -> Result<(), SceneError> {
+    for name in SECTIONS {
+        if let Some(value) = table.get(name)
+            && !value.is_table()
+        {
+            return Err(SceneError::OutOfRange {
+                field: name.to_owned(),
+                value: value_text(value),
+                allowed: format!(
+                    "a table: a [{name}] section with named keys (or an inline table {{ ... }}), \
+                     not {} {}",
+                    if value.is_array() || value.is_integer() {
+                        "an"
+                    } else {
+                        "a"
+                    },
+                    value.type_str()
+                ),
+            });
+        }
+    }
+    Ok(())
 }
 
 /// The `version` key must be present and equal to [`SCENE_VERSION`]; checked before the schema
@@ -532,6 +569,24 @@ fn check_version(table: &toml::Table) -> Result<(), SceneError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn sections_written_as_arrays_are_refused() {
+        let text = MINIMAL.replace("[material]\ne_star = 1.0\ngamma = 0.5\n", "");
+        let text = format!("material = [1.0, 0.125]\n{text}");
+        let e = Scene::parse(&text, ".", &[]).unwrap_err().to_string();
+        assert!(
+            e.contains("material = [1.0, 0.125]") && e.contains("a table"),
+            "{e}"
+        );
+        let e = Scene::parse(MINIMAL, ".", &["solver=[0.5]".into()])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("solver = [0.5]") && e.contains("not an array"),
+            "{e}"
+        );
+    }
 
     const MINIMAL: &str = r#"
 version = 1

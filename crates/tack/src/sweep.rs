@@ -730,6 +730,10 @@ impl FromStr for Shard {
     }
 }
 
+/// The most worker threads a sweep accepts: far above any machine's cores, below what would
+/// exhaust the process's thread limit (`--threads 30000` kept spawning threads).
+pub const MAX_THREADS: usize = 1024;
+
 /// How [`run_sweep`] runs.
 #[derive(Debug, Clone, Default)]
 pub struct SweepOptions {
@@ -1063,18 +1067,21 @@ pub fn run_sweep(
     observer: &dyn SweepObserver,
 ) -> Result<SweepReport, SweepError> {
     let started = Instant::now();
+    // The thread count is checked before the directory is touched.
+    let mut builder = rayon::ThreadPoolBuilder::new();
+    if let Some(n) = options.threads {
+        if !(1..=MAX_THREADS).contains(&n) {
+            return Err(SweepError::Threads(format!(
+                "{n} is invalid: must be an integer from 1 to {MAX_THREADS}"
+            )));
+        }
+        builder = builder.num_threads(n);
+    }
     prepare_dir(sweep, dir)?;
     let total = sweep.len();
     let shard = options.shard;
     let points: Vec<usize> = (0..total).filter(|&i| shard.contains(i)).collect();
     remove_stale_temporaries(dir, &points, total);
-    let mut builder = rayon::ThreadPoolBuilder::new();
-    if let Some(n) = options.threads {
-        if n == 0 {
-            return Err(SweepError::Threads("must be at least 1".into()));
-        }
-        builder = builder.num_threads(n);
-    }
     let pool = builder
         .build()
         .map_err(|e| SweepError::Threads(e.to_string()))?;
