@@ -219,7 +219,11 @@ fn johnson_1d_waviness_follows_eq2_along_unstable_branch() {
         // past the maximum of Eq. 2 onto its unstable branch before the jump out of contact.
         assert!(r.records.iter().any(|x| x.full_contact));
         assert!(range.0 < 0.3 && range.1 > 1.3, "range {range:?}");
-        assert!(worst < 0.03, "α = {alpha}: deviation {worst}");
+        // Measured worst 0.015, 0.017, 0.031 (exact rounds: 0.015, 0.023, 0.021, ψ ≤ 1.361). The
+        // inexact rounds reach a Griffith state at ψ = 1.373, where √tan ψ is steep and one
+        // element of front position moves Eq. 2 by about 0.01 p*; the means stay within 0.002.
+        assert!(worst < 0.035, "α = {alpha}: deviation {worst}");
+        assert!(mean.abs() < 0.005, "α = {alpha}: mean deviation {mean}");
     }
 }
 
@@ -458,6 +462,9 @@ fn bonded_subgrid_cg_changes_nothing_but_the_cost() {
                 max_iterations: 10_000,
             },
             bonded_subgrid,
+            // Inexact rounds attach only inside their sub-grid, so the rounds (not the
+            // equilibria) would differ: compare the exact algorithm's paths.
+            round_tolerance: None,
             ..AdhesiveOptions::default()
         };
         let op = operator_for(grid, 1.0).unwrap();

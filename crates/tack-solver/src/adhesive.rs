@@ -61,7 +61,27 @@ pub struct AdhesiveOptions {
     pub preconditioned: bool,
     /// Free grids: run CG on a sub-grid around the bonded set when that is much smaller.
     pub bonded_subgrid: bool,
+    /// Inexact rounds: the CG tolerance of the detach/attach rounds that only have to find
+    /// which elements cross the criterion (`None`: every round is solved to `cg.tolerance`).
+    /// Such a round detaches only tensions beyond `σ_c (1 + m)` and attaches only gaps below a
+    /// margin ([`LOOSE_DETACH_MARGIN`], [`LOOSE_ATTACH_MARGIN`]): a wrong detachment can set off
+    /// a cascade, and adhesion holds a wrongly attached element. On free grids it updates the
+    /// gap only inside its sub-grid, so only elements there may attach. When a round changes
+    /// nothing, the same set is solved to `cg.tolerance` and judged everywhere without margin,
+    /// so every step ends on a tight solve that meets the exact criterion. Default `1e-3`
+    /// (docs/theory.md §3.4 has the measurements).
+    pub round_tolerance: Option<f64>,
 }
+
+/// Relative tension margin `m` of an inexact round: it detaches `p < −σ_c (1 + m)` only. With
+/// `round_tolerance = 1e-3`, `m = 0.001` let a Kendall punch at a/Δx = 20 pull off 0.6% early
+/// (a rim element within the loose solve's error of σ_c started the cascade); `0.003` gives the
+/// exact algorithm's pull-off at a/Δx = 5…40 (`tests/adhesion.rs`).
+pub const LOOSE_DETACH_MARGIN: f64 = 0.003;
+
+/// Gap margin of an inexact round, in units of its residual bound: it attaches only gaps below
+/// `−LOOSE_ATTACH_MARGIN · round_tolerance · scale` (scale: the rms of `d − f` over the set).
+pub const LOOSE_ATTACH_MARGIN: f64 = 10.0;
 
 impl Default for AdhesiveOptions {
     fn default() -> Self {
@@ -73,6 +93,7 @@ impl Default for AdhesiveOptions {
             max_active_set_iterations: 1_000,
             preconditioned: true,
             bonded_subgrid: true,
+            round_tolerance: Some(1e-3),
         }
     }
 }
@@ -163,6 +184,16 @@ impl AdhesiveSolver {
             self.bonded.fill(true);
         }
         let sigma_c = self.sigma_c;
+        // Inexact rounds until one finds nothing clear, then a tight round on the same set.
+        let mut loose = self
+            .options
+            .round_tolerance
+            .filter(|&t| t > self.options.cg.tolerance);
+        let mut loose_visited = HashSet::new();
+        let mut tight = loose.is_none();
+        let mut detach_below;
+        // `work.disp` and the gap are up to date only inside the last inexact round's window.
+        let mut stale = false;
         loop {
             if rounds == self.options.max_active_set_iterations {
                 converged = false;
@@ -188,38 +219,72 @@ impl AdhesiveSolver {
                 self.bonded[(weakest / ncols, weakest % ncols)] = false;
                 continue;
             }
-            let cycle = !visited.insert(hash_mask(&self.bonded));
+            let fingerprint = hash_mask(&self.bonded);
+            if !tight && !loose_visited.insert(fingerprint) {
+                // Inexact rounds came back to a set: finish the step with tight rounds only.
+                (loose, tight) = (None, true);
+            }
+            let cycle = tight && !visited.insert(fingerprint);
+            let mut attach_below = 0.0;
+            detach_below = -sigma_c;
+            // Where the gap is up to date after this round (`None`: everywhere).
+            let mut fresh: Option<Window> = None;
             if n_bonded == 0 {
                 self.base.pressure.fill(0.0);
                 self.base.work.disp.fill(0.0);
+            } else if let (false, Some(tol)) = (tight, loose) {
+                // An inexact round: the gap is only brought up to date inside the sub-grid
+                // window, so only elements there may attach; the tight round checks them all.
+                let (c, w) = self.solve_bonded(d, tol, false);
+                cg_total += c.iterations;
+                attach_below = -LOOSE_ATTACH_MARGIN * tol * c.scale;
+                detach_below = -sigma_c * (1.0 + LOOSE_DETACH_MARGIN);
+                fresh = w;
             } else {
-                let c = self.solve_bonded(d);
+                let (c, _) = self.solve_bonded(d, self.options.cg.tolerance, true);
                 cg_total += c.iterations;
                 worst = worst.max(c.residual);
                 converged &= c.converged;
             }
-            self.base.update_gap(d);
+            stale = fresh.is_some();
+            match fresh {
+                None => self.base.update_gap(d),
+                Some(w) => self.base.update_gap_in(d, &w),
+            }
             if cycle {
                 converged = false;
                 break;
             }
             let mut changed = false;
-            Zip::from(&mut self.bonded)
+            let inside = |i: usize, j: usize| {
+                fresh.is_none_or(|w| (w.i0..w.i1).contains(&i) && (w.j0..w.j1).contains(&j))
+            };
+            Zip::indexed(&mut self.bonded)
                 .and(&mut self.base.pressure)
                 .and(&self.base.gap)
-                .for_each(|b, p, &g| {
-                    if *b && *p < -sigma_c {
+                .for_each(|(i, j), b, p, &g| {
+                    if *b && *p < detach_below {
                         *b = false;
                         *p = 0.0;
                         changed = true;
-                    } else if !*b && g < 0.0 {
+                    } else if !*b && g < attach_below && inside(i, j) {
                         *b = true;
                         changed = true;
                     }
                 });
-            if !changed {
+            if changed {
+                tight = loose.is_none();
+            } else if tight {
                 break;
+            } else {
+                tight = true;
             }
+        }
+        if stale {
+            // The step ended on an inexact sub-grid round: bring `K p` and the gap up to date.
+            let b = &mut self.base;
+            b.op.apply(b.pressure.view(), b.work.disp.view_mut());
+            b.update_gap(d);
         }
         Ok(self.record(d, cg_total, rounds, worst, converged, full))
     }
@@ -250,16 +315,27 @@ impl AdhesiveSolver {
         self.last_approach = Some(d);
     }
 
-    /// Conjugate gradients for `K_CC p_C = (d − f)_C`, warm-started from the current pressure;
-    /// leaves `work.disp = K p` on the full grid. On free grids whose bonded set fills little of
-    /// the grid, the CG runs on a sub-grid around the bonded set (the free operator is exact on
-    /// any sub-grid, so the linear problem is the same) and one full-grid product follows.
-    fn solve_bonded(&mut self, d: f64) -> Convergence {
-        let (cg, pre) = (self.options.cg, self.options.preconditioned);
+    /// Conjugate gradients for `K_CC p_C = (d − f)_C`, warm-started from the current pressure.
+    /// On free grids whose bonded set fills little of the grid, the CG runs on a sub-grid around
+    /// the bonded set (the free operator is exact on any sub-grid, so the linear problem is the
+    /// same). With `full`, `work.disp = K p` on the whole grid afterwards (one full-grid product
+    /// after a sub-grid solve) and `None` is returned; without it, a sub-grid solve only brings
+    /// `work.disp` up to date inside the returned window.
+    fn solve_bonded(
+        &mut self,
+        d: f64,
+        tolerance: f64,
+        full: bool,
+    ) -> (Convergence, Option<Window>) {
+        let cg = SolverOptions {
+            tolerance,
+            ..self.options.cg
+        };
+        let pre = self.options.preconditioned;
         let window = self.bonded_window();
         let base = &mut self.base;
         let Some(window) = window else {
-            return pcg(
+            let c = pcg(
                 base.op.as_mut(),
                 base.surface.heights().view(),
                 self.bonded.view(),
@@ -270,6 +346,7 @@ impl AdhesiveSolver {
                 &cg,
                 pre,
             );
+            return (c, None);
         };
         let shape = window.shape();
         let (dx, e_star) = (base.grid().dx(), base.op.e_star());
@@ -293,9 +370,14 @@ impl AdhesiveSolver {
         );
         base.pressure.fill(0.0);
         base.pressure.slice_mut(block).assign(&sub.pressure);
-        base.op
-            .apply(base.pressure.view(), base.work.disp.view_mut());
-        out
+        if full {
+            base.op
+                .apply(base.pressure.view(), base.work.disp.view_mut());
+            (out, None)
+        } else {
+            base.work.disp.slice_mut(block).assign(&sub.work.disp);
+            (out, Some(window))
+        }
     }
 
     /// The sub-grid to solve on: the bonded set's bounding box, grown to the largest size with
@@ -405,10 +487,24 @@ mod tests {
     use super::*;
     use tack_geometry::{Grid, Sphere, Waviness2d};
 
+    /// Every round solved to the CG tolerance: the round counts below are the exact algorithm's.
+    fn exact() -> AdhesiveOptions {
+        AdhesiveOptions {
+            round_tolerance: None,
+            ..AdhesiveOptions::default()
+        }
+    }
+
     /// A smooth sphere in JKR units (R = E* = γ = 1) on a free 23² grid, a_c/Δx = 5.
     fn sphere(options: AdhesiveOptions) -> AdhesiveSolver {
+        sphere_at(5, options)
+    }
+
+    /// The same sphere at a_c/Δx = `ratio` on a grid of half-width 2.2 a_c.
+    fn sphere_at(ratio: usize, options: AdhesiveOptions) -> AdhesiveSolver {
         let a_c = (9.0 * std::f64::consts::PI / 8.0_f64).powf(1.0 / 3.0);
-        let grid = Grid::square(23, a_c / 5.0, Boundary::Free).unwrap();
+        let grid =
+            Grid::square(2 * (ratio * 11 / 5) + 1, a_c / ratio as f64, Boundary::Free).unwrap();
         let surface = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
         let op = tack_kernels::operator_for(grid, 1.0).unwrap();
         AdhesiveSolver::new(op, &surface, 1.0, KAPPA, options).unwrap()
@@ -424,7 +520,7 @@ mod tests {
         }
         let surface = Surface::new(grid, heights).unwrap();
         let op = tack_kernels::operator_for(grid, 1.0).unwrap();
-        AdhesiveSolver::new(op, &surface, 1e-3, KAPPA, AdhesiveOptions::default()).unwrap()
+        AdhesiveSolver::new(op, &surface, 1e-3, KAPPA, exact()).unwrap()
     }
 
     /// Entry `K[to, from]` of the influence matrix.
@@ -438,7 +534,7 @@ mod tests {
 
     #[test]
     fn bonded_set_is_unchanged_by_a_small_approach_change() {
-        let mut s = sphere(AdhesiveOptions::default());
+        let mut s = sphere(exact());
         let r1 = s.step(1.0).unwrap();
         let set = s.bonded().clone();
         // From d = 1 to 2 the pinned adhesive contact keeps its set (69 elements): the pressure
@@ -526,12 +622,12 @@ mod tests {
     fn the_round_cap_reports_not_converged() {
         // From nothing, d = 2 takes two rounds: attach what penetrates (137 elements), then
         // solve on that set, which stays.
-        let free = sphere(AdhesiveOptions::default()).step(2.0).unwrap();
+        let free = sphere(exact()).step(2.0).unwrap();
         assert!(free.converged && free.force > 0.0);
         assert_eq!((free.active_set_iterations, free.n_bonded), (2, 137));
         let capped = AdhesiveOptions {
             max_active_set_iterations: 1,
-            ..AdhesiveOptions::default()
+            ..exact()
         };
         let r = sphere(capped).step(2.0).unwrap();
         assert!(!r.converged);
@@ -544,10 +640,72 @@ mod tests {
                 max_iterations: 1,
                 ..AdhesiveOptions::default().cg
             },
-            ..AdhesiveOptions::default()
+            ..exact()
         };
         let r = sphere(cg_capped).step(2.0).unwrap();
         assert!(!r.converged && r.residual > 1e-9);
+    }
+
+    fn pull_off_index(forces: &[f64]) -> usize {
+        (0..forces.len())
+            .min_by(|&a, &b| forces[a].total_cmp(&forces[b]))
+            .unwrap()
+    }
+
+    #[test]
+    fn inexact_rounds_end_on_an_exact_state_with_fewer_iterations() {
+        // Load to d = 6 and retract past pull-off on the a_c/Δx = 15 sphere, with and without
+        // inexact rounds. Every step ends on a tight solve judged without margin, so each state
+        // meets the criterion exactly.
+        let path = |s: &mut AdhesiveSolver| -> (Vec<Array2<bool>>, Vec<f64>, usize) {
+            let mut sets = Vec::new();
+            let mut forces = Vec::new();
+            let mut cg = 0;
+            let ds = (1..=20)
+                .map(|k| 0.3 * k as f64)
+                .chain((1..400).map(|k| 6.0 - 0.02 * k as f64));
+            for d in ds {
+                let r = s.step(d).unwrap();
+                assert!(r.converged, "d = {d}");
+                let sigma_c = s.critical_stress();
+                assert!(s.pressure().iter().all(|&p| p >= -sigma_c));
+                assert!(s.gap().iter().zip(s.bonded()).all(|(&g, &b)| b || g >= 0.0));
+                sets.push(s.bonded().clone());
+                forces.push(r.force);
+                cg += r.cg_iterations;
+            }
+            (sets, forces, cg)
+        };
+        let (sets_exact, f_exact, cg_exact) = path(&mut sphere_at(15, exact()));
+        let (sets, f, cg) = path(&mut sphere_at(15, AdhesiveOptions::default()));
+        // Inexact rounds take other (equally admissible) routes through the sets: an inexact
+        // round attaches only clear penetrations inside its sub-grid where the exact algorithm
+        // attaches every penetration of each intermediate solution, adhesion holds what was
+        // attached, and near a cascade a tension within the loose solve's error of σ_c may be
+        // judged the other way. Measured here: loading forces within 3.1e-4 F_max, one
+        // retraction step (of 342) on another set, 2.5e-3 F_max off; the pull-off force agrees to
+        // 1.6e-12. Asserted with margins of 3× and 2×; past the pull-off the contact jumps.
+        let k = pull_off_index(&f_exact);
+        assert_eq!(k, pull_off_index(&f));
+        let f_max = f_exact.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let dev = |r: std::ops::Range<usize>| {
+            r.map(|i| (f[i] - f_exact[i]).abs() / f_max)
+                .fold(0.0f64, f64::max)
+        };
+        let differ = (20..=k).filter(|&i| sets[i] != sets_exact[i]).count();
+        assert!(dev(0..20) < 1e-3, "loading {}", dev(0..20));
+        assert!(
+            differ <= 3 && dev(20..k + 1) < 5e-3,
+            "{differ} {}",
+            dev(20..k + 1)
+        );
+        assert!(
+            (f[k] / f_exact[k] - 1.0).abs() < 1e-9,
+            "{} vs {}",
+            f[k],
+            f_exact[k]
+        );
+        assert!(cg < cg_exact, "{cg} vs {cg_exact} CG iterations");
     }
 
     #[test]

@@ -72,6 +72,15 @@ impl SolverBase {
             .for_each(|g, &f, &u| *g = f - d + u);
     }
 
+    /// `gap = f − d + disp` inside the window `w` only.
+    pub(crate) fn update_gap_in(&mut self, d: f64, w: &tack_geometry::Window) {
+        let block = ndarray::s![w.i0..w.i1, w.j0..w.j1];
+        Zip::from(self.gap.slice_mut(block))
+            .and(self.surface.heights().slice(block))
+            .and(self.work.disp.slice(block))
+            .for_each(|g, &f, &u| *g = f - d + u);
+    }
+
     /// Periodic grids: fills `pressure` with the zero-mean pressure that closes every gap
     /// (`K p = mean f − f`; `disp` and `gap` hold that displacement) and returns its minimum.
     /// The mean pressure is then free: each solver shifts it by its own admissibility rule.

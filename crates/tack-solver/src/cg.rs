@@ -100,6 +100,7 @@ pub(crate) fn pcg(
                 iterations: it,
                 residual,
                 converged: rr <= target,
+                scale,
             };
         }
         let mut rz = precondition(op, pw, bonded, preconditioned);

@@ -136,6 +136,7 @@ impl ContactSolver {
             iterations: st.iterations,
             residual: st.residual,
             converged: st.converged,
+            scale: d - self.base.fmin,
         };
         Ok(self.state(d, report, false))
     }
@@ -213,6 +214,7 @@ impl ContactSolver {
                     iterations: it,
                     residual,
                     converged: true,
+                    scale,
                 };
             }
             if it == max_iterations {
@@ -272,6 +274,7 @@ impl ContactSolver {
             iterations: max_iterations,
             residual,
             converged: false,
+            scale,
         }
     }
 

@@ -94,7 +94,9 @@ mod state;
 mod subgrid;
 mod validate;
 
-pub use adhesive::{AdhesiveOptions, AdhesiveSolver, KAPPA, KAPPA_LINE};
+pub use adhesive::{
+    AdhesiveOptions, AdhesiveSolver, KAPPA, KAPPA_LINE, LOOSE_ATTACH_MARGIN, LOOSE_DETACH_MARGIN,
+};
 pub use clusters::count_clusters;
 pub use contact::ContactSolver;
 pub use crop::{adhesive_reach, contact_window, touches_edge};

@@ -95,6 +95,8 @@ pub(crate) struct Convergence {
     pub(crate) iterations: usize,
     pub(crate) residual: f64,
     pub(crate) converged: bool,
+    /// The displacement scale the residual is relative to (0 when nothing was solved).
+    pub(crate) scale: f64,
 }
 
 impl Convergence {
@@ -103,5 +105,6 @@ impl Convergence {
         iterations: 0,
         residual: 0.0,
         converged: true,
+        scale: 0.0,
     };
 }

@@ -116,6 +116,9 @@ pub(crate) fn adhesion(
         "solver.max_active_set_iterations",
         options.max_active_set_iterations,
     )?;
+    if let Some(t) = options.round_tolerance {
+        fraction("solver.round_tolerance", t)?;
+    }
     Ok(())
 }
 

@@ -268,6 +268,18 @@ impl Problem {
             max_active_set_iterations: s
                 .max_active_set_iterations
                 .unwrap_or(defaults.max_active_set_iterations),
+            round_tolerance: match s.round_tolerance {
+                None => defaults.round_tolerance,
+                Some(0.0) => None,
+                Some(t) if t > 0.0 && t < 1.0 => Some(t),
+                Some(t) => {
+                    return Err(SceneError::out_of_range(
+                        "solver.round_tolerance",
+                        t,
+                        "0 (every round exact) or a number in (0, 1)",
+                    ));
+                }
+            },
             ..defaults
         };
         options.cg.validate()?;

@@ -276,6 +276,11 @@ pub struct SolverSpec {
     /// Cap on detach/attach rounds per approach step; default the solver's (1000).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_active_set_iterations: Option<usize>,
+    /// CG tolerance in (0, 1) of the inexact detach/attach rounds, or `0` to solve every round
+    /// to `tolerance` (the exact algorithm); default the solver's (1e-3). See
+    /// `tack_solver::AdhesiveOptions::round_tolerance`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub round_tolerance: Option<f64>,
 }
 
 /// `[protocol]`: the load–unload approach path (approach positive = pressing).
