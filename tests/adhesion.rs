@@ -351,7 +351,15 @@ fn same_inputs_give_the_same_bits_on_any_thread_count() {
     // compete for the cores: every parallel part of a solve must reduce in a fixed order, so
     // every record matches to the bit (StepRecord's derived PartialEq would let −0.0 == 0.0
     // and NaN != NaN pass or fail wrongly: the f64 fields are compared as bits).
-    let go = || JkrSphere::new(5.0, KAPPA).run().result;
+    // a_c/Δx = 20: the grid's transforms (256² and more) are split into lanes, one per thread.
+    let go = || {
+        JkrSphere {
+            coarse_unload_step: Some(0.1),
+            ..JkrSphere::new(20.0, KAPPA)
+        }
+        .run()
+        .result
+    };
     let in_pool = |threads: usize| {
         rayon::ThreadPoolBuilder::new()
             .num_threads(threads)

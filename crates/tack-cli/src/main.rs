@@ -52,6 +52,10 @@ enum Command {
         /// for geometries that do not depend on the grid (not random roughness, not height maps).
         #[arg(long)]
         richardson: bool,
+        /// Threads for the solve (1 to 1024; default: all cores). The result is bit-identical
+        /// for any count.
+        #[arg(long, value_name = "N")]
+        threads: Option<usize>,
     },
     /// Write only the generated surface (heights and dx) of a scene to an HDF5 file.
     Surface {
@@ -136,10 +140,12 @@ fn execute(command: Command) -> anyhow::Result<()> {
             quiet,
             set,
             richardson,
+            threads,
         } => {
             let options = RunOptions {
                 command_line: None,
                 richardson,
+                threads,
             };
             let scene = Scene::load(&scene, &set)?;
             let outcome = run::run_to_file(&scene, &output, &options, &mut Progress::new(quiet))?;

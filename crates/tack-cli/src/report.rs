@@ -323,6 +323,7 @@ mod tests {
         let options = RunOptions {
             command_line: None,
             richardson: true,
+            threads: None,
         };
         let outcome = tack::run(&scene, &options, &mut ()).unwrap();
         let text = report(&scene, &outcome, None);

@@ -5,10 +5,16 @@
 //! batched rustfft call. Kernels are stored in that transposed layout with the inverse
 //! normalisation `1/(mx·my)` folded in, so a convolution is: row r2c, transpose, column FFT,
 //! multiply, column inverse FFT, transpose, row c2r. Zero-padded rows are skipped.
+//!
+//! Threads: rows, columns and transpose blocks are split into contiguous lanes run on the
+//! current rayon pool (`rayon::ThreadPool::install` chooses it). Every row and column is
+//! transformed by the same plan with the same arithmetic whatever lane it falls in, so the
+//! result is bit-identical for any thread count; there are no reductions.
 
 use std::sync::Arc;
 
 use ndarray::{Array2, ArrayView2, ArrayViewMut2};
+use rayon::prelude::*;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::num_complex::Complex;
 use rustfft::{Fft, FftPlanner};
@@ -29,9 +35,15 @@ pub struct Fft2 {
     c2r: Arc<dyn ComplexToReal<f64>>,
     fwd: Arc<dyn Fft<f64>>,
     inv: Arc<dyn Fft<f64>>,
-    scratch_rows: Vec<Complex<f64>>,
-    scratch_cols: Vec<Complex<f64>>,
+    /// One row scratch and one column scratch per lane (grown to the pool's thread count).
+    scratch: Vec<(Scratch, Scratch)>,
 }
+
+/// A transform's scratch buffer.
+type Scratch = Vec<Complex<f64>>;
+
+/// Grids with fewer elements than this run on one lane (threads would cost more than they save).
+const PARALLEL_MIN: usize = 128 * 128;
 
 impl Fft2 {
     /// Plans the transforms of an `mx × my` real grid.
@@ -44,12 +56,6 @@ impl Fft2 {
         let fwd = planner.plan_fft_forward(mx);
         let inv = planner.plan_fft_inverse(mx);
         let zero = Complex::new(0.0, 0.0);
-        let scratch_rows = vec![zero; r2c.get_scratch_len().max(c2r.get_scratch_len())];
-        let scratch_cols = vec![
-            zero;
-            fwd.get_inplace_scratch_len()
-                .max(inv.get_inplace_scratch_len())
-        ];
         Self {
             mx,
             my,
@@ -61,9 +67,28 @@ impl Fft2 {
             c2r,
             fwd,
             inv,
-            scratch_rows,
-            scratch_cols,
+            scratch: Vec::new(),
         }
+    }
+
+    /// Number of lanes for this call: the current pool's threads on large grids, else one.
+    /// Allocates the lanes' scratch the first time a pool of that size is seen.
+    fn lanes(&mut self) -> usize {
+        let lanes = if self.mx * self.my >= PARALLEL_MIN {
+            rayon::current_num_threads().clamp(1, self.mh.min(self.mx))
+        } else {
+            1
+        };
+        while self.scratch.len() < lanes {
+            let zero = Complex::new(0.0, 0.0);
+            let rows = self.r2c.get_scratch_len().max(self.c2r.get_scratch_len());
+            let cols = self
+                .fwd
+                .get_inplace_scratch_len()
+                .max(self.inv.get_inplace_scratch_len());
+            self.scratch.push((vec![zero; rows], vec![zero; cols]));
+        }
+        lanes
     }
 
     /// Size of the real grid, `(mx, my)`.
@@ -102,9 +127,10 @@ impl Fft2 {
         self.real.slice_mut(ndarray::s![..nx, ..]).fill(0.0);
         self.real.slice_mut(ndarray::s![..nx, ..ny]).assign(&input);
         self.forward(nx);
-        for (c, &k) in self.cols.iter_mut().zip(kernel) {
-            *c *= k;
-        }
+        self.cols
+            .par_chunks_mut(self.mx * 64)
+            .zip(kernel.par_chunks(self.mx * 64))
+            .for_each(|(c, k)| c.iter_mut().zip(k).for_each(|(c, &k)| *c *= k));
         self.inverse(nx);
         out.assign(&self.real.slice(ndarray::s![..nx, ..ny]));
     }
@@ -118,60 +144,95 @@ impl Fft2 {
 
     /// Spectrum of `self.real` (rows `nx..` taken as zero) into `self.cols`.
     fn forward(&mut self, nx: usize) {
-        let (mx, mh) = (self.mx, self.mh);
-        for (i, out) in self.rows.chunks_exact_mut(mh).take(nx).enumerate() {
-            let row = self.real.row_mut(i).into_slice().expect("standard layout");
-            self.r2c
-                .process_with_scratch(row, out, &mut self.scratch_rows)
-                .expect("planned lengths");
-        }
-        transpose(&self.rows, &mut self.cols, nx, mh, mx);
-        self.fwd
-            .process_with_scratch(&mut self.cols, &mut self.scratch_cols);
+        let (mx, my, mh) = (self.mx, self.my, self.mh);
+        let lanes = self.lanes();
+        let r2c = &self.r2c;
+        let per = nx.div_ceil(lanes).max(1);
+        let real = self.real.as_slice_mut().expect("standard layout");
+        real[..nx * my]
+            .par_chunks_mut(per * my)
+            .zip(self.rows[..nx * mh].par_chunks_mut(per * mh))
+            .zip(self.scratch.par_iter_mut())
+            .for_each(|((real, rows), (scratch, _))| {
+                for (row, out) in real.chunks_exact_mut(my).zip(rows.chunks_exact_mut(mh)) {
+                    r2c.process_with_scratch(row, out, scratch)
+                        .expect("planned lengths");
+                }
+            });
+        transpose(&self.rows, &mut self.cols, nx, mh, mx, lanes);
+        let fwd = &self.fwd;
+        let per = mh.div_ceil(lanes);
+        self.cols
+            .par_chunks_mut(per * mx)
+            .zip(self.scratch.par_iter_mut())
+            .for_each(|(cols, (_, scratch))| fwd.process_with_scratch(cols, scratch));
     }
 
     /// Inverse of `self.cols` into rows `..nx` of `self.real`.
     fn inverse(&mut self, nx: usize) {
         let (mx, mh, my) = (self.mx, self.mh, self.my);
-        self.inv
-            .process_with_scratch(&mut self.cols, &mut self.scratch_cols);
-        transpose(&self.cols, &mut self.rows, mh, mx, mh);
-        for (i, spec) in self.rows.chunks_exact_mut(mh).take(nx).enumerate() {
-            // A real signal's DC (and even-length Nyquist) bins are real; drop round-off.
-            spec[0].im = 0.0;
-            if my % 2 == 0 {
-                spec[mh - 1].im = 0.0;
-            }
-            let row = self.real.row_mut(i).into_slice().expect("standard layout");
-            self.c2r
-                .process_with_scratch(spec, row, &mut self.scratch_rows)
-                .expect("planned lengths");
-        }
+        let lanes = self.lanes();
+        let inv = &self.inv;
+        let per = mh.div_ceil(lanes);
+        self.cols
+            .par_chunks_mut(per * mx)
+            .zip(self.scratch.par_iter_mut())
+            .for_each(|(cols, (_, scratch))| inv.process_with_scratch(cols, scratch));
+        transpose(&self.cols, &mut self.rows, mh, mx, mh, lanes);
+        let c2r = &self.c2r;
+        let per = nx.div_ceil(lanes).max(1);
+        let real = self.real.as_slice_mut().expect("standard layout");
+        real[..nx * my]
+            .par_chunks_mut(per * my)
+            .zip(self.rows[..nx * mh].par_chunks_mut(per * mh))
+            .zip(self.scratch.par_iter_mut())
+            .for_each(|((real, rows), (scratch, _))| {
+                for (row, spec) in real.chunks_exact_mut(my).zip(rows.chunks_exact_mut(mh)) {
+                    // A real signal's DC (and even-length Nyquist) bins are real; drop round-off.
+                    spec[0].im = 0.0;
+                    if my % 2 == 0 {
+                        spec[mh - 1].im = 0.0;
+                    }
+                    c2r.process_with_scratch(spec, row, scratch)
+                        .expect("planned lengths");
+                }
+            });
     }
 }
 
 /// Writes the transpose of the first `rows` rows of the row-major `src` (row length `cols`)
-/// into `dst` (row length `dst_stride`), zero-filling `dst` columns `rows..dst_stride`.
+/// into `dst` (row length `dst_stride`), zero-filling `dst` columns `rows..dst_stride`. The
+/// destination rows are split into `lanes` contiguous bands written in parallel (pure copies).
 fn transpose(
     src: &[Complex<f64>],
     dst: &mut [Complex<f64>],
     rows: usize,
     cols: usize,
     dst_stride: usize,
+    lanes: usize,
 ) {
-    for j0 in (0..cols).step_by(BLOCK) {
-        for i0 in (0..rows).step_by(BLOCK) {
-            for j in j0..(j0 + BLOCK).min(cols) {
-                let d = &mut dst[j * dst_stride..];
-                for i in i0..(i0 + BLOCK).min(rows) {
-                    d[i] = src[i * cols + j];
+    let per = cols.div_ceil(lanes).div_ceil(BLOCK).max(1) * BLOCK;
+    dst[..cols * dst_stride]
+        .par_chunks_mut(per * dst_stride)
+        .enumerate()
+        .for_each(|(band, dst)| {
+            let first = band * per;
+            let last = (first + per).min(cols);
+            for j0 in (first..last).step_by(BLOCK) {
+                for i0 in (0..rows).step_by(BLOCK) {
+                    for j in j0..(j0 + BLOCK).min(last) {
+                        let d = &mut dst[(j - first) * dst_stride..];
+                        for i in i0..(i0 + BLOCK).min(rows) {
+                            d[i] = src[i * cols + j];
+                        }
+                    }
+                }
+                for j in j0..(j0 + BLOCK).min(last) {
+                    let k = j - first;
+                    dst[k * dst_stride + rows..(k + 1) * dst_stride].fill(Complex::new(0.0, 0.0));
                 }
             }
-        }
-        for j in j0..(j0 + BLOCK).min(cols) {
-            dst[j * dst_stride + rows..(j + 1) * dst_stride].fill(Complex::new(0.0, 0.0));
-        }
-    }
+        });
 }
 
 #[cfg(test)]
@@ -189,6 +250,42 @@ mod tests {
             f.convolve(input.view(), &k, out.view_mut());
             let err = (&out - &input).iter().fold(0.0f64, |m, v| m.max(v.abs()));
             assert!(err < 1e-13, "{mx}x{my}: {err}");
+        }
+    }
+
+    #[test]
+    fn any_thread_count_gives_the_same_bits() {
+        // Odd and even sizes above the parallel threshold; 1, 2 and 3 lanes split the rows
+        // and columns differently, and every bit must agree.
+        for (mx, my, nx, ny) in [(256, 256, 200, 256), (270, 135, 270, 135)] {
+            let input =
+                Array2::from_shape_fn((nx, ny), |(i, j)| ((i * 7 + j * 13) % 17) as f64 - 8.3);
+            let spectrum =
+                Array2::from_shape_fn((mx, my / 2 + 1), |(i, j)| 1.0 / (1.0 + (i + 2 * j) as f64));
+            let run = |threads: usize| {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                pool.install(|| {
+                    let mut f = Fft2::new(mx, my);
+                    let k = f.prepare_kernel(&spectrum);
+                    let mut out = Array2::zeros((nx, ny));
+                    f.convolve(input.view(), &k, out.view_mut());
+                    out
+                })
+            };
+            let one = run(1);
+            assert!(one.iter().any(|v| *v != 0.0));
+            for threads in [2, 3] {
+                let other = run(threads);
+                assert!(
+                    one.iter()
+                        .zip(&other)
+                        .all(|(a, b)| a.to_bits() == b.to_bits()),
+                    "{mx}x{my}: {threads} threads differ"
+                );
+            }
         }
     }
 }

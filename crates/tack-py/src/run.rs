@@ -13,11 +13,10 @@ use crate::guard::detached;
 use crate::result::Result;
 
 /// Largest accepted `threads`.
-pub const MAX_THREADS: usize = 1024;
+pub const MAX_THREADS: usize = tack::run::MAX_THREADS;
 
-/// Checks `threads` (1..=[`MAX_THREADS`]). A run is sequential today (bit-identical on any
-/// thread count), so the value is only validated: it is the worker count reserved for parallel
-/// solves and sweeps.
+/// Checks `threads` (1..=[`MAX_THREADS`]) before anything runs: the threads one solve splits
+/// its FFTs across (bit-identical results on any count).
 fn check_threads(threads: Option<i64>) -> PyResult<()> {
     match threads {
         Some(n) if !(1..=MAX_THREADS as i64).contains(&n) => Err(value_error(format!(
@@ -135,6 +134,7 @@ pub fn run_scene(
     let options = RunOptions {
         command_line: Some(command_line(py)),
         richardson,
+        threads: threads.map(|n| n as usize),
     };
     let outcome = detached(py, progress, |observer| {
         tack::run(&scene, &options, observer)
@@ -211,6 +211,7 @@ pub fn pull_off(
     let options = RunOptions {
         command_line: Some(command_line(py)),
         richardson: false,
+        threads: threads.map(|n| n as usize),
     };
     let outcome = detached(py, progress, |observer| {
         tack::heights::pull_off(&heights, &spec, &options, observer)

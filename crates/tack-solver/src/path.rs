@@ -155,7 +155,7 @@ pub enum Phase {
 }
 
 /// Progress hooks; the CLI maps them to a progress bar.
-pub trait Observer {
+pub trait Observer: Send {
     /// Called after every step with its index and record.
     fn on_step(&mut self, _index: usize, _phase: Phase, _record: &StepRecord) {}
     /// Called after every step, before [`Observer::on_step`], with the step's pressure field

@@ -20,6 +20,9 @@ pub enum Error {
     /// A sweep file, its directory or its run failed.
     #[error(transparent)]
     Sweep(#[from] crate::sweep::SweepError),
+    /// A thread count is out of range or its pool could not be built.
+    #[error("{0}")]
+    Threads(String),
     /// The output path cannot be written.
     #[error("{}: {reason}", path.display())]
     Output {

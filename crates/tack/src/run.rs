@@ -23,6 +23,35 @@ pub struct RunOptions {
     /// Also run the scene on a grid of twice the element size and record the Richardson
     /// extrapolation of the pull-off force (see [`coarsened`]).
     pub richardson: bool,
+    /// Threads one solve uses, 1 to [`MAX_THREADS`]: its FFTs are split into lanes across
+    /// them, and the result is bit-identical for any count. `None`: the current rayon pool
+    /// (all cores unless the caller installed another).
+    pub threads: Option<usize>,
+}
+
+/// The most threads a run or sweep accepts: far above any machine's cores, below what would
+/// exhaust the process's thread limit.
+pub const MAX_THREADS: usize = 1024;
+
+/// A rayon pool of `threads` threads, or `None` to keep the current one; refuses counts outside
+/// `1..=MAX_THREADS` naming `field`.
+pub fn thread_pool(
+    field: &str,
+    threads: Option<usize>,
+) -> Result<Option<rayon::ThreadPool>, Error> {
+    let Some(n) = threads else {
+        return Ok(None);
+    };
+    if !(1..=MAX_THREADS).contains(&n) {
+        return Err(Error::Threads(format!(
+            "{field} = {n} is invalid: must be an integer from 1 to {MAX_THREADS}"
+        )));
+    }
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(n)
+        .build()
+        .map(Some)
+        .map_err(|e| Error::Threads(format!("{field} = {n}: {e}")))
 }
 
 /// What a finished run produced.
@@ -83,8 +112,13 @@ pub fn run(
     } else {
         None
     };
+    let pool = thread_pool("threads", options.threads)?;
+    let solve_in_pool = |problem: &Problem, observer: &mut dyn Observer| match &pool {
+        Some(pool) => pool.install(|| solve(problem, observer)),
+        None => solve(problem, observer),
+    };
     let started = Instant::now();
-    let path = solve(&problem, observer)?;
+    let path = solve_in_pool(&problem, observer)?;
     let wall_time = started.elapsed();
     let command_line = options
         .command_line
@@ -95,7 +129,7 @@ pub fn run(
     let mut coarse_wall_time = None;
     if let Some(coarse) = coarse {
         let started = Instant::now();
-        let coarse_f = solve(&coarse, observer)?.pull_off_force();
+        let coarse_f = solve_in_pool(&coarse, observer)?.pull_off_force();
         coarse_wall_time = Some(started.elapsed());
         let fine_f = path.pull_off_force();
         let extrapolated = tack_solver::richardson_first_order(fine_f, coarse_f);
@@ -562,6 +596,7 @@ unload_step = 0.002
         let options = RunOptions {
             command_line: None,
             richardson: true,
+            threads: None,
         };
         let outcome = run(&fine, &options, &mut ()).unwrap();
         let e = &outcome.result.summary.extra;

@@ -730,9 +730,8 @@ impl FromStr for Shard {
     }
 }
 
-/// The most worker threads a sweep accepts: far above any machine's cores, below what would
-/// exhaust the process's thread limit (`--threads 30000` kept spawning threads).
-pub const MAX_THREADS: usize = 1024;
+/// The most worker threads a sweep accepts (the same bound as a run's).
+pub use crate::run::MAX_THREADS;
 
 /// How [`run_sweep`] runs.
 #[derive(Debug, Clone, Default)]
@@ -1015,6 +1014,8 @@ fn run_point(sweep: &Sweep, dir: &Path, index: usize, command_line: &str) -> Poi
         let options = RunOptions {
             command_line: Some(format!("{command_line} [point {index}]")),
             richardson: false,
+            // Points run concurrently on the sweep's pool; each solve's FFT lanes share it.
+            threads: None,
         };
         run::run_to_file(&scene, &h5, &options, &mut ())?;
         Ok(())

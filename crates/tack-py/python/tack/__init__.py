@@ -158,9 +158,8 @@ def run(
             ``--set dotted.key=value``; values are written as TOML literals (bool, int, float,
             str, lists and dicts of them), e.g. ``{"grid.n": 96, "material.gamma": 0.1,
             "output.snapshots": "pull_off"}``.
-        threads: worker threads, 1..``MAX_THREADS`` (validated). A single run is sequential
-            today and gives the same bits on any thread count, so this does not change the
-            speed; it is the worker count reserved for parallel solves and sweeps.
+        threads: threads for the solve, 1..``MAX_THREADS`` (default: all cores). Its FFTs are
+            split into lanes across them; the result is bit-identical for any count.
         progress: ``True`` draws a progress line on ``sys.stderr``; a callable is called with a
             dict (``step``, ``phase``, ``approach``, ``force``, ``area``, ``n_bonded``,
             ``converged``) at most every 0.1 s and after the last step. An exception it raises
