@@ -71,7 +71,21 @@ pub struct AdhesiveOptions {
     /// so every step ends on a tight solve that meets the exact criterion. Default `1e-3`
     /// (docs/theory.md §3.4 has the measurements).
     pub round_tolerance: Option<f64>,
+    /// Non-adhesive cold starts (`γ = 0`, nothing in contact yet) begin from the solution on
+    /// grids coarsened 2 × 2, recursively (see `docs/theory.md` §3.4). Exact: only the
+    /// iteration count changes.
+    pub nested_start: bool,
 }
+
+/// Nested starts stop coarsening below this many elements per side.
+const COARSEST: usize = 32;
+
+/// The inexact rounds' tolerance tightens by this factor each time a round finds nothing.
+const LOOSE_TIGHTENING: f64 = 100.0;
+
+/// The tolerance [`LOOSE_DETACH_MARGIN`] was measured at; margins scale with a round's
+/// tolerance relative to it.
+const LOOSE_REFERENCE_TOLERANCE: f64 = 1e-3;
 
 /// Relative tension margin `m` of an inexact round: it detaches `p < −σ_c (1 + m)` only. With
 /// `round_tolerance = 1e-3`, `m = 0.001` let a Kendall punch at a/Δx = 20 pull off 0.6% early
@@ -94,6 +108,7 @@ impl Default for AdhesiveOptions {
             preconditioned: true,
             bonded_subgrid: true,
             round_tolerance: Some(1e-3),
+            nested_start: true,
         }
     }
 }
@@ -182,6 +197,11 @@ impl AdhesiveSolver {
         let closed = periodic && d >= fmean - 1e-12 * (fmean.abs() + d.abs());
         if closed {
             self.bonded.fill(true);
+        } else if self.sigma_c == 0.0
+            && self.options.nested_start
+            && !self.bonded.iter().any(|&b| b)
+        {
+            cg_total += self.start_from_coarse(d)?;
         }
         let sigma_c = self.sigma_c;
         // Inexact rounds until one finds nothing clear, then a tight round on the same set.
@@ -191,6 +211,11 @@ impl AdhesiveSolver {
             .filter(|&t| t > self.options.cg.tolerance);
         let mut loose_visited = HashSet::new();
         let mut tight = loose.is_none();
+        // The inexact rounds' tolerance: it tightens 100× whenever a round finds nothing clear
+        // and returns to `round_tolerance` when a round changes the set.
+        let mut level = loose.unwrap_or(0.0);
+        // Whether the last round changed the set (a set is revisited only after a change).
+        let mut just_changed = true;
         let mut detach_below;
         // `work.disp` and the gap are up to date only inside the last inexact round's window.
         let mut stale = false;
@@ -220,7 +245,7 @@ impl AdhesiveSolver {
                 continue;
             }
             let fingerprint = hash_mask(&self.bonded);
-            if !tight && !loose_visited.insert(fingerprint) {
+            if !tight && just_changed && !loose_visited.insert(fingerprint) {
                 // Inexact rounds came back to a set: finish the step with tight rounds only.
                 (loose, tight) = (None, true);
             }
@@ -232,13 +257,18 @@ impl AdhesiveSolver {
             if n_bonded == 0 {
                 self.base.pressure.fill(0.0);
                 self.base.work.disp.fill(0.0);
-            } else if let (false, Some(tol)) = (tight, loose) {
+            } else if !tight {
                 // An inexact round: the gap is only brought up to date inside the sub-grid
                 // window, so only elements there may attach; the tight round checks them all.
-                let (c, w) = self.solve_bonded(d, tol, false);
+                // Margins scale with the round's tolerance; without adhesion the equilibrium is
+                // unique (a convex problem), so no decision needs one.
+                let (c, w) = self.solve_bonded(d, level, false);
                 cg_total += c.iterations;
-                attach_below = -LOOSE_ATTACH_MARGIN * tol * c.scale;
-                detach_below = -sigma_c * (1.0 + LOOSE_DETACH_MARGIN);
+                if sigma_c > 0.0 {
+                    let relative = level / LOOSE_REFERENCE_TOLERANCE;
+                    attach_below = -LOOSE_ATTACH_MARGIN * level * c.scale;
+                    detach_below = -sigma_c * (1.0 + LOOSE_DETACH_MARGIN * relative);
+                }
                 fresh = w;
             } else {
                 let (c, _) = self.solve_bonded(d, self.options.cg.tolerance, true);
@@ -272,12 +302,15 @@ impl AdhesiveSolver {
                         changed = true;
                     }
                 });
+            just_changed = changed;
             if changed {
                 tight = loose.is_none();
+                level = loose.unwrap_or(0.0);
             } else if tight {
                 break;
             } else {
-                tight = true;
+                level /= LOOSE_TIGHTENING;
+                tight = level <= self.options.cg.tolerance;
             }
         }
         if stale {
@@ -287,6 +320,46 @@ impl AdhesiveSolver {
             b.update_gap(d);
         }
         Ok(self.record(d, cg_total, rounds, worst, converged, full))
+    }
+
+    /// Non-adhesive cold start (`γ = 0`, nothing bonded): solves the problem on the grid
+    /// coarsened 2 × 2 (heights averaged; recursively, while both sides are even and at least
+    /// `2 × COARSEST`), then takes its pressure and contact set, injected, as the start of the
+    /// fine rounds. The fine rounds end on the fine grid's own exact state; only the work
+    /// changes. Returns the CG iterations spent on the coarse grids (in fine-grid units: each
+    /// coarse iteration counted as a quarter of the level above).
+    fn start_from_coarse(&mut self, d: f64) -> Result<usize, SolverError> {
+        let grid = *self.base.grid();
+        let (nx, ny) = grid.shape();
+        if nx % 2 == 1 || ny % 2 == 1 || nx.min(ny) < 2 * COARSEST {
+            return Ok(0);
+        }
+        let coarse_grid =
+            tack_geometry::Grid::new(nx / 2, ny / 2, 2.0 * grid.dx(), grid.boundary())
+                .expect("a coarsened valid grid is valid");
+        let f = self.base.heights();
+        let heights = Array2::from_shape_fn((nx / 2, ny / 2), |(i, j)| {
+            0.25 * (f[[2 * i, 2 * j]]
+                + f[[2 * i + 1, 2 * j]]
+                + f[[2 * i, 2 * j + 1]]
+                + f[[2 * i + 1, 2 * j + 1]])
+        });
+        let surface = Surface::new(coarse_grid, heights).expect("averages of finite heights");
+        let op = tack_kernels::operator_for(coarse_grid, self.base.op.e_star())
+            .expect("validated modulus");
+        let mut coarse = AdhesiveSolver::new(op, &surface, 0.0, 1.0, self.options)?;
+        let r = coarse.step(d)?;
+        if r.full_contact || r.n_bonded == 0 {
+            return Ok(r.cg_iterations.div_ceil(4));
+        }
+        let (p, b) = (&coarse.base.pressure, &coarse.bonded);
+        Zip::indexed(&mut self.base.pressure)
+            .and(&mut self.bonded)
+            .for_each(|(i, j), q, c| {
+                *q = p[[i / 2, j / 2]];
+                *c = b[[i / 2, j / 2]];
+            });
+        Ok(r.cg_iterations.div_ceil(4))
     }
 
     /// Secant predictor: with an unchanged bonded set the pressure is affine in `d`, so
@@ -682,9 +755,11 @@ mod tests {
         // round attaches only clear penetrations inside its sub-grid where the exact algorithm
         // attaches every penetration of each intermediate solution, adhesion holds what was
         // attached, and near a cascade a tension within the loose solve's error of σ_c may be
-        // judged the other way. Measured here: loading forces within 3.1e-4 F_max, one
-        // retraction step (of 342) on another set, 2.5e-3 F_max off; the pull-off force agrees to
-        // 1.6e-12. Asserted with margins of 3× and 2×; past the pull-off the contact jumps.
+        // judged the other way. Measured here: loading forces within 3.1e-4 F_max; the loaded
+        // contact holds 1861 elements against the exact loop's 1869, and the retraction keeps
+        // those 8 apart up to the pull-off (forces within 2.5e-3 F_max); the pull-off force
+        // agrees to 7e-10. Asserted with margins of 2× to 3×; past the pull-off the contact
+        // jumps.
         let k = pull_off_index(&f_exact);
         assert_eq!(k, pull_off_index(&f));
         let f_max = f_exact.iter().fold(0.0f64, |m, x| m.max(x.abs()));
@@ -692,15 +767,25 @@ mod tests {
             r.map(|i| (f[i] - f_exact[i]).abs() / f_max)
                 .fold(0.0f64, f64::max)
         };
-        let differ = (20..=k).filter(|&i| sets[i] != sets_exact[i]).count();
+        // Elements bonded in one run and not the other, worst over the retraction.
+        let differ = (20..=k)
+            .map(|i| {
+                sets[i]
+                    .iter()
+                    .zip(&sets_exact[i])
+                    .filter(|(a, b)| a != b)
+                    .count()
+            })
+            .max()
+            .unwrap_or(0);
         assert!(dev(0..20) < 1e-3, "loading {}", dev(0..20));
         assert!(
-            differ <= 3 && dev(20..k + 1) < 5e-3,
+            differ <= 16 && dev(20..k + 1) < 5e-3,
             "{differ} {}",
             dev(20..k + 1)
         );
         assert!(
-            (f[k] / f_exact[k] - 1.0).abs() < 1e-9,
+            (f[k] / f_exact[k] - 1.0).abs() < 3e-9,
             "{} vs {}",
             f[k],
             f_exact[k]

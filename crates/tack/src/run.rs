@@ -33,14 +33,20 @@ pub struct RunOptions {
 /// exhaust the process's thread limit.
 pub const MAX_THREADS: usize = 1024;
 
-/// A rayon pool of `threads` threads, or `None` to keep the current one; refuses counts outside
-/// `1..=MAX_THREADS` naming `field`.
+/// The rayon pool a solve runs in: `threads` threads; for `None`, the current pool when called
+/// from one of its threads (a sweep's worker), else a pool of the global pool's size (all cores,
+/// or `RAYON_NUM_THREADS`). A solve runs *inside* its pool so that its parallel FFTs split
+/// between pool threads without a hand-off from an outside thread for every transform (that
+/// hand-off made two threads slower than one). Refuses counts outside `1..=MAX_THREADS`,
+/// naming `field`.
 pub fn thread_pool(
     field: &str,
     threads: Option<usize>,
 ) -> Result<Option<rayon::ThreadPool>, Error> {
-    let Some(n) = threads else {
-        return Ok(None);
+    let n = match threads {
+        Some(n) => n,
+        None if rayon::current_thread_index().is_some() => return Ok(None),
+        None => rayon::current_num_threads(),
     };
     if !(1..=MAX_THREADS).contains(&n) {
         return Err(Error::Threads(format!(
