@@ -113,6 +113,13 @@ impl fmt::Display for MergeReport {
 /// a stale or unreadable result). Failed and missing points get NaN results and are listed in
 /// the report. With missing points and without `allow_missing` nothing is written.
 pub fn merge(dir: &Path, out: &Path, options: &MergeOptions) -> Result<MergeReport, SweepError> {
+    if let Some(kind) = tack_io::not_a_regular_file(out) {
+        return Err(tack_io::IoError::Invalid {
+            path: out.to_owned(),
+            what: format!("{kind}: refusing to replace it (name a regular file or a new path)"),
+        }
+        .into());
+    }
     let sweep = Sweep::open_dir(dir)?;
     let total = sweep.len();
     let mut status = Vec::with_capacity(total);
