@@ -85,6 +85,49 @@ fn bad_overrides_fail_through_the_schema() {
 }
 
 #[test]
+fn runs_that_cannot_fit_and_meaningless_tolerances_are_refused_at_check() {
+    let scene = examples_dir().join("smooth_jkr_sphere.toml");
+    let scene = scene.to_str().expect("utf-8 path");
+    for (sets, expected) in [
+        (
+            &["output.snapshots=\"all\"", "grid.n=2048"][..],
+            "for up to 100000 snapshots (output.snapshots = \"all\" over protocol.max_steps = 100000",
+        ),
+        (
+            &["protocol.max_steps=1000000000000000000"],
+            "for 1000000000000000000 step records (protocol.max_steps)",
+        ),
+        (
+            &["solver.tolerance=5e-324"],
+            "solver.tolerance = 5e-324 is invalid: must be a number in 1e-14..=0.1",
+        ),
+        (
+            &["protocol.unload_step=1e308"],
+            "protocol.unload_step = 1e308 is invalid",
+        ),
+    ] {
+        let mut args = vec!["check", scene];
+        for set in sets {
+            args.extend(["--set", set]);
+        }
+        let started = Instant::now();
+        let out = run(&args);
+        let (stdout, stderr) = text(&out);
+        assert_eq!(out.status.code(), Some(1), "{sets:?}: {stdout}{stderr}");
+        assert!(stderr.contains(expected), "{sets:?}: {stderr}");
+        assert!(
+            started.elapsed() < Duration::from_secs(5),
+            "{sets:?} took long"
+        );
+    }
+    // The estimate is printed for what passes.
+    let out = run(&["check", scene]);
+    let (stdout, stderr) = text(&out);
+    assert!(out.status.success(), "{stderr}");
+    assert!(stdout.contains("memory: at most about"), "{stdout}");
+}
+
+#[test]
 fn missing_files_and_bad_outputs_name_the_path() {
     let scratch = Scratch::new("bad-paths");
     let out = scratch.join("out.h5");

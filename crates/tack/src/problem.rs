@@ -33,6 +33,9 @@ pub const SPHERE_FIT_MARGIN: f64 = 1.3;
 /// failing with a message.
 pub const MAX_ELEMENTS: usize = 1 << 26;
 
+/// The accepted range of `solver.tolerance` (relative CG residual), both ends included.
+pub const TOLERANCE_RANGE: (f64, f64) = (1e-14, 1e-1);
+
 /// Smallest wavelength, in elements, a waviness may have.
 pub const MIN_ELEMENTS_PER_WAVELENGTH: f64 = 4.0;
 
@@ -127,6 +130,7 @@ impl Problem {
             ));
         }
         let grid = build_grid(&f.grid)?;
+        check_memory(scene, &grid)?;
         let mut surface = base_surface(grid, &f.geometry)?;
         let mut seed = None;
         let mut references = References::default();
@@ -270,6 +274,16 @@ impl Problem {
                 .unwrap_or(defaults.max_active_set_iterations),
             ..defaults
         };
+        if let Some(t) = s.tolerance
+            && !(TOLERANCE_RANGE.0..=TOLERANCE_RANGE.1).contains(&t)
+        {
+            return Err(SceneError::out_of_range(
+                "solver.tolerance",
+                num(t),
+                "a number in 1e-14..=0.1 (the relative CG residual; default 1e-9): below 1e-14 \
+                 round-off stops CG from ever converging, above 0.1 the forces are not solutions",
+            ));
+        }
         options.cg.validate()?;
         if options.max_active_set_iterations == 0 {
             return Err(SceneError::out_of_range(
@@ -327,6 +341,29 @@ impl Problem {
             self.options,
         )?)
     }
+}
+
+/// Refuses a scene whose run cannot fit the machine's memory (see [`crate::memory`]); before
+/// the surface or anything else of the grid's size is allocated.
+fn check_memory(scene: &Scene, grid: &Grid) -> Result<(), SceneError> {
+    let f = &scene.file;
+    let max_steps = f.protocol.max_steps.unwrap_or(DEFAULT_MAX_STEPS);
+    let request: SnapshotRequest = (&f.output.snapshots).into();
+    let estimate = crate::memory::estimate(grid, max_steps, &request);
+    let grid_field = if f.grid.n.is_some() {
+        "grid.n"
+    } else {
+        "grid.nx × grid.ny"
+    };
+    let snapshots = crate::scene::value_text(&f.output.snapshots.clone().into());
+    crate::memory::check(
+        &estimate,
+        crate::memory::machine_memory(),
+        grid_field,
+        grid,
+        max_steps,
+        &snapshots,
+    )
 }
 
 /// Flags a pull-off radius of fewer than [`MIN_PULL_OFF_RADIUS_ELEMENTS`] elements.
@@ -935,6 +972,22 @@ load_step = 0.05
         assert!(err(&["grid.length=3.2"]).contains("exactly one of `dx` and `length`"));
         assert!(err(&["geometry.radius=0"]).contains("geometry.radius = 0"));
         assert!(err(&["solver.tolerance=2"]).contains("solver.tolerance = 2"));
+        for t in ["5e-324", "1e-15", "0.5", "nan"] {
+            let e = err(&[&format!("solver.tolerance={t}")]);
+            let shown = if t == "nan" { "NaN" } else { t };
+            assert!(
+                e.contains(&format!(
+                    "solver.tolerance = {shown} is invalid: must be a number in 1e-14..=0.1"
+                )),
+                "{t}: {e}"
+            );
+        }
+        for t in ["1e-14", "0.1", "1e-9"] {
+            assert!(
+                build(SPHERE, &[&format!("solver.tolerance={t}")]).is_ok(),
+                "{t}"
+            );
+        }
         assert!(err(&["solver.kappa=-1"]).contains("solver.kappa = -1"));
         assert!(err(&["protocol.load_step=0"]).contains("protocol.load_step = 0"));
         assert!(err(&["protocol.retract_to=1"]).contains("protocol.retract_to = 1"));
@@ -942,6 +995,33 @@ load_step = 0.05
             err(&["protocol.coarse_unload_step=0"]).contains(
                 "protocol.coarse_unload_step = 0 is invalid: must be a finite number > 0"
             )
+        );
+    }
+
+    #[test]
+    fn runs_that_cannot_fit_in_memory_are_refused_before_the_surface_is_built() {
+        // Every step's fields of a 2048² grid over 100000 steps: 6.9 TiB.
+        let e = err(&["grid.n=2048", "output.snapshots=\"all\""]);
+        assert!(
+            e.contains("may need about 6.9 TiB")
+                && e.contains("output.snapshots = \"all\"")
+                && e.contains("protocol.max_steps = 100000")
+                && e.contains("grid.n = 2048 × 2048"),
+            "{e}"
+        );
+        // 10^18 step records.
+        let e = err(&["protocol.max_steps=1000000000000000000"]);
+        assert!(
+            e.contains("for 1000000000000000000 step records (protocol.max_steps)"),
+            "{e}"
+        );
+        // A bounded path with every field fits.
+        assert!(
+            build(
+                SPHERE,
+                &["output.snapshots=\"all\"", "protocol.max_steps=2000"]
+            )
+            .is_ok()
         );
     }
 

@@ -267,7 +267,7 @@ pub struct SolverSpec {
     /// Pohrt–Popov constant κ of `σ_c = sqrt(E*γ/(κΔx))`; default [`tack_solver::KAPPA`].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub kappa: Option<f64>,
-    /// Relative CG tolerance in (0, 1); default the solver's (1e-9).
+    /// Relative CG tolerance in 1e-14..=0.1; default the solver's (1e-9).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tolerance: Option<f64>,
     /// Cap on CG iterations per solve; default the solver's (5000).
@@ -425,7 +425,7 @@ impl From<&Snapshots> for tack_solver::SnapshotRequest {
 }
 
 /// A TOML value as it would be written in a scene (inline form).
-fn value_text(value: &toml::Value) -> String {
+pub(crate) fn value_text(value: &toml::Value) -> String {
     match value {
         toml::Value::String(s) => format!("{s:?}"),
         toml::Value::Table(t) => {
