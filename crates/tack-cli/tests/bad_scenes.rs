@@ -73,7 +73,14 @@ fn bad_overrides_fail_through_the_schema() {
         ("material=3", "material = 3 is invalid: must be a table"),
         ("material.gamma", "expected key=value"),
         ("version=3", "version = 3 is not supported"),
-        ("geometry.shape=cube", "unknown variant `cube`"),
+        (
+            "geometry.shape=cube",
+            "--set geometry.shape=cube: geometry.shape = \"cube\" is invalid: must be one of",
+        ),
+        (
+            "grid.n=32.0",
+            "--set grid.n=32.0: grid.n = 32.0 is invalid: must be an integer in 1..=65536",
+        ),
     ] {
         assert_fails_cleanly(
             &["run", scene, "-o", out, "--quiet", "--set", set],

@@ -436,7 +436,8 @@ fn bad_sweep_files_and_arguments_fail_clearly() {
         ),
         (
             "version = 1\nscene = \"nowhere.toml\"\n[vary]\nmaterial.gamma = [0.1]\n",
-            "nowhere.toml",
+            // The sweep file (case 5), its `scene` field and the missing file.
+            "bad5.toml`: scene = \"nowhere.toml\": cannot read the base scene `",
         ),
         (
             "version = 3\nscene = \"base.toml\"\n[vary]\nmaterial.gamma = [0.1]\n",
