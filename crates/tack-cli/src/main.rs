@@ -190,6 +190,11 @@ fn execute(command: Command) -> anyhow::Result<()> {
                         num(c)
                     ))
             );
+            println!(
+                "  memory: at most about {} (protocol.max_steps = {} steps)",
+                tack::memory::bytes(tack::memory::of_problem(&p).total()),
+                p.path.max_steps
+            );
         }
         Command::Sweep {
             sweep,

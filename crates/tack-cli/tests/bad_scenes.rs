@@ -73,7 +73,14 @@ fn bad_overrides_fail_through_the_schema() {
         ("material=3", "material = 3 is invalid: must be a table"),
         ("material.gamma", "expected key=value"),
         ("version=3", "version = 3 is not supported"),
-        ("geometry.shape=cube", "unknown variant `cube`"),
+        (
+            "geometry.shape=cube",
+            "--set geometry.shape=cube: geometry.shape = \"cube\" is invalid: must be one of",
+        ),
+        (
+            "grid.n=32.0",
+            "--set grid.n=32.0: grid.n = 32.0 is invalid: must be an integer in 1..=65536",
+        ),
     ] {
         assert_fails_cleanly(
             &["run", scene, "-o", out, "--quiet", "--set", set],
@@ -82,6 +89,49 @@ fn bad_overrides_fail_through_the_schema() {
             set,
         );
     }
+}
+
+#[test]
+fn runs_that_cannot_fit_and_meaningless_tolerances_are_refused_at_check() {
+    let scene = examples_dir().join("smooth_jkr_sphere.toml");
+    let scene = scene.to_str().expect("utf-8 path");
+    for (sets, expected) in [
+        (
+            &["output.snapshots=\"all\"", "grid.n=2048"][..],
+            "for up to 100000 snapshots (output.snapshots = \"all\" over protocol.max_steps = 100000",
+        ),
+        (
+            &["protocol.max_steps=1000000000000000000"],
+            "for 1000000000000000000 step records (protocol.max_steps)",
+        ),
+        (
+            &["solver.tolerance=5e-324"],
+            "solver.tolerance = 5e-324 is invalid: must be a number in 1e-14..=0.1",
+        ),
+        (
+            &["protocol.unload_step=1e308"],
+            "protocol.unload_step = 1e308 is invalid",
+        ),
+    ] {
+        let mut args = vec!["check", scene];
+        for set in sets {
+            args.extend(["--set", set]);
+        }
+        let started = Instant::now();
+        let out = run(&args);
+        let (stdout, stderr) = text(&out);
+        assert_eq!(out.status.code(), Some(1), "{sets:?}: {stdout}{stderr}");
+        assert!(stderr.contains(expected), "{sets:?}: {stderr}");
+        assert!(
+            started.elapsed() < Duration::from_secs(5),
+            "{sets:?} took long"
+        );
+    }
+    // The estimate is printed for what passes.
+    let out = run(&["check", scene]);
+    let (stdout, stderr) = text(&out);
+    assert!(out.status.success(), "{stderr}");
+    assert!(stdout.contains("memory: at most about"), "{stdout}");
 }
 
 #[test]
@@ -118,6 +168,83 @@ fn missing_files_and_bad_outputs_name_the_path() {
     );
     // A scene file is not an HDF5 result.
     assert_fails_cleanly(&["info", scene], "flat_punch.toml", &scratch, "not HDF5");
+}
+
+/// Creates a FIFO at `path` with `mkfifo`; `false` (and a visible SKIPPED line) without it.
+#[cfg(unix)]
+fn make_fifo(path: &std::path::Path) -> bool {
+    let made = std::process::Command::new("mkfifo")
+        .arg(path)
+        .status()
+        .is_ok_and(|s| s.success());
+    if !made {
+        use std::io::Write;
+        let _ = writeln!(
+            std::io::stderr(),
+            "SKIPPED: outputs that are FIFOs (mkfifo is not available)"
+        );
+    }
+    made
+}
+
+#[cfg(unix)]
+#[test]
+fn outputs_that_are_not_regular_files_are_refused_and_kept() {
+    use std::os::unix::fs::FileTypeExt;
+    let scratch = Scratch::new("special-outputs");
+    // `.svg`: `tack plot` picks the format from the name, the others take any name.
+    let fifo = scratch.join("pipe.svg");
+    if !make_fifo(&fifo) {
+        return;
+    }
+    let fifo_s = fifo.to_str().expect("utf-8 path");
+    let scene = examples_dir().join("flat_punch.toml");
+    let scene = scene.to_str().expect("utf-8 path");
+    // A valid result to plot, made outside the scratch directory.
+    let elsewhere = Scratch::new("special-outputs-result");
+    let result = elsewhere.join("r.h5");
+    let result = result.to_str().expect("utf-8 path");
+    let made = run(&["run", scene, "-o", result, "--quiet"]);
+    assert!(made.status.success(), "{:?}", text(&made));
+    let runs: [&[&str]; 4] = [
+        &["run", scene, "-o", fifo_s, "--quiet"],
+        &["surface", scene, "-o", fifo_s],
+        &["plot", result, "-o", fifo_s],
+        &["merge", "no-such-sweep-dir", "-o", fifo_s],
+    ];
+    for args in runs {
+        let started = Instant::now();
+        let out = run(args);
+        let (stdout, stderr) = text(&out);
+        assert_eq!(out.status.code(), Some(1), "{args:?}\n{stdout}{stderr}");
+        assert!(
+            stderr.contains(fifo_s) && stderr.contains("is a FIFO"),
+            "{args:?}: the message names the path and what it is\n{stderr}"
+        );
+        assert!(!stderr.contains("panicked"), "{stderr}");
+        assert!(started.elapsed() < Duration::from_secs(10), "{args:?} hung");
+        let kind = std::fs::symlink_metadata(&fifo).expect("the FIFO is still there");
+        assert!(kind.file_type().is_fifo(), "{args:?} replaced the FIFO");
+        assert_eq!(scratch.files(), ["pipe.svg"], "{args:?} left files behind");
+    }
+    // A device and a directory likewise (the device only after the FIFO was refused above: the
+    // same check, so /dev/null is never at risk here).
+    let dir = scratch.join("a-directory");
+    std::fs::create_dir(&dir).expect("scratch directory");
+    for (path, what) in [
+        ("/dev/null", "is a character device"),
+        (dir.to_str().expect("utf-8 path"), "is a directory"),
+    ] {
+        let out = run(&["run", scene, "-o", path, "--quiet"]);
+        let (_, stderr) = text(&out);
+        assert_eq!(out.status.code(), Some(1), "{path}: {stderr}");
+        assert!(
+            stderr.contains(path) && stderr.contains(what),
+            "{path}: {stderr}"
+        );
+    }
+    let null = std::fs::metadata("/dev/null").expect("/dev/null");
+    assert!(null.file_type().is_char_device(), "/dev/null was replaced");
 }
 
 #[test]

@@ -12,7 +12,9 @@ use std::process::{Output, Stdio};
 use std::time::{Duration, Instant, SystemTime};
 
 use common::{Scratch, run, tack, text};
-use tack_io::{POINT_FAILED, POINT_MISSING, POINT_OK, ParameterColumn, SweepTable};
+use tack_io::{
+    POINT_FAILED, POINT_INCOMPLETE, POINT_MISSING, POINT_OK, ParameterColumn, SweepTable,
+};
 
 /// A smooth sphere small enough that one run takes a few hundredths of a second; `unload_step`
 /// sets the length of the path (and so the time per point).
@@ -354,6 +356,45 @@ fn failing_points_are_recorded_and_reported_while_the_others_complete() {
     );
 }
 
+#[test]
+fn merge_marks_points_whose_run_stopped_at_max_steps_as_incomplete() {
+    let scratch = Scratch::new("sweep-incomplete");
+    // Point 0 stops after 20 steps, long before detachment; point 1 runs to the end.
+    let sweep = write_sweep(&scratch.0, 0.02, "protocol.max_steps = [20, 100000]");
+    let dir = scratch.join("out");
+    assert_ok(
+        &run(&["sweep", s(&sweep), "-o", s(&dir), "--quiet"]),
+        "tack sweep",
+    );
+    let table_path = scratch.join("table.h5");
+    let out = run(&["merge", s(&dir), "-o", s(&table_path)]);
+    let (stdout, stderr) = assert_ok(&out, "merge with an incomplete point");
+    assert!(
+        stdout.contains("2 points: 1 complete, 1 incomplete"),
+        "the summary line counts the incomplete point: {stdout}"
+    );
+    assert!(
+        stderr.contains(
+            "point 0 (protocol.max_steps = 20) is incomplete: status `stopped at \
+             protocol.max_steps`; incomplete: the path stopped at protocol.max_steps = 20"
+        ),
+        "{stderr}"
+    );
+    let t = tack_io::read_sweep_table(&table_path).expect("table");
+    assert_eq!(t.status, [POINT_INCOMPLETE, POINT_OK]);
+    assert_eq!(
+        t.result_status,
+        [
+            tack_io::Summary::STOPPED_AT_MAX_STEPS,
+            tack_io::Summary::COMPLETE
+        ]
+    );
+    assert!(t.warnings[0].contains("protocol.max_steps = 20"), "{t:?}");
+    assert!(t.warnings[1].is_empty(), "{t:?}");
+    // The incomplete point's numbers are kept (its status says what they are worth).
+    assert!(t.results[0].1.iter().all(|f| f.is_finite()), "{t:?}");
+}
+
 /// Runs `args`, which must fail with `expected` in a message starting `error: `.
 fn assert_fails(args: &[&str], expected: &str) {
     let out = run(args);
@@ -395,7 +436,8 @@ fn bad_sweep_files_and_arguments_fail_clearly() {
         ),
         (
             "version = 1\nscene = \"nowhere.toml\"\n[vary]\nmaterial.gamma = [0.1]\n",
-            "nowhere.toml",
+            // The sweep file (case 5), its `scene` field and the missing file.
+            "bad5.toml`: scene = \"nowhere.toml\": cannot read the base scene `",
         ),
         (
             "version = 3\nscene = \"base.toml\"\n[vary]\nmaterial.gamma = [0.1]\n",

@@ -28,8 +28,10 @@
 //! |---|---|
 //! | `/` attributes | `sweep` (the sweep file's TOML), `scene` (the base scene's TOML), `tack_version`, `git_revision`, `command_line`, `created`: variable-length UTF-8 strings |
 //! | `/point/index` | 1D u64, the point index (row `k` holds point `k`) |
-//! | `/point/status` | 1D u8: 0 ok, 1 failed, 2 missing ([`POINT_OK`], [`POINT_FAILED`], [`POINT_MISSING`]) |
+//! | `/point/status` | 1D u8: 0 ok, 1 failed, 2 missing, 3 incomplete: a result whose `/summary` status is not `complete` ([`POINT_OK`], [`POINT_FAILED`], [`POINT_MISSING`], [`POINT_INCOMPLETE`]) |
 //! | `/point/error` | 1D variable-length UTF-8 strings: the error of a failed point, why a point is missing, else empty |
+//! | `/point/result_status` | 1D variable-length UTF-8 strings: the `/summary` status of the point's result (`complete`, `stopped at protocol.max_steps`), empty without a result |
+//! | `/point/warnings` | 1D variable-length UTF-8 strings: the `/summary` warnings of the point's result, one per line, empty when none |
 //! | `/parameters/<field>` | 1D i64, f64 or variable-length UTF-8 strings: the value of a varied scene field (dotted name, e.g. `roughness.h`) at every point |
 //! | `/parameters` attribute `fields` | 1D strings: the varied fields in sweep order (first = outermost loop) |
 //! | `/results/<name>` | 1D f64: a collected summary quantity, NaN where the point has none (failed, missing, or not defined for it) |
@@ -100,7 +102,7 @@ pub use h5::MAX_DATASET_BYTES;
 pub use model::{Curve, Provenance, RunResult, Snapshot, Summary};
 pub use read::{describe, read_height_map_h5, read_result};
 pub use sweep::{
-    POINT_FAILED, POINT_MISSING, POINT_OK, ParameterColumn, SweepTable, read_sweep_table,
-    write_sweep_table,
+    POINT_FAILED, POINT_INCOMPLETE, POINT_MISSING, POINT_OK, ParameterColumn, SweepTable,
+    read_sweep_table, write_sweep_table,
 };
-pub use write::write_result;
+pub use write::{not_a_regular_file, write_result};

@@ -21,6 +21,10 @@ pub const POINT_OK: u8 = 0;
 pub const POINT_FAILED: u8 = 1;
 /// `/point/status` of a point with no (valid) result and no recorded failure.
 pub const POINT_MISSING: u8 = 2;
+/// `/point/status` of a point whose result file is present and matches the sweep, but whose
+/// `/summary` status is not complete (e.g. stopped at `protocol.max_steps`): its results are
+/// those of the incomplete path, and `/point/result_status` says how it ended.
+pub const POINT_INCOMPLETE: u8 = 3;
 
 /// The values of one varied field, one per point.
 #[derive(Debug, Clone, PartialEq)]
@@ -60,10 +64,18 @@ pub struct SweepTable {
     pub provenance: Provenance,
     /// `/point/index`: the point index of every row.
     pub index: Vec<u64>,
-    /// `/point/status`: [`POINT_OK`], [`POINT_FAILED`] or [`POINT_MISSING`] per row.
+    /// `/point/status`: [`POINT_OK`], [`POINT_FAILED`], [`POINT_MISSING`] or
+    /// [`POINT_INCOMPLETE`] per row.
     pub status: Vec<u8>,
     /// `/point/error`: the error or absence reason per row, empty for complete points.
     pub error: Vec<String>,
+    /// `/point/result_status`: the `/summary` status of the point's result (`complete`,
+    /// `stopped at protocol.max_steps`, ...), empty where there is no result (failed, missing).
+    /// Tables written before the column existed read back with empty entries.
+    pub result_status: Vec<String>,
+    /// `/point/warnings`: the `/summary` warnings of the point's result, one per line, empty
+    /// where there are none (or no result). Read back empty from older tables.
+    pub warnings: Vec<String>,
     /// `/parameters/<field>`, in sweep order.
     pub parameters: Vec<(String, ParameterColumn)>,
     /// `/results/<name>`, in the sweep's `collect` order.
@@ -91,6 +103,8 @@ impl SweepTable {
         let columns = [
             ("/point/status", self.status.len()),
             ("/point/error", self.error.len()),
+            ("/point/result_status", self.result_status.len()),
+            ("/point/warnings", self.warnings.len()),
         ]
         .into_iter()
         .map(|(name, len)| (name.to_owned(), len))
@@ -162,6 +176,8 @@ pub fn write_sweep_table(path: &Path, table: &SweepTable) -> Result<(), IoError>
         write_column(&point, "index", &table.index, path)?;
         write_column(&point, "status", &table.status, path)?;
         write_text_column(&point, "error", &table.error, path)?;
+        write_text_column(&point, "result_status", &table.result_status, path)?;
+        write_text_column(&point, "warnings", &table.warnings, path)?;
         let parameters = create_group(&file, "parameters", path)?;
         for (name, column) in &table.parameters {
             match column {
@@ -221,12 +237,25 @@ pub fn read_sweep_table(path: &Path) -> Result<SweepTable, IoError> {
             Ok((name, values))
         })
         .collect::<Result<_, IoError>>()?;
+    let index: Vec<u64> = read_vec(&point, "index", path, budget)?;
+    // Columns added later: absent in older tables, read back as empty text.
+    let optional_text = |name: &str, budget: &mut Budget| {
+        if point.link_exists(name) {
+            read_text(&point, name, path, budget)
+        } else {
+            Ok(vec![String::new(); index.len()])
+        }
+    };
+    let result_status = optional_text("result_status", budget)?;
+    let warnings = optional_text("warnings", budget)?;
     let table = SweepTable {
         sweep: read_str_attr(&file, "sweep", path)?,
         provenance,
-        index: read_vec(&point, "index", path, budget)?,
         status: read_vec(&point, "status", path, budget)?,
         error: read_text(&point, "error", path, budget)?,
+        index,
+        result_status,
+        warnings,
         parameters,
         results,
     };
@@ -378,12 +407,18 @@ mod tests {
                 ..Provenance::current("abc", "2026-01-01T00:00:00Z")
             },
             index: vec![0, 1, 2],
-            status: vec![POINT_OK, POINT_FAILED, POINT_MISSING],
+            status: vec![POINT_OK, POINT_FAILED, POINT_INCOMPLETE],
             error: vec![
                 String::new(),
                 "material.e_star = -1 is invalid".into(),
-                "no file".into(),
+                String::new(),
             ],
+            result_status: vec![
+                "complete".into(),
+                String::new(),
+                "stopped at protocol.max_steps".into(),
+            ],
+            warnings: vec![String::new(), String::new(), "a\nb".into()],
             parameters: vec![
                 (
                     "roughness.seed".into(),
@@ -425,6 +460,10 @@ mod tests {
             (&back.index, &back.status, &back.error),
             (&t.index, &t.status, &t.error)
         );
+        assert_eq!(
+            (&back.result_status, &back.warnings),
+            (&t.result_status, &t.warnings)
+        );
         assert_eq!(back.parameters, t.parameters);
         let names: Vec<_> = back.results.iter().map(|(n, _)| n.as_str()).collect();
         assert_eq!(names, ["pull_off_force", "alpha_star"]);
@@ -434,6 +473,23 @@ mod tests {
         }
         let leftovers: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
         assert_eq!(leftovers.len(), 1, "temporaries left behind");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn tables_without_the_status_columns_read_back_empty() {
+        let dir = scratch("old");
+        let path = dir.join("sweep.h5");
+        write_sweep_table(&path, &table()).unwrap();
+        {
+            let file = File::open_rw(&path).unwrap();
+            let point = file.group("point").unwrap();
+            point.unlink("result_status").unwrap();
+            point.unlink("warnings").unwrap();
+        }
+        let back = read_sweep_table(&path).unwrap();
+        assert_eq!(back.result_status, vec![String::new(); 3]);
+        assert_eq!(back.warnings, vec![String::new(); 3]);
         let _ = std::fs::remove_dir_all(&dir);
     }
 

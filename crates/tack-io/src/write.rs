@@ -64,12 +64,46 @@ fn temporary_path(path: &Path) -> Result<PathBuf, IoError> {
             parent: parent.to_owned(),
         });
     }
-    if path.is_dir() {
-        return Err(invalid("is a directory"));
+    if let Some(kind) = not_a_regular_file(path) {
+        return Err(invalid(&format!(
+            "{kind}: refusing to replace it (name a regular file or a new path)"
+        )));
     }
     let n = TEMPORARIES.fetch_add(1, Ordering::Relaxed);
     let pid = std::process::id();
     Ok(parent.join(format!(".{}.tmp-{pid}-{n}", name.to_string_lossy())))
+}
+
+/// What an existing `path` is when it is not a regular file (following symbolic links): `is a
+/// directory`, `is a FIFO (named pipe)`, `is a character device`, ...; `None` for a regular
+/// file or a path that does not exist. Writing a result renames a temporary file onto its
+/// output, which would replace a FIFO or a device node (`/dev/null`) by a regular file: such
+/// outputs are refused instead.
+pub fn not_a_regular_file(path: &Path) -> Option<&'static str> {
+    let kind = fs::metadata(path).ok()?.file_type();
+    if kind.is_file() {
+        return None;
+    }
+    if kind.is_dir() {
+        return Some("is a directory");
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if kind.is_fifo() {
+            return Some("is a FIFO (named pipe), not a regular file");
+        }
+        if kind.is_char_device() {
+            return Some("is a character device, not a regular file");
+        }
+        if kind.is_block_device() {
+            return Some("is a block device, not a regular file");
+        }
+        if kind.is_socket() {
+            return Some("is a socket, not a regular file");
+        }
+    }
+    Some("is not a regular file")
 }
 
 fn write_file(tmp: &Path, path: &Path, result: &RunResult) -> Result<(), IoError> {

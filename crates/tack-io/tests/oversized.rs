@@ -412,6 +412,8 @@ fn a_sweep_table_with_a_huge_column_is_refused() {
             index: vec![0, 1],
             status: vec![POINT_OK; 2],
             error: vec![String::new(); 2],
+            result_status: vec!["complete".into(); 2],
+            warnings: vec![String::new(); 2],
             parameters: Vec::new(),
             results: vec![("pull_off_force".into(), vec![-1.0, -2.0])],
         };

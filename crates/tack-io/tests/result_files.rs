@@ -260,6 +260,43 @@ fn invalid_results_are_rejected_with_the_reason() {
     }
 }
 
+#[cfg(unix)]
+#[test]
+fn a_fifo_or_a_directory_under_the_output_name_is_refused_and_kept() {
+    use std::os::unix::fs::FileTypeExt;
+    let dir = TempDir::exclusive("fifo");
+    let fifo = dir.join("pipe.h5");
+    let made = Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .is_ok_and(|s| s.success());
+    if made {
+        let err = write_result(&fifo, &minimal()).unwrap_err().to_string();
+        assert!(
+            err.contains("pipe.h5") && err.contains("is a FIFO"),
+            "{err}"
+        );
+        let kind = std::fs::symlink_metadata(&fifo).unwrap().file_type();
+        assert!(kind.is_fifo(), "the FIFO was replaced");
+        assert_eq!(
+            tack_io::not_a_regular_file(&fifo),
+            Some("is a FIFO (named pipe), not a regular file")
+        );
+        std::fs::remove_file(&fifo).unwrap();
+    } else {
+        eprintln!("SKIPPED: a FIFO as output (mkfifo is not available)");
+    }
+    let sub = dir.join("sub.h5");
+    std::fs::create_dir(&sub).unwrap();
+    let err = write_result(&sub, &minimal()).unwrap_err().to_string();
+    assert!(
+        err.contains("sub.h5") && err.contains("is a directory"),
+        "{err}"
+    );
+    assert_eq!(dir.entries(), ["sub.h5"]);
+    assert_eq!(tack_io::not_a_regular_file(&dir.join("new.h5")), None);
+}
+
 #[test]
 fn missing_parent_directory_is_named() {
     let dir = TempDir::new("parent");

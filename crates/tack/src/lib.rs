@@ -51,6 +51,7 @@
 
 pub mod error;
 pub mod heights;
+pub mod memory;
 pub mod merge;
 pub mod overrides;
 pub mod problem;

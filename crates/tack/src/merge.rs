@@ -1,11 +1,14 @@
 //! Merging a sweep's output directory into one table (`tack merge`): the varied parameters and
 //! the collected summary quantities of every point, with the status of each point (complete,
-//! failed, missing) so that nothing is silently dropped.
+//! incomplete, failed, missing) and its result's warnings, so that nothing is silently dropped
+//! and no untrustworthy point passes as plain ok.
 
 use std::fmt;
 use std::path::Path;
 
-use tack_io::{POINT_FAILED, POINT_MISSING, POINT_OK, ParameterColumn, SweepTable};
+use tack_io::{
+    POINT_FAILED, POINT_INCOMPLETE, POINT_MISSING, POINT_OK, ParameterColumn, SweepTable,
+};
 
 use crate::provenance;
 use crate::run::summary_quantity;
@@ -36,8 +39,14 @@ pub struct PointIssue {
 pub struct MergeReport {
     /// Points in the sweep.
     pub total: usize,
-    /// Complete points.
+    /// Complete points (results whose `/summary` status is complete).
     pub ok: usize,
+    /// Points whose result is there but whose `/summary` status is not complete (stopped at
+    /// `protocol.max_steps`): the status and warnings, in the table with status
+    /// [`POINT_INCOMPLETE`].
+    pub incomplete: Vec<PointIssue>,
+    /// Points (complete or incomplete) whose result carries warnings.
+    pub with_warnings: usize,
     /// Failed points, with their errors.
     pub failed: Vec<PointIssue>,
     /// Missing points, with the reason.
@@ -47,11 +56,14 @@ pub struct MergeReport {
 }
 
 impl MergeReport {
-    /// One line per failed or missing point (`point 3 (material.e_star = -1) failed: ...`).
+    /// One line per incomplete, failed or missing point (`point 3 (material.e_star = -1)
+    /// failed: ...`, `point 5 (...) is incomplete: stopped at protocol.max_steps; ...`).
     pub fn issues(&self) -> String {
+        let incomplete = self.incomplete.iter().map(|p| (p, "is incomplete"));
         let failed = self.failed.iter().map(|p| (p, "failed"));
         let missing = self.missing.iter().map(|p| (p, "is missing"));
-        failed
+        incomplete
+            .chain(failed)
             .chain(missing)
             .map(|(p, what)| {
                 format!(
@@ -67,33 +79,59 @@ impl MergeReport {
 
 impl fmt::Display for MergeReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} points: {} complete, ", self.total, self.ok)?;
+        if !self.incomplete.is_empty() {
+            write!(
+                f,
+                "{} incomplete (status not complete: see /point/result_status), ",
+                self.incomplete.len()
+            )?;
+        }
         write!(
             f,
-            "{} points: {} complete, {} failed, {} missing",
-            self.total,
-            self.ok,
+            "{} failed, {} missing",
             self.failed.len(),
             self.missing.len()
-        )
+        )?;
+        if self.with_warnings > 0 {
+            write!(
+                f,
+                "; {} with warnings (see /point/warnings)",
+                self.with_warnings
+            )?;
+        }
+        Ok(())
     }
 }
 
 /// Gathers the per-point summaries of the sweep in `dir` into the sweep table `out` (written
 /// atomically; layout in `tack_io`'s documentation).
 ///
-/// A point is complete when `points/<index>.h5` reads back and records exactly the point's
-/// scene; failed when its `points/<index>.err` exists instead; missing otherwise (never run, or
+/// A point is complete when `points/<index>.h5` reads back, records exactly the point's scene
+/// and its `/summary` status is complete; incomplete when such a result has another status
+/// (its results are filled in, its row has status [`POINT_INCOMPLETE`]); failed when its `points/<index>.err` exists instead; missing otherwise (never run, or
 /// a stale or unreadable result). Failed and missing points get NaN results and are listed in
 /// the report. With missing points and without `allow_missing` nothing is written.
 pub fn merge(dir: &Path, out: &Path, options: &MergeOptions) -> Result<MergeReport, SweepError> {
+    if let Some(kind) = tack_io::not_a_regular_file(out) {
+        return Err(tack_io::IoError::Invalid {
+            path: out.to_owned(),
+            what: format!("{kind}: refusing to replace it (name a regular file or a new path)"),
+        }
+        .into());
+    }
     let sweep = Sweep::open_dir(dir)?;
     let total = sweep.len();
     let mut status = Vec::with_capacity(total);
     let mut errors = Vec::with_capacity(total);
+    let mut result_status = Vec::with_capacity(total);
+    let mut warnings = Vec::with_capacity(total);
     let mut results: Vec<Vec<f64>> = vec![Vec::with_capacity(total); sweep.collect.len()];
     let mut report = MergeReport {
         total,
         ok: 0,
+        incomplete: Vec::new(),
+        with_warnings: 0,
         failed: Vec::new(),
         missing: Vec::new(),
         written: false,
@@ -118,13 +156,35 @@ pub fn merge(dir: &Path, out: &Path, options: &MergeOptions) -> Result<MergeRepo
         };
         let (code, message) = match verified {
             Ok(Some(result)) => {
+                let summary = &result.summary;
                 for (column, name) in results.iter_mut().zip(&sweep.collect) {
-                    column.push(summary_quantity(&result.summary, name));
+                    column.push(summary_quantity(summary, name));
                 }
-                report.ok += 1;
-                (POINT_OK, String::new())
+                let status = summary
+                    .status
+                    .clone()
+                    .unwrap_or_else(|| tack_io::Summary::COMPLETE.to_owned());
+                if !summary.warnings.is_empty() {
+                    report.with_warnings += 1;
+                }
+                result_status.push(status.clone());
+                warnings.push(summary.warnings.join("\n"));
+                if summary.is_complete() {
+                    report.ok += 1;
+                    (POINT_OK, String::new())
+                } else {
+                    let mut message = format!("status `{status}`");
+                    for w in &summary.warnings {
+                        message.push_str("; ");
+                        message.push_str(w);
+                    }
+                    report.incomplete.push(issue(message));
+                    (POINT_INCOMPLETE, String::new())
+                }
             }
             other => {
+                result_status.push(String::new());
+                warnings.push(String::new());
                 results.iter_mut().for_each(|c| c.push(f64::NAN));
                 if err.is_file() {
                     let message = std::fs::read_to_string(&err)
@@ -168,6 +228,8 @@ pub fn merge(dir: &Path, out: &Path, options: &MergeOptions) -> Result<MergeRepo
         index: (0..total as u64).collect(),
         status,
         error: errors,
+        result_status,
+        warnings,
         parameters: sweep
             .axes
             .iter()

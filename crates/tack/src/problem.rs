@@ -33,6 +33,9 @@ pub const SPHERE_FIT_MARGIN: f64 = 1.3;
 /// failing with a message.
 pub const MAX_ELEMENTS: usize = 1 << 26;
 
+/// The accepted range of `solver.tolerance` (relative CG residual), both ends included.
+pub const TOLERANCE_RANGE: (f64, f64) = (1e-14, 1e-1);
+
 /// Smallest wavelength, in elements, a waviness may have.
 pub const MIN_ELEMENTS_PER_WAVELENGTH: f64 = 4.0;
 
@@ -127,6 +130,7 @@ impl Problem {
             ));
         }
         let grid = build_grid(&f.grid)?;
+        check_memory(scene, &grid)?;
         let mut surface = base_surface(grid, &f.geometry)?;
         let mut seed = None;
         let mut references = References::default();
@@ -282,6 +286,16 @@ impl Problem {
             },
             ..defaults
         };
+        if let Some(t) = s.tolerance
+            && !(TOLERANCE_RANGE.0..=TOLERANCE_RANGE.1).contains(&t)
+        {
+            return Err(SceneError::out_of_range(
+                "solver.tolerance",
+                num(t),
+                "a number in 1e-14..=0.1 (the relative CG residual; default 1e-9): below 1e-14 \
+                 round-off stops CG from ever converging, above 0.1 the forces are not solutions",
+            ));
+        }
         options.cg.validate()?;
         if options.max_active_set_iterations == 0 {
             return Err(SceneError::out_of_range(
@@ -341,6 +355,29 @@ impl Problem {
     }
 }
 
+/// Refuses a scene whose run cannot fit the machine's memory (see [`crate::memory`]); before
+/// the surface or anything else of the grid's size is allocated.
+fn check_memory(scene: &Scene, grid: &Grid) -> Result<(), SceneError> {
+    let f = &scene.file;
+    let max_steps = f.protocol.max_steps.unwrap_or(DEFAULT_MAX_STEPS);
+    let request: SnapshotRequest = (&f.output.snapshots).into();
+    let estimate = crate::memory::estimate(grid, max_steps, &request);
+    let grid_field = if f.grid.n.is_some() {
+        "grid.n"
+    } else {
+        "grid.nx × grid.ny"
+    };
+    let snapshots = crate::scene::value_text(&f.output.snapshots.clone().into());
+    crate::memory::check(
+        &estimate,
+        crate::memory::machine_memory(),
+        grid_field,
+        grid,
+        max_steps,
+        &snapshots,
+    )
+}
+
 /// Flags a pull-off radius of fewer than [`MIN_PULL_OFF_RADIUS_ELEMENTS`] elements.
 fn under_resolved(warnings: &mut Vec<String>, what: &str, radius: f64, dx: f64) {
     let elements = radius / dx;
@@ -370,8 +407,16 @@ fn check_scales(
         if value.is_normal() && value.abs() < 1e300 {
             Ok(())
         } else {
+            // Never `inf` or `0` in the message: say what happened to the number.
+            let value = if value.is_infinite() {
+                "an overflow (beyond 1.8e308)".to_owned()
+            } else if value == 0.0 {
+                "an underflow (below 5e-324, rounded to 0)".to_owned()
+            } else {
+                num(value)
+            };
             Err(SceneError::Inconsistent(format!(
-                "{fields} give {name} = {value:e}, outside what double precision can carry \
+                "{fields} give {name} = {value}, outside what double precision can carry \
                  through a run (finite, between 1e-300 and 1e300 in magnitude); rescale the \
                  units of the scene (e.g. mm and MPa instead of m and Pa)"
             )))
@@ -696,11 +741,29 @@ fn read_map(
         .extension()
         .and_then(|e| e.to_str())
         .is_some_and(|e| matches!(e.to_ascii_lowercase().as_str(), "h5" | "hdf5"));
-    if !full.is_file() {
-        return Err(field(format!(
-            "no such file (looked for `{}`)",
-            full.display()
-        )));
+    match std::fs::metadata(full) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            return Err(field(format!(
+                "no such file (looked for `{}`)",
+                full.display()
+            )));
+        }
+        Err(e) => {
+            return Err(field(format!("cannot read `{}`: {e}", full.display())));
+        }
+        Ok(m) if m.is_dir() => {
+            return Err(field(format!(
+                "`{}` is a directory, not a height map file",
+                full.display()
+            )));
+        }
+        Ok(m) if !m.is_file() => {
+            return Err(field(format!(
+                "`{}` is not a regular file (a device, FIFO or socket), not a height map file",
+                full.display()
+            )));
+        }
+        Ok(_) => {}
     }
     let (heights, dx) = if is_h5 {
         // The grid's shape: a map declaring another is refused before its data is read.
@@ -762,6 +825,15 @@ fn check_wavelength(grid: &Grid, lambda: f64, two_d: bool) -> Result<(), SceneEr
     Ok(())
 }
 
+/// An element count for a message: exact when it is a plausible size, else `2.000e300`.
+fn count_text(n: f64) -> String {
+    if n < 1e15 {
+        format!("{n:.0}")
+    } else {
+        format!("{n:.3e}")
+    }
+}
+
 /// Checks that the body's contact fits a free grid: a sphere's Hertz radius at the deepest
 /// approach with [`SPHERE_FIT_MARGIN`], and a punch face with one element to spare.
 fn check_fits(
@@ -787,10 +859,15 @@ fn check_fits(
             let hertz = (radius * depth).sqrt();
             let needed = SPHERE_FIT_MARGIN * hertz;
             if needed > half_extent {
-                let n_needed = (2.0 * needed / grid.dx()).ceil() as usize;
+                let n_needed = count_text((2.0 * needed / grid.dx()).ceil());
+                let hertz = if (1e-4..1e6).contains(&hertz) {
+                    format!("{hertz:.4}")
+                } else {
+                    format!("{hertz:.4e}")
+                };
                 return Err(SceneError::Inconsistent(format!(
                     "{size_field} = {} is too small for the sphere: at protocol.max_approach = {} \
-                     the Hertz contact radius sqrt(R·d) = {hertz:.4} plus a 30% margin needs a \
+                     the Hertz contact radius sqrt(R·d) = {hertz} plus a 30% margin needs a \
                      free grid of at least {n_needed} × {n_needed} elements at grid.dx = {} \
                      (the grid is {nx} × {ny}); raise {size_field} or lower protocol.max_approach",
                     if spec.n.is_some() {
@@ -798,8 +875,8 @@ fn check_fits(
                     } else {
                         format!("{nx}/{ny}")
                     },
-                    path.max_approach,
-                    grid.dx()
+                    num(path.max_approach),
+                    num(grid.dx())
                 )));
             }
         }
@@ -817,12 +894,15 @@ fn check_fits(
             let reach = |n: usize| (n - 1 - n / 2) as f64 * grid.dx();
             let needed = size + grid.dx() * (1.0 - 1e-9);
             if reach(nx.min(ny)) < needed {
-                let n_needed = (1..).find(|&n| reach(n) >= needed).unwrap_or(usize::MAX);
+                // reach(n) = ⌊(n − 1)/2⌋·Δx, so the least n is 2⌈needed/Δx⌉ + 1 (in closed
+                // form: a search over n never ended for a punch of 1e299).
+                let n_needed = count_text(2.0 * (needed / grid.dx()).ceil() + 1.0);
                 return Err(SceneError::Inconsistent(format!(
-                    "{field} = {size} does not fit the grid: the punch needs a free grid of at \
+                    "{field} = {} does not fit the grid: the punch needs a free grid of at \
                      least {n_needed} × {n_needed} elements at grid.dx = {} (the grid is \
                      {nx} × {ny}); raise {size_field}",
-                    grid.dx()
+                    num(size),
+                    num(grid.dx())
                 )));
             }
         }
@@ -922,6 +1002,17 @@ load_step = 0.05
         // the edge in every step.
         let e = build(punch, &["grid.n=42", "geometry.radius=2"]).unwrap_err();
         assert!(e.to_string().contains("43 × 43"), "{e}");
+        // A huge punch (below the 1e300 bound) is refused at once, in readable numbers.
+        let started = std::time::Instant::now();
+        let e = build(punch, &["geometry.radius=1e299"])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("geometry.radius = 1e299") && e.contains("2.000e300 × 2.000e300"),
+            "{e}"
+        );
+        assert!(!e.contains("inf"), "{e}");
+        assert!(started.elapsed() < std::time::Duration::from_secs(1));
         for n in [23, 24] {
             let p = build(
                 punch,
@@ -947,6 +1038,28 @@ load_step = 0.05
         assert!(err(&["grid.length=3.2"]).contains("exactly one of `dx` and `length`"));
         assert!(err(&["geometry.radius=0"]).contains("geometry.radius = 0"));
         assert!(err(&["solver.tolerance=2"]).contains("solver.tolerance = 2"));
+        for t in ["5e-324", "1e-15", "0.5", "nan"] {
+            let e = err(&[&format!("solver.tolerance={t}")]);
+            let shown = if t == "nan" { "NaN" } else { t };
+            assert!(
+                e.contains(&format!(
+                    "solver.tolerance = {shown} is invalid: must be a number in 1e-14..=0.1"
+                )),
+                "{t}: {e}"
+            );
+        }
+        let e = err(&["grid.dx=1e306"]);
+        assert!(
+            e.contains("grid.dx = 1e306 give the element area Δx² = an overflow")
+                && !e.contains("inf"),
+            "{e}"
+        );
+        for t in ["1e-14", "0.1", "1e-9"] {
+            assert!(
+                build(SPHERE, &[&format!("solver.tolerance={t}")]).is_ok(),
+                "{t}"
+            );
+        }
         assert!(err(&["solver.kappa=-1"]).contains("solver.kappa = -1"));
         assert!(err(&["protocol.load_step=0"]).contains("protocol.load_step = 0"));
         assert!(err(&["protocol.retract_to=1"]).contains("protocol.retract_to = 1"));
@@ -954,6 +1067,33 @@ load_step = 0.05
             err(&["protocol.coarse_unload_step=0"]).contains(
                 "protocol.coarse_unload_step = 0 is invalid: must be a finite number > 0"
             )
+        );
+    }
+
+    #[test]
+    fn runs_that_cannot_fit_in_memory_are_refused_before_the_surface_is_built() {
+        // Every step's fields of a 2048² grid over 100000 steps: 6.9 TiB.
+        let e = err(&["grid.n=2048", "output.snapshots=\"all\""]);
+        assert!(
+            e.contains("may need about 6.9 TiB")
+                && e.contains("output.snapshots = \"all\"")
+                && e.contains("protocol.max_steps = 100000")
+                && e.contains("grid.n = 2048 × 2048"),
+            "{e}"
+        );
+        // 10^18 step records.
+        let e = err(&["protocol.max_steps=1000000000000000000"]);
+        assert!(
+            e.contains("for 1000000000000000000 step records (protocol.max_steps)"),
+            "{e}"
+        );
+        // A bounded path with every field fits.
+        assert!(
+            build(
+                SPHERE,
+                &["output.snapshots=\"all\"", "protocol.max_steps=2000"]
+            )
+            .is_ok()
         );
     }
 
@@ -982,6 +1122,23 @@ load_step = 0.05
             "roughness.q1=100",
         ]);
         assert!(e.contains("roughness.q0/q1"), "{e}");
+    }
+
+    #[test]
+    fn a_height_map_path_that_is_no_file_says_what_it_is() {
+        let dir = std::env::temp_dir();
+        let dir = dir.to_str().unwrap();
+        for (path, what) in [
+            (dir, "is a directory, not a height map file"),
+            ("/dev/null", "is not a regular file"),
+            ("/no/such/map.txt", "no such file"),
+        ] {
+            let e = err(&["roughness.kind=file", &format!("roughness.path=\"{path}\"")]);
+            assert!(
+                e.contains(&format!("roughness.path = `{path}`")) && e.contains(what),
+                "{path}: {e}"
+            );
+        }
     }
 
     #[test]

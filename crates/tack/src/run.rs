@@ -539,7 +539,7 @@ pub fn coarsened(scene: &Scene, problem: &Problem) -> Result<Scene, SceneError> 
 }
 
 /// Fails early (before a long solve) when the output cannot be written: missing parent
-/// directory or a directory in the way.
+/// directory, or an existing path that is not a regular file (a directory, a FIFO, a device).
 pub fn check_output_path(out: &Path) -> Result<(), Error> {
     let parent = match out.parent() {
         Some(p) if !p.as_os_str().is_empty() => p.to_owned(),
@@ -555,10 +555,13 @@ pub fn check_output_path(out: &Path) -> Result<(), Error> {
             parent.display()
         )));
     }
-    if out.is_dir() {
-        return Err(refuse("is a directory".into()));
+    // A FIFO or a device (`/dev/null`) would be replaced by the rename of the result.
+    match tack_io::not_a_regular_file(out) {
+        Some(kind) => Err(refuse(format!(
+            "{kind}: refusing to replace it (name a regular file or a new path)"
+        ))),
+        None => Ok(()),
     }
-    Ok(())
 }
 
 #[cfg(test)]

@@ -267,7 +267,7 @@ pub struct SolverSpec {
     /// Pohrt–Popov constant κ of `σ_c = sqrt(E*γ/(κΔx))`; default [`tack_solver::KAPPA`].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub kappa: Option<f64>,
-    /// Relative CG tolerance in (0, 1); default the solver's (1e-9).
+    /// Relative CG tolerance in 1e-14..=0.1; default the solver's (1e-9).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tolerance: Option<f64>,
     /// Cap on CG iterations per solve; default the solver's (5000).
@@ -430,7 +430,7 @@ impl From<&Snapshots> for tack_solver::SnapshotRequest {
 }
 
 /// A TOML value as it would be written in a scene (inline form).
-fn value_text(value: &toml::Value) -> String {
+pub(crate) fn value_text(value: &toml::Value) -> String {
     match value {
         toml::Value::String(s) => format!("{s:?}"),
         toml::Value::Table(t) => {
@@ -497,30 +497,309 @@ impl Scene {
         overrides: &[String],
         origin: Option<PathBuf>,
     ) -> Result<Self, SceneError> {
-        let syntax = |e: toml::de::Error| SceneError::Syntax {
+        let table: toml::Table = toml::from_str(text).map_err(|e| SceneError::Syntax {
             origin: origin.clone(),
             message: e.to_string().trim_end().to_owned(),
-        };
-        let mut table: toml::Table = toml::from_str(text).map_err(syntax)?;
-        let text = if overrides.is_empty() {
-            text.to_owned()
-        } else {
-            apply_overrides(&mut table, overrides)?;
-            toml::to_string(&table).map_err(|e| SceneError::Syntax {
-                origin: origin.clone(),
-                message: e.to_string(),
-            })?
-        };
-        check_version(&table)?;
-        check_sections(&table)?;
-        let file: SceneFile = toml::from_str(&text).map_err(syntax)?;
-        Ok(Self {
-            file,
-            text,
-            base_dir,
-            origin,
-        })
+        })?;
+        if overrides.is_empty() {
+            let file = typed(&table).map_err(|fault| located(fault, text, &origin))?;
+            return Ok(Self {
+                file,
+                text: text.to_owned(),
+                base_dir,
+                origin,
+            });
+        }
+        let mut full = table.clone();
+        apply_overrides(&mut full, overrides)?;
+        let rewritten = toml::to_string(&full).map_err(|e| SceneError::Syntax {
+            origin: origin.clone(),
+            message: e.to_string(),
+        })?;
+        match typed(&full) {
+            Ok(file) => Ok(Self {
+                file,
+                text: rewritten,
+                base_dir,
+                origin,
+            }),
+            Err(fault) => Err(blame(fault, text, &table, overrides, &origin)),
+        }
     }
+}
+
+/// Why a TOML table is not a scene: the error, and the dotted field it is about when known.
+struct Fault {
+    field: Option<String>,
+    error: SceneError,
+}
+
+impl From<SceneError> for Fault {
+    fn from(error: SceneError) -> Self {
+        Self { field: None, error }
+    }
+}
+
+/// The typed scene of a TOML table: version, sections, the types and ranges of every known
+/// field ([`FIELDS`], so the message names the field and what it allows), then the schema.
+fn typed(table: &toml::Table) -> Result<SceneFile, Fault> {
+    check_version(table)?;
+    check_sections(table)?;
+    check_fields(table)?;
+    toml::Value::Table(table.clone())
+        .try_into::<SceneFile>()
+        .map_err(|e| Fault {
+            field: None,
+            error: SceneError::Syntax {
+                origin: None,
+                message: e.message().trim_end().to_owned(),
+            },
+        })
+}
+
+/// The scene's own text failed: the error with the file and the line it is about.
+fn located(fault: Fault, text: &str, origin: &Option<PathBuf>) -> SceneError {
+    let span = match &fault.field {
+        Some(field) => key_span(text, field),
+        // A schema error (unknown or missing field, unknown variant): the unknown key's own
+        // line, else the parser's span unless it starts the document (the whole document:
+        // a missing section).
+        None => unknown_key_span(text, &plain(&fault.error)).or_else(|| {
+            toml::from_str::<SceneFile>(text)
+                .err()
+                .and_then(|e| e.span())
+                .filter(|s| s.start > 0)
+        }),
+    };
+    let Some(span) = span else {
+        return match fault.error {
+            SceneError::Syntax { message, .. } => SceneError::Syntax {
+                origin: origin.clone(),
+                message,
+            },
+            other => other,
+        };
+    };
+    let start = span.start.min(text.len());
+    let line = text[..start].matches('\n').count() + 1;
+    let source = text.lines().nth(line - 1).unwrap_or("").trim();
+    SceneError::Syntax {
+        origin: origin.clone(),
+        message: format!("line {line} (`{source}`): {}", plain(&fault.error)),
+    }
+}
+
+/// The message of an error without the `scene ...:` prefix of [`SceneError::Syntax`].
+fn plain(error: &SceneError) -> String {
+    match error {
+        SceneError::Syntax { message, .. } => message.clone(),
+        other => other.to_string(),
+    }
+}
+
+/// For `unknown field `name``: the span of that key in a section that does not know it (the
+/// schema points at the section header of tagged sections such as `[roughness]`).
+fn unknown_key_span(text: &str, message: &str) -> Option<std::ops::Range<usize>> {
+    let name = message.strip_prefix("unknown field `")?.split('`').next()?;
+    let document = toml::de::DeTable::parse(text).ok()?;
+    let root = document.get_ref();
+    if let Some((key, _)) = root.iter().find(|(k, _)| k.get_ref() == name)
+        && !SECTIONS.contains(&name)
+        && name != "version"
+    {
+        return Some(key.span());
+    }
+    root.iter().find_map(|(section, value)| {
+        let known = |f: &&(&str, Kind)| f.0 == format!("{}.{name}", section.get_ref());
+        if FIELDS.iter().chain(&MORE_FIELDS).any(|f| known(&f)) {
+            return None;
+        }
+        let table = value.get_ref().as_table()?;
+        table
+            .iter()
+            .find(|(k, _)| k.get_ref() == name)
+            .map(|(k, _)| k.span())
+    })
+}
+
+/// A scene with `--set` overrides failed with `fault`: blame the file (with its own line) when
+/// it fails the same way without the overrides, else the first override after which it does
+/// (never a line of the rewritten document, which the user has not seen).
+fn blame(
+    fault: Fault,
+    text: &str,
+    table: &toml::Table,
+    overrides: &[String],
+    origin: &Option<PathBuf>,
+) -> SceneError {
+    let message = plain(&fault.error);
+    let same = |f: &Fault| plain(&f.error) == message;
+    if let Err(own) = typed(table)
+        && same(&own)
+    {
+        return located(own, text, origin);
+    }
+    let mut partial = table.clone();
+    for assignment in overrides {
+        if apply_overrides(&mut partial, std::slice::from_ref(assignment)).is_err() {
+            break;
+        }
+        if let Err(f) = typed(&partial)
+            && same(&f)
+        {
+            return SceneError::Override {
+                assignment: assignment.clone(),
+                reason: message,
+            };
+        }
+    }
+    fault.error
+}
+
+/// The span of the key `field` (dotted, `grid.n`) in scene text, when the text holds it.
+fn key_span(text: &str, field: &str) -> Option<std::ops::Range<usize>> {
+    let document = toml::de::DeTable::parse(text).ok()?;
+    let mut table = document.get_ref();
+    let mut parts = field.split('.').peekable();
+    while let Some(part) = parts.next() {
+        let (key, value) = table.iter().find(|(k, _)| k.get_ref() == part)?;
+        if parts.peek().is_none() {
+            return Some(key.span());
+        }
+        table = value.get_ref().as_table()?;
+    }
+    None
+}
+
+/// What a known scene field must hold, for [`check_fields`].
+#[derive(Clone, Copy)]
+enum Kind {
+    /// A TOML float or integer.
+    Number,
+    /// A TOML integer in `min..=max`, described as `allowed`.
+    Integer {
+        min: i64,
+        max: i64,
+        allowed: &'static str,
+    },
+    /// `true` or `false`.
+    Bool,
+    /// A string.
+    Text,
+    /// One of these strings.
+    Choice(&'static [&'static str]),
+}
+
+const AT_LEAST_ONE: Kind = Kind::Integer {
+    min: 1,
+    max: i64::MAX,
+    allowed: "an integer ≥ 1",
+};
+const ELEMENTS: Kind = Kind::Integer {
+    min: 1,
+    max: 65536,
+    allowed: "an integer in 1..=65536",
+};
+
+/// Every scalar field of the schema with its type and range (`output.snapshots` checks itself).
+const FIELDS: [(&str, Kind); 30] = [
+    ("material.e_star", Kind::Number),
+    ("material.gamma", Kind::Number),
+    (
+        "geometry.shape",
+        Kind::Choice(&["sphere", "flat_punch", "none"]),
+    ),
+    ("geometry.radius", Kind::Number),
+    ("geometry.punch", Kind::Choice(&["circle", "square"])),
+    ("geometry.half_side", Kind::Number),
+    (
+        "roughness.kind",
+        Kind::Choice(&["waviness1d", "waviness2d", "random", "file"]),
+    ),
+    ("roughness.h", Kind::Number),
+    ("roughness.lambda", Kind::Number),
+    ("roughness.hurst", Kind::Number),
+    ("roughness.q0", Kind::Number),
+    ("roughness.q1", Kind::Number),
+    (
+        "roughness.seed",
+        Kind::Integer {
+            min: 0,
+            max: i64::MAX,
+            allowed: "an integer ≥ 0 (the seed of the random phases)",
+        },
+    ),
+    ("roughness.path", Kind::Text),
+    ("roughness.dataset", Kind::Text),
+    ("grid.n", ELEMENTS),
+    ("grid.nx", ELEMENTS),
+    ("grid.ny", ELEMENTS),
+    ("grid.dx", Kind::Number),
+    ("grid.length", Kind::Number),
+    ("grid.boundary", Kind::Choice(&["free", "periodic"])),
+    ("grid.crop", Kind::Bool),
+    ("solver.kappa", Kind::Number),
+    ("solver.tolerance", Kind::Number),
+    ("solver.max_iterations", AT_LEAST_ONE),
+    ("solver.max_active_set_iterations", AT_LEAST_ONE),
+    ("protocol.start", Kind::Number),
+    ("protocol.max_approach", Kind::Number),
+    ("protocol.load_step", Kind::Number),
+    ("protocol.unload_step", Kind::Number),
+];
+
+/// The rest of [`FIELDS`] (split to keep each list readable).
+const MORE_FIELDS: [(&str, Kind); 4] = [
+    ("protocol.coarse_unload_step", Kind::Number),
+    ("protocol.retract_to", Kind::Number),
+    ("protocol.max_steps", AT_LEAST_ONE),
+    ("output.surface", Kind::Bool),
+];
+
+/// Checks the type (and for integers the range) of every known field present, so that a
+/// wrong value is reported as `grid.n = 32.0 is invalid: must be an integer in 1..=65536`
+/// rather than as the schema's `invalid type: floating point 32.0, expected usize`.
+fn check_fields(table: &toml::Table) -> Result<(), Fault> {
+    for (field, kind) in FIELDS.iter().chain(&MORE_FIELDS) {
+        let Some((section, key)) = field.split_once('.') else {
+            continue;
+        };
+        let Some(value) = table
+            .get(section)
+            .and_then(toml::Value::as_table)
+            .and_then(|t| t.get(key))
+        else {
+            continue;
+        };
+        let allowed = match *kind {
+            Kind::Number if value.is_float() || value.is_integer() => continue,
+            Kind::Number => "a number".to_owned(),
+            Kind::Integer { min, max, allowed } => match value.as_integer() {
+                Some(v) if (min..=max).contains(&v) => continue,
+                _ => allowed.to_owned(),
+            },
+            Kind::Bool if value.is_bool() => continue,
+            Kind::Bool => "true or false".to_owned(),
+            Kind::Text if value.is_str() => continue,
+            Kind::Text => "a string (in quotes)".to_owned(),
+            Kind::Choice(choices) => {
+                if value.as_str().is_some_and(|v| choices.contains(&v)) {
+                    continue;
+                }
+                let quoted: Vec<String> = choices.iter().map(|c| format!("\"{c}\"")).collect();
+                format!("one of {}", quoted.join(", "))
+            }
+        };
+        return Err(Fault {
+            field: Some((*field).to_owned()),
+            error: SceneError::OutOfRange {
+                field: (*field).to_owned(),
+                value: value_text(value),
+                allowed,
+            },
+        });
+    }
+    Ok(())
 }
 
 /// The sections of a scene file: each must be a table. serde would otherwise take an array
@@ -706,6 +985,97 @@ load_step = 0.05
         let s = Scene::parse(MINIMAL, ".", &["material.gamma=0.25".into()]).unwrap();
         assert_eq!(s.file.material.gamma, 0.25);
         assert!(s.text.contains("gamma = 0.25"), "{}", s.text);
+    }
+
+    #[test]
+    fn wrong_types_name_the_field_the_value_the_range_and_the_line() {
+        // In the file: its own line.
+        let text = MINIMAL.replace("n = 32", "n = 32.0");
+        let e = parse(&text).unwrap_err().to_string();
+        assert!(
+            e.contains(
+                "line 10 (`n = 32.0`): grid.n = 32.0 is invalid: must be an integer in 1..=65536"
+            ),
+            "{e}"
+        );
+        let seed =
+            format!("{MINIMAL}[roughness]\nkind = \"random\"\nh = 0.01\nhurst = 0.5\nseed = -1\n");
+        let e = parse(&seed).unwrap_err().to_string();
+        assert!(
+            e.contains(
+                "line 19 (`seed = -1`): roughness.seed = -1 is invalid: must be an integer ≥ 0"
+            ),
+            "{e}"
+        );
+        // An unknown key of a tagged section: its own line, not the section header.
+        let phase = seed.replace("seed = -1", "phase = 0");
+        let e = parse(&phase).unwrap_err().to_string();
+        assert!(
+            e.contains("line 19 (`phase = 0`): unknown field `phase`"),
+            "{e}"
+        );
+        for (line, expected) in [
+            (
+                "h = \"x\"",
+                "roughness.h = \"x\" is invalid: must be a number",
+            ),
+            (
+                "crop = 1",
+                "grid.crop = 1 is invalid: must be true or false",
+            ),
+            (
+                "kind = \"fractal\"",
+                "roughness.kind = \"fractal\" is invalid: must be one of",
+            ),
+        ] {
+            let (key, _) = line.split_once(" = ").unwrap();
+            let text = if key == "crop" {
+                MINIMAL.replace("dx = 0.1", &format!("dx = 0.1\n{line}"))
+            } else {
+                seed.replace(
+                    &format!("{key} = {}", if key == "h" { "0.01" } else { "\"random\"" }),
+                    line,
+                )
+            };
+            let e = parse(&text).unwrap_err().to_string();
+            assert!(
+                e.contains(&format!("(`{line}`): {expected}")),
+                "{line}: {e}"
+            );
+        }
+    }
+
+    #[test]
+    fn override_errors_name_the_override_or_the_file_line() {
+        let set = |sets: &[&str], text: &str| {
+            let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+            Scene::parse(text, ".", &sets).unwrap_err().to_string()
+        };
+        // The override is at fault: named, with no line of the rewritten document.
+        let e = set(&["material.gamma=0.25", "grid.n=32.0"], MINIMAL);
+        assert!(
+            e.starts_with(
+                "--set grid.n=32.0: grid.n = 32.0 is invalid: must be an integer in 1..=65536"
+            ),
+            "{e}"
+        );
+        assert!(!e.contains("line"), "{e}");
+        let e = set(&["roughness.seed=-1", "roughness.kind=random"], MINIMAL);
+        assert!(
+            e.starts_with("--set roughness.seed=-1: roughness.seed = -1"),
+            "{e}"
+        );
+        let e = set(&["material.colour=1"], MINIMAL);
+        assert!(
+            e.starts_with("--set material.colour=1: unknown field `colour`"),
+            "{e}"
+        );
+        // The file is at fault (and the overrides are fine): the file's own line.
+        let bad = MINIMAL.replace("n = 32", "n = 32.0");
+        let e = set(&["material.gamma=0.25"], &bad);
+        assert!(e.contains("line 10 (`n = 32.0`): grid.n = 32.0"), "{e}");
+        // An override fixing the file's value passes.
+        assert!(Scene::parse(&bad, ".", &["grid.n=32".into()]).is_ok());
     }
 
     #[test]

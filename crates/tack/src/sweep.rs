@@ -222,7 +222,13 @@ impl Sweep {
             (Base::Given(text, dir), _) => (text, None, dir.to_owned()),
             (Base::Resolve(dir), toml::Value::String(rel)) => {
                 let path = dir.join(rel);
-                let text = read(&path)?;
+                // Named with the sweep file and its `scene` field, not as a bare path.
+                let text = std::fs::read_to_string(&path).map_err(|cause| {
+                    invalid(format!(
+                        "scene = {rel:?}: cannot read the base scene `{}`: {cause}",
+                        path.display()
+                    ))
+                })?;
                 let base_dir = parent_dir(&path);
                 (text, Some(path), base_dir)
             }
