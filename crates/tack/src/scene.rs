@@ -749,7 +749,8 @@ const FIELDS: [(&str, Kind); 30] = [
 ];
 
 /// The rest of [`FIELDS`] (split to keep each list readable).
-const MORE_FIELDS: [(&str, Kind); 4] = [
+const MORE_FIELDS: [(&str, Kind); 5] = [
+    ("solver.round_tolerance", Kind::Number),
     ("protocol.coarse_unload_step", Kind::Number),
     ("protocol.retract_to", Kind::Number),
     ("protocol.max_steps", AT_LEAST_ONE),
