@@ -6,7 +6,7 @@ use tack_analytics::{
 };
 use tack_geometry::{Boundary, Grid, Sphere, Surface};
 use tack_kernels::operator_for;
-use tack_solver::{ContactSolver, SolverOptions};
+use tack_solver::{ContactMethod, ContactSolver, SolverOptions};
 
 fn solver(grid: Grid, surface: &Surface, e_star: f64) -> ContactSolver {
     ContactSolver::new(
@@ -152,11 +152,17 @@ fn iteration_cap_is_reported_not_hidden() {
         tolerance: 1e-12,
         max_iterations: 2,
     };
-    let mut s = ContactSolver::new(operator_for(grid, 1.0).unwrap(), &surface, opts).unwrap();
-    let st = s.solve(0.2).unwrap();
-    assert!(!st.converged);
-    assert_eq!(st.iterations, 2);
-    assert!(st.residual > 1e-12);
+    for method in [ContactMethod::PolonskyKeer, ContactMethod::ActiveSet] {
+        let op = operator_for(grid, 1.0).unwrap();
+        let mut s = ContactSolver::with_method(op, &surface, opts, method).unwrap();
+        let st = s.solve(0.2).unwrap();
+        assert!(!st.converged, "{method:?}");
+        assert!(st.residual > 1e-12);
+        // Polonsky–Keer is one CG; the active set caps each of its rounds' CGs.
+        if method == ContactMethod::PolonskyKeer {
+            assert_eq!(st.iterations, 2);
+        }
+    }
 }
 
 #[test]
@@ -178,9 +184,16 @@ fn hertz_check_uses_independent_radius() {
     assert!((hertz_contact_radius(2.0, 0.02) - 0.2).abs() < 1e-15);
 }
 
-/// Runs one solve with the crop and the coarse-to-fine start set as given.
-fn solve_with(surface: &Surface, d: f64, crop: bool, coarse: bool) -> tack_solver::ContactState {
-    let mut s = solver(*surface.grid(), surface, 1.0);
+/// Runs one solve with the method, the crop and the coarse-to-fine start set as given.
+fn solve_with(
+    surface: &Surface,
+    d: f64,
+    crop: bool,
+    coarse: bool,
+    method: ContactMethod,
+) -> tack_solver::ContactState {
+    let op = operator_for(*surface.grid(), 1.0).unwrap();
+    let mut s = ContactSolver::with_method(op, surface, SolverOptions::default(), method).unwrap();
     s.set_crop(crop);
     s.set_coarse_start(coarse);
     let st = s.solve(d).unwrap();
@@ -203,20 +216,71 @@ fn crop_and_coarse_start_change_nothing_but_the_cost() {
     .unwrap();
     let rough = Surface::new(pgrid, rough.heights().clone()).unwrap();
     let d_rough = rough.min() + 0.6 * (rough.heights().mean().unwrap() - rough.min());
+    // Both methods, and the two methods against each other: one convex problem, one answer.
     for (surface, d) in [(&sphere, 0.02), (&rough, d_rough)] {
-        let plain = solve_with(surface, d, false, false);
-        for (crop, coarse) in [(true, false), (false, true), (true, true)] {
-            let other = solve_with(surface, d, crop, coarse);
-            let rel = (other.force - plain.force).abs() / plain.force;
-            assert!(rel < 1e-8, "crop {crop} coarse {coarse}: {rel}");
-            assert_eq!(other.n_contact, plain.n_contact);
-            let gap = other
-                .gap
-                .iter()
-                .zip(&plain.gap)
-                .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-            assert!(gap < 1e-8 * d.abs().max(1e-3), "gap differs by {gap}");
+        let reference = solve_with(surface, d, false, false, ContactMethod::PolonskyKeer);
+        for method in [ContactMethod::PolonskyKeer, ContactMethod::ActiveSet] {
+            for (crop, coarse) in [(false, false), (true, false), (false, true), (true, true)] {
+                let other = solve_with(surface, d, crop, coarse, method);
+                let plain = &reference;
+                let rel = (other.force - plain.force).abs() / plain.force;
+                assert!(rel < 1e-8, "{method:?} crop {crop} coarse {coarse}: {rel}");
+                assert_eq!(other.n_contact, plain.n_contact);
+                let gap = other
+                    .gap
+                    .iter()
+                    .zip(&plain.gap)
+                    .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+                assert!(gap < 1e-8 * d.abs().max(1e-3), "gap differs by {gap}");
+            }
         }
+    }
+}
+
+#[test]
+fn adhesive_path_with_gamma_zero_is_the_non_adhesive_curve() {
+    // A γ = 0 scene runs the adhesive path engine with σ_c = 0: its load–unload curve must be
+    // the non-adhesive equilibrium at every approach, here solved independently by
+    // Polonsky–Keer. Sphere + H = 0.8 roughness on a free 96² grid.
+    use tack_solver::{AdhesiveOptions, AdhesiveSolver, ApproachPath, KAPPA, SnapshotRequest};
+    let grid = Grid::square(96, 1.0 / 96.0, Boundary::Free).unwrap();
+    let mut surface = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
+    let rough = tack_geometry::rough_surface(
+        grid,
+        &tack_geometry::RoughSpec::paper_defaults(grid, 2e-4, 0.8, 5),
+    )
+    .unwrap();
+    surface.add(&rough).unwrap();
+    let path =
+        ApproachPath::load_retract(surface.min() + 5e-4, surface.min() + 0.01, 5e-4, 1e-3).unwrap();
+    let op = operator_for(grid, 1.0).unwrap();
+    let mut adhesive =
+        AdhesiveSolver::new(op, &surface, 0.0, KAPPA, AdhesiveOptions::default()).unwrap();
+    let r = adhesive
+        .run_path(&path, &SnapshotRequest::None, &mut ())
+        .unwrap();
+    assert!(r.completed && r.all_converged());
+    let op = operator_for(grid, 1.0).unwrap();
+    let mut pk = ContactSolver::with_method(
+        op,
+        &surface,
+        SolverOptions::default(),
+        ContactMethod::PolonskyKeer,
+    )
+    .unwrap();
+    let f_max = r.records.iter().fold(0.0f64, |m, x| m.max(x.force));
+    assert!(r.records.len() > 25 && f_max > 0.0);
+    for rec in &r.records {
+        let st = pk.solve(rec.approach).unwrap();
+        assert!(st.converged);
+        assert_eq!(rec.n_bonded, st.n_contact, "d = {}", rec.approach);
+        assert!(
+            (rec.force - st.force).abs() <= 1e-8 * f_max,
+            "d = {}: {} vs {}",
+            rec.approach,
+            rec.force,
+            st.force
+        );
     }
 }
 

@@ -315,8 +315,15 @@ pub fn all(args: &[String]) -> Result<()> {
     };
     rows.extend(jkr_table(ratios));
 
-    println!("4. sphere + random roughness (H = 0.5, L = R) pull-off path: crop and sub-grid CG");
-    rows.extend(rough_table(if full { 512 } else { 256 })?);
+    println!(
+        "4. sphere + random roughness (H = 0.5, L = R, a_c ≈ 0.078 R) pull-off: scaling with n"
+    );
+    let threads = rayon::current_num_threads();
+    pull_off_scaling(&[128, 256, 512, 1024], threads, &mut rows)?;
+    println!("   previous version (every detach/attach round solved to 1e-9), one thread:");
+    for n in [256, 512] {
+        pull_off_before_after(n, &mut rows)?;
+    }
 
     println!("5. a Fig. 7 style sweep point: 15 realizations (128², H = 0.5), 1 vs 2 threads");
     let mut one = 0.0;
@@ -353,10 +360,14 @@ pub fn all(args: &[String]) -> Result<()> {
         });
     }
 
-    println!(
-        "6. non-adhesive contact, 1024²: rough periodic (H = 0.8, ~7% contact) and free Hertz"
-    );
-    rows.extend(contact(&["1024".to_string()])?);
+    println!("6. periodic rough non-adhesive contact (H = 0.8, ~7% contact), cold start");
+    periodic_scaling(&[256, 512, 1024, 2048], 1024, &mut rows)?;
+
+    println!("7. one run on 1 and 2 threads");
+    thread_speed_up(&mut rows)?;
+
+    println!("8. free Hertz, 1024², both methods");
+    rows.extend(hertz_only(1024)?);
 
     std::fs::create_dir_all("results")?;
     std::fs::write("results/bench.json.tmp", json(&rows))?;
@@ -370,13 +381,15 @@ pub fn all(args: &[String]) -> Result<()> {
 fn contact_solve(
     surface: &tack_geometry::Surface,
     d: f64,
+    method: tack_solver::ContactMethod,
     coarse: bool,
     crop: bool,
 ) -> Result<(f64, usize, f64, f64, bool)> {
     use tack_solver::{ContactSolver, SolverOptions};
     let grid = *surface.grid();
     let t = Instant::now();
-    let mut s = ContactSolver::new(operator_for(grid, 1.0)?, surface, SolverOptions::default())?;
+    let op = operator_for(grid, 1.0)?;
+    let mut s = ContactSolver::with_method(op, surface, SolverOptions::default(), method)?;
     s.set_coarse_start(coarse);
     s.set_crop(crop);
     let st = s.solve(d)?;
@@ -390,105 +403,58 @@ fn contact_solve(
 }
 
 /// `cargo xtask bench-contact [N]`: non-adhesive contact of an N² periodic self-affine surface
-/// (H = 0.8, q0 = 2π/L, q1 = π/Δx, about 7% contact) and an N² free-boundary Hertz contact
-/// (contact radius N/8 elements), each plain, with the coarse-to-fine start, and (Hertz)
-/// cropped to where contact can occur. Times include building the operator.
+/// (H = 0.8, q0 = 2π/L, q1 = π/Δx, about 7% contact) by both methods, and an N² free-boundary
+/// Hertz contact (contact radius N/8 elements), each method plain, with the coarse-to-fine
+/// start, and cropped to where contact can occur. Times include building the operator.
 pub fn contact(args: &[String]) -> Result<Vec<Row>> {
-    use tack_geometry::{RoughSpec, Sphere, Surface, rough_surface};
     let n: usize = args.first().map_or(Ok(1024), |a| a.parse())?;
     let mut rows = Vec::new();
-    // Rough periodic: find the approach of ~7% contact once (coarse-to-fine solves), then time.
-    let grid = Grid::square(n, 1.0 / n as f64, Boundary::Periodic)?;
-    let surface = Surface::new(
-        grid,
-        rough_surface(grid, &RoughSpec::paper_defaults(grid, 1e-3, 0.8, 7))?
-            .heights()
-            .clone(),
-    )?;
-    let (mut lo, mut hi) = (surface.min(), surface.heights().mean().unwrap_or(0.0));
-    let mut d = 0.5 * (lo + hi);
-    for _ in 0..30 {
-        d = 0.5 * (lo + hi);
-        let frac = contact_solve(&surface, d, true, true)?.2;
-        if (frac - 0.07).abs() < 0.002 {
-            break;
-        }
-        if frac < 0.07 { lo = d } else { hi = d }
-    }
-    let mut base = None;
-    for (label, coarse) in [("plain", false), ("coarse-to-fine", true)] {
-        let (secs, its, frac, force, ok) = contact_solve(&surface, d, coarse, false)?;
-        let b = *base.get_or_insert(secs);
-        println!(
-            "   rough {n}² periodic {label:<15} {secs:7.3} s {its:>5} iterations, contact {:.2}%, \
-             speed-up {:.2}×, force {force:.9e}{}",
-            100.0 * frac,
-            b / secs,
-            if ok { "" } else { " NOT CONVERGED" }
-        );
-        rows.push(Row {
-            table: "contact",
-            label: format!("rough {n}² periodic {label}"),
-            fields: vec![
-                ("n", n as f64),
-                ("seconds", secs),
-                ("iterations", its as f64),
-                ("contact_fraction", frac),
-                ("force", force),
-            ],
-        });
-    }
-    {
-        // The same problem as an active set (attach penetrating, release tensile elements)
-        // around the preconditioned CG of the adhesive solver with γ = 0.
-        use tack_solver::{AdhesiveOptions, AdhesiveSolver, KAPPA};
-        let t = Instant::now();
-        let op = operator_for(grid, 1.0)?;
-        let mut s = AdhesiveSolver::new(op, &surface, 0.0, KAPPA, AdhesiveOptions::default())?;
-        let rec = s.step(d)?;
-        let secs = t.elapsed().as_secs_f64();
-        println!(
-            "   rough {n}² periodic active-set PCG  {secs:7.3} s {:>5} iterations in {} rounds, \
-             contact {:.2}%, force {:.9e}{}",
-            rec.cg_iterations,
-            rec.active_set_iterations,
-            100.0 * rec.n_bonded as f64 / grid.len() as f64,
-            rec.force,
-            if rec.converged { "" } else { " NOT CONVERGED" }
-        );
-    }
+    periodic_scaling(&[n], n, &mut rows)?;
+    rows.extend(hertz_only(n)?);
+    Ok(rows)
+}
+
+/// Free Hertz on an `n²` grid, contact radius n/8 elements, both methods, plain, with the
+/// coarse-to-fine start, cropped, and both.
+fn hertz_only(n: usize) -> Result<Vec<Row>> {
+    use tack_geometry::{Sphere, Surface};
+    use tack_solver::ContactMethod;
+    let mut rows = Vec::new();
     // Free Hertz: R = 1, Δx = 1/n, contact radius a = n/8 elements: d = a²/R.
     let grid = Grid::square(n, 1.0 / n as f64, Boundary::Free)?;
     let surface = Surface::from_shape(grid, &Sphere::new(1.0)?);
     let a: f64 = 0.125;
     let d = a * a;
     let hertz = 4.0 / 3.0 * a.powi(3);
-    let mut base = None;
-    for (label, coarse, crop) in [
-        ("plain", false, false),
-        ("coarse-to-fine", true, false),
-        ("cropped", false, true),
-        ("cropped + c2f", true, true),
-    ] {
-        let (secs, its, _, force, ok) = contact_solve(&surface, d, coarse, crop)?;
-        let b = *base.get_or_insert(secs);
-        println!(
-            "   Hertz {n}² free (a = n/8) {label:<15} {secs:7.3} s {its:>5} iterations, force \
-             error {:+.2e}, speed-up {:.2}×{}",
-            force / hertz - 1.0,
-            b / secs,
-            if ok { "" } else { " NOT CONVERGED" }
-        );
-        rows.push(Row {
-            table: "contact",
-            label: format!("Hertz {n}² free {label}"),
-            fields: vec![
-                ("n", n as f64),
-                ("seconds", secs),
-                ("iterations", its as f64),
-                ("force_error", force / hertz - 1.0),
-            ],
-        });
+    let t_pair = median_time(bare_fft_pair(n, n));
+    for method in [ContactMethod::PolonskyKeer, ContactMethod::ActiveSet] {
+        for (label, coarse, crop) in [
+            ("plain", false, false),
+            ("coarse-to-fine", true, false),
+            ("cropped", false, true),
+            ("cropped + c2f", true, true),
+        ] {
+            let (secs, its, _, force, ok) = contact_solve(&surface, d, method, coarse, crop)?;
+            println!(
+                "   Hertz {n}² free (a = n/8) {:<13} {label:<15} {secs:7.3} s {its:>5} \
+                 iterations, {:6.1} pairs of {n}², force error {:+.2e}{}",
+                format!("{method:?}"),
+                secs / t_pair,
+                force / hertz - 1.0,
+                if ok { "" } else { " NOT CONVERGED" }
+            );
+            rows.push(Row {
+                table: "hertz",
+                label: format!("Hertz {n}² free {method:?} {label}"),
+                fields: vec![
+                    ("n", n as f64),
+                    ("seconds", secs),
+                    ("iterations", its as f64),
+                    ("fft_pairs", secs / t_pair),
+                    ("force_error", force / hertz - 1.0),
+                ],
+            });
+        }
     }
     Ok(rows)
 }
@@ -526,4 +492,245 @@ pub fn rough(args: &[String]) -> Result<()> {
         "sphere + random roughness (H = 0.5, L = R) pull-off path on {n}²: crop and sub-grid CG"
     );
     rough_table(n).map(|_| ())
+}
+
+/// The rough-sphere pull-off of `cargo xtask bench` on an `n²` grid: R = 1 on a free L = R grid,
+/// random roughness H = 0.5, h = 0.0052, seed 1, E* = 1, γ = 1.44868e-4 (a_c ≈ 0.078 R), one
+/// load step to d = 0.02255, retraction by 5.5e-4 while compressive and 5.5e-5 once tensile.
+/// `round_tolerance = 0` runs the exact detach/attach loop (the previous version).
+fn rough_sphere_scene(n: usize, exact_rounds: bool) -> Result<tack::Scene> {
+    let solver = if exact_rounds {
+        "[solver]\nround_tolerance = 0\n"
+    } else {
+        ""
+    };
+    let text = format!(
+        "version = 1\n[material]\ne_star = 1.0\ngamma = 1.44868e-4\n[geometry]\nshape = \"sphere\"\n\
+         radius = 1.0\n[roughness]\nkind = \"random\"\nh = 0.0052\nhurst = 0.5\nseed = 1\n[grid]\n\
+         n = {n}\ndx = {}\nboundary = \"free\"\n[protocol]\nstart = 0.02255\nmax_approach = 0.02255\n\
+         load_step = 0.02255\ncoarse_unload_step = 5.5e-4\nunload_step = 5.5e-5\n[output]\n\
+         snapshots = \"none\"\n{solver}",
+        1.0 / n as f64
+    );
+    Ok(tack::Scene::parse(&text, ".", &[])?)
+}
+
+/// One rough-sphere pull-off run: (seconds, CG iterations, rounds, steps, pull-off force bits).
+struct PullOffRun {
+    seconds: f64,
+    cg: usize,
+    rounds: usize,
+    steps: usize,
+    force: f64,
+}
+
+fn rough_sphere_pull_off(n: usize, threads: usize, exact_rounds: bool) -> Result<PullOffRun> {
+    let scene = rough_sphere_scene(n, exact_rounds)?;
+    let options = tack::RunOptions {
+        threads: Some(threads),
+        ..tack::RunOptions::default()
+    };
+    let t = Instant::now();
+    let out = tack::run(&scene, &options, &mut ())?;
+    let seconds = t.elapsed().as_secs_f64();
+    anyhow::ensure!(
+        out.path.completed && out.path.all_converged(),
+        "{n}²: not converged"
+    );
+    Ok(PullOffRun {
+        seconds,
+        cg: out.path.cg_iterations(),
+        rounds: out
+            .path
+            .records
+            .iter()
+            .map(|r| r.active_set_iterations)
+            .sum(),
+        steps: out.path.records.len(),
+        force: out.path.pull_off_force(),
+    })
+}
+
+/// Table A: the rough-sphere pull-off against n (time, CG iterations, growth per doubling,
+/// FFT-pair equivalents of 1024²), the exact rounds (previous version) at 256² and 512², and
+/// the speed-up of 2 threads.
+fn pull_off_scaling(sizes: &[usize], threads: usize, rows: &mut Vec<Row>) -> Result<()> {
+    let t_pair = median_time(bare_fft_pair(1024, 1024));
+    println!(
+        "   (bare 1024² rfft2 + irfft2 pair: {:.2} ms; {threads} thread(s))",
+        t_pair * 1e3
+    );
+    println!(
+        "   {:>6} {:>9} {:>9} {:>8} {:>6} {:>10} {:>12} {:>14}",
+        "n", "time [s]", "× prev n", "CG", "steps", "rounds", "1024² pairs", "F_pull-off"
+    );
+    let mut prev: Option<f64> = None;
+    for &n in sizes {
+        let r = rough_sphere_pull_off(n, threads, false)?;
+        let growth = prev.map_or(f64::NAN, |p| r.seconds / p);
+        prev = Some(r.seconds);
+        println!(
+            "   {n:>6} {:>9.2} {growth:>9.2} {:>8} {:>6} {:>10} {:>12.0} {:>14.7e}",
+            r.seconds,
+            r.cg,
+            r.steps,
+            r.rounds,
+            r.seconds / t_pair,
+            r.force
+        );
+        rows.push(Row {
+            table: "pull_off_scaling",
+            label: format!("{n}²"),
+            fields: vec![
+                ("n", n as f64),
+                ("seconds", r.seconds),
+                ("growth_per_doubling", growth),
+                ("cg_iterations", r.cg as f64),
+                ("rounds", r.rounds as f64),
+                ("steps", r.steps as f64),
+                ("fft_pairs_1024", r.seconds / t_pair),
+                ("pull_off_force", r.force),
+                ("threads", threads as f64),
+            ],
+        });
+    }
+    Ok(())
+}
+
+/// Exact rounds (the previous version) against the inexact ones, same run, same thread count.
+fn pull_off_before_after(n: usize, rows: &mut Vec<Row>) -> Result<()> {
+    let exact = rough_sphere_pull_off(n, 1, true)?;
+    let inexact = rough_sphere_pull_off(n, 1, false)?;
+    println!(
+        "   {n}²: exact rounds {:.2} s ({} CG), inexact {:.2} s ({} CG): {:.2}× faster, pull-off \
+         {:.7e} vs {:.7e} ({:+.1e})",
+        exact.seconds,
+        exact.cg,
+        inexact.seconds,
+        inexact.cg,
+        exact.seconds / inexact.seconds,
+        exact.force,
+        inexact.force,
+        inexact.force / exact.force - 1.0
+    );
+    rows.push(Row {
+        table: "inexact_rounds",
+        label: format!("{n}²"),
+        fields: vec![
+            ("exact_seconds", exact.seconds),
+            ("inexact_seconds", inexact.seconds),
+            ("speed_up", exact.seconds / inexact.seconds),
+            ("exact_pull_off", exact.force),
+            ("inexact_pull_off", inexact.force),
+        ],
+    });
+    Ok(())
+}
+
+/// The periodic self-affine surface of the contact benchmark (H = 0.8, q0 = 2π/L, q1 = π/Δx,
+/// h = 1e-3, seed 7) and the approach of about 7% contact (bisection with warm starts).
+fn periodic_rough(n: usize) -> Result<(tack_geometry::Surface, f64)> {
+    use tack_geometry::{RoughSpec, Surface, rough_surface};
+    use tack_solver::{ContactSolver, SolverOptions};
+    let grid = Grid::square(n, 1.0 / n as f64, Boundary::Periodic)?;
+    let surface = Surface::new(
+        grid,
+        rough_surface(grid, &RoughSpec::paper_defaults(grid, 1e-3, 0.8, 7))?
+            .heights()
+            .clone(),
+    )?;
+    let mut s = ContactSolver::new(operator_for(grid, 1.0)?, &surface, SolverOptions::default())?;
+    let (mut lo, mut hi) = (surface.min(), surface.heights().mean().unwrap_or(0.0));
+    let mut d = 0.5 * (lo + hi);
+    for _ in 0..40 {
+        d = 0.5 * (lo + hi);
+        let frac = s.solve(d)?.n_contact as f64 / grid.len() as f64;
+        if (frac - 0.07).abs() < 0.002 {
+            break;
+        }
+        if frac < 0.07 { lo = d } else { hi = d }
+    }
+    Ok((surface, d))
+}
+
+/// Table B: periodic rough non-adhesive contact at ~7% area, n = 256 … 2048: iterations and
+/// FFT-pair equivalents of the active set; Polonsky–Keer alongside up to `pk_max`.
+fn periodic_scaling(sizes: &[usize], pk_max: usize, rows: &mut Vec<Row>) -> Result<()> {
+    use tack_solver::ContactMethod;
+    println!(
+        "   {:>6} {:>16} {:>9} {:>6} {:>10} {:>9} {:>16}",
+        "n", "method", "time [s]", "CG", "pairs (n²)", "contact", "force"
+    );
+    for &n in sizes {
+        let (surface, d) = periodic_rough(n)?;
+        let t_pair = median_time(bare_fft_pair(n, n));
+        for method in [ContactMethod::ActiveSet, ContactMethod::PolonskyKeer] {
+            if method == ContactMethod::PolonskyKeer && n > pk_max {
+                continue;
+            }
+            let (secs, its, frac, force, ok) = contact_solve(&surface, d, method, true, true)?;
+            anyhow::ensure!(ok, "{n}² {method:?}: not converged");
+            println!(
+                "   {n:>6} {:>16} {secs:>9.3} {its:>6} {:>10.1} {:>8.2}% {force:>16.9e}",
+                format!("{method:?}"),
+                secs / t_pair,
+                100.0 * frac
+            );
+            rows.push(Row {
+                table: "periodic_contact",
+                label: format!("{n}² {method:?}"),
+                fields: vec![
+                    ("n", n as f64),
+                    ("seconds", secs),
+                    ("iterations", its as f64),
+                    ("fft_pairs", secs / t_pair),
+                    ("contact_fraction", frac),
+                    ("force", force),
+                ],
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Table C: 1 against 2 threads on one run (bit-identical results required).
+fn thread_speed_up(rows: &mut Vec<Row>) -> Result<()> {
+    use tack_solver::ContactMethod;
+    let one = rough_sphere_pull_off(512, 1, false)?;
+    let two = rough_sphere_pull_off(512, 2, false)?;
+    anyhow::ensure!(
+        one.force.to_bits() == two.force.to_bits() && one.cg == two.cg,
+        "512² rough sphere: 1 and 2 threads differ"
+    );
+    let (surface, d) = periodic_rough(1024)?;
+    let in_pool = |threads: usize| -> Result<(f64, usize, f64, f64, bool)> {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()?;
+        pool.install(|| contact_solve(&surface, d, ContactMethod::ActiveSet, true, true))
+    };
+    let (p1, p2) = (in_pool(1)?, in_pool(2)?);
+    anyhow::ensure!(
+        p1.3.to_bits() == p2.3.to_bits(),
+        "1024² periodic: 1 and 2 threads differ"
+    );
+    for (label, t1, t2) in [
+        ("512² rough-sphere pull-off", one.seconds, two.seconds),
+        ("1024² periodic contact", p1.0, p2.0),
+    ] {
+        println!(
+            "   {label:<28} 1 thread {t1:7.2} s, 2 threads {t2:7.2} s: {:.2}× (bit-identical)",
+            t1 / t2
+        );
+        rows.push(Row {
+            table: "threads",
+            label: label.into(),
+            fields: vec![
+                ("one_thread", t1),
+                ("two_threads", t2),
+                ("speed_up", t1 / t2),
+            ],
+        });
+    }
+    Ok(())
 }

@@ -156,6 +156,17 @@ impl AdhesiveSolver {
         })
     }
 
+    /// Switches the nested coarse-to-fine cold start of non-adhesive solves on or off
+    /// ([`AdhesiveOptions::nested_start`]).
+    pub fn set_nested_start(&mut self, on: bool) {
+        self.options.nested_start = on;
+    }
+
+    /// Switches sub-grid CG on free grids on or off ([`AdhesiveOptions::bonded_subgrid`]).
+    pub fn set_bonded_subgrid(&mut self, on: bool) {
+        self.options.bonded_subgrid = on;
+    }
+
     /// The critical tensile stress `σ_c = sqrt(E*γ/(κΔx))` of the detachment criterion.
     pub fn critical_stress(&self) -> f64 {
         self.sigma_c

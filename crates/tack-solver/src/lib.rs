@@ -98,7 +98,7 @@ pub use adhesive::{
     AdhesiveOptions, AdhesiveSolver, KAPPA, KAPPA_LINE, LOOSE_ATTACH_MARGIN, LOOSE_DETACH_MARGIN,
 };
 pub use clusters::count_clusters;
-pub use contact::ContactSolver;
+pub use contact::{ContactMethod, ContactSolver};
 pub use crop::{adhesive_reach, contact_window, touches_edge};
 pub use extrapolate::richardson_first_order;
 pub use options::{SolverError, SolverOptions};
