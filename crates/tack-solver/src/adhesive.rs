@@ -297,18 +297,21 @@ impl AdhesiveSolver {
                 break;
             }
             let mut changed = false;
-            let inside = |i: usize, j: usize| {
-                fresh.is_none_or(|w| (w.i0..w.i1).contains(&i) && (w.j0..w.j1).contains(&j))
+            // After an inexact sub-grid round only its window can change: every bonded element
+            // lies inside it, and only elements there may attach.
+            let block = match fresh {
+                Some(w) => ndarray::s![w.i0..w.i1, w.j0..w.j1],
+                None => ndarray::s![.., ..],
             };
-            Zip::indexed(&mut self.bonded)
-                .and(&mut self.base.pressure)
-                .and(&self.base.gap)
-                .for_each(|(i, j), b, p, &g| {
+            Zip::from(self.bonded.slice_mut(block))
+                .and(self.base.pressure.slice_mut(block))
+                .and(self.base.gap.slice(block))
+                .for_each(|b, p, &g| {
                     if *b && *p < detach_below {
                         *b = false;
                         *p = 0.0;
                         changed = true;
-                    } else if !*b && g < attach_below && inside(i, j) {
+                    } else if !*b && g < attach_below {
                         *b = true;
                         changed = true;
                     }
@@ -475,9 +478,12 @@ impl AdhesiveSolver {
         }
         let (nx, ny) = grid.shape();
         let (mut i0, mut i1, mut j0, mut j1) = (usize::MAX, 0, usize::MAX, 0);
-        for ((i, j), &b) in self.bonded.indexed_iter() {
-            if b {
-                (i0, i1, j0, j1) = (i0.min(i), i1.max(i + 1), j0.min(j), j1.max(j + 1));
+        for (i, row) in self.bonded.outer_iter().enumerate() {
+            let row = row.to_slice().expect("standard layout");
+            if let Some(first) = row.iter().position(|&b| b) {
+                let last = row.iter().rposition(|&b| b).unwrap_or(first);
+                (i0, i1) = (i0.min(i), i + 1);
+                (j0, j1) = (j0.min(first), j1.max(last + 1));
             }
         }
         if i1 == 0 {
@@ -533,12 +539,16 @@ impl AdhesiveSolver {
 const SUBGRID_COST_RATIO: f64 = 0.8;
 
 /// Deterministic fingerprint of a bonded set (for cycle detection within one step).
+/// The mask is packed into 64-bit words (element order) and those are hashed.
 fn hash_mask(mask: &Array2<bool>) -> u64 {
     let mut h = DefaultHasher::new();
-    for (k, &b) in mask.iter().enumerate() {
-        if b {
-            k.hash(&mut h);
-        }
+    let bits = mask.as_slice().expect("standard layout");
+    for chunk in bits.chunks(64) {
+        let word = chunk
+            .iter()
+            .enumerate()
+            .fold(0u64, |w, (k, &b)| w | (u64::from(b) << k));
+        word.hash(&mut h);
     }
     h.finish()
 }

@@ -3,7 +3,7 @@
 //! solver ([`pcg`]). The non-adhesive solver's constrained CG (Polonsky–Keer) projects onto
 //! `p ≥ 0` inside its iteration and lives in `contact.rs`.
 
-use ndarray::{Array2, ArrayView2, ArrayViewMut2, Zip};
+use ndarray::{Array2, ArrayView2, ArrayViewMut2};
 use tack_kernels::ElasticOperator;
 
 use crate::SolverOptions;
@@ -44,10 +44,38 @@ impl PcgWork {
     }
 }
 
+/// Elements per chunk of the vector loops. Sums are taken per chunk, in element order, and the
+/// chunk sums are added in chunk order: the partition depends on the length only, so the bits
+/// are the same whether chunks run on one thread or several.
+const CHUNK: usize = 8192;
+
+/// Vectors shorter than this run their chunks on the calling thread.
+const PARALLEL_MIN: usize = 128 * 128;
+
+/// Sums `f` over the chunks of `0..len` (see [`CHUNK`]), in parallel on the current rayon pool
+/// when the vectors are long, always in the same order.
+fn chunk_sum(len: usize, f: impl Fn(std::ops::Range<usize>) -> f64 + Sync) -> f64 {
+    use rayon::prelude::*;
+    let chunks = len.div_ceil(CHUNK);
+    let range = |k: usize| k * CHUNK..((k + 1) * CHUNK).min(len);
+    let sums: Vec<f64> = if len >= PARALLEL_MIN {
+        (0..chunks).into_par_iter().map(|k| f(range(k))).collect()
+    } else {
+        (0..chunks).map(|k| f(range(k))).collect()
+    };
+    sums.iter().sum()
+}
+
+/// A contiguous slice of an array in standard layout (every CG vector is one).
+fn flat<'a>(a: &'a ArrayView2<'a, f64>) -> &'a [f64] {
+    a.as_slice().expect("CG vectors are contiguous")
+}
+
 /// Solves `K_CC p_C = (d − f)_C` (`p = 0` off the bonded set `C`), warm-started from `pressure`,
 /// with the masked spectral preconditioner when `preconditioned`. Converged when the rms
 /// residual over `C` is below `tolerance` times the rms right-hand side (floored at 1e-3 of
-/// the height range over `C`). Leaves `work.disp = K p`.
+/// the height range over `C`). Leaves `work.disp = K p`. The vector loops run in fixed chunks
+/// (bit-identical on any thread count).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn pcg(
     op: &mut dyn ElasticOperator,
@@ -60,19 +88,33 @@ pub(crate) fn pcg(
     options: &SolverOptions,
     preconditioned: bool,
 ) -> Convergence {
-    Zip::from(&mut pressure).and(&bonded).for_each(|p, &b| {
-        if !b {
-            *p = 0.0
-        }
-    });
-    let (mut n_c, mut b2, mut fmax, mut fmin) = (0usize, 0.0, f64::NEG_INFINITY, f64::INFINITY);
-    Zip::from(&heights).and(&bonded).for_each(|&f, &b| {
+    let len = heights.len();
+    let f = flat(&heights);
+    let c = bonded.as_slice().expect("contiguous mask");
+    {
+        let p = pressure.as_slice_mut().expect("contiguous pressure");
+        p.iter_mut().zip(c).for_each(|(p, &b)| {
+            if !b {
+                *p = 0.0
+            }
+        });
+    }
+    let (mut n_c, mut fmax, mut fmin) = (0usize, f64::NEG_INFINITY, f64::INFINITY);
+    for (&f, &b) in f.iter().zip(c) {
         if b {
             n_c += 1;
-            b2 += (d - f) * (d - f);
             fmax = fmax.max(f);
             fmin = fmin.min(f);
         }
+    }
+    let b2 = chunk_sum(len, |r| {
+        let mut s = 0.0;
+        for (&f, &b) in f[r.clone()].iter().zip(&c[r]) {
+            if b {
+                s += (d - f) * (d - f);
+            }
+        }
+        s
     });
     let scale = (b2 / n_c as f64)
         .sqrt()
@@ -85,15 +127,20 @@ pub(crate) fn pcg(
     // carried along (`disp += α K s`), so a converged solve needs no further product.
     op.apply(pressure.view(), w.disp.view_mut());
     loop {
-        let mut rr = 0.0;
-        Zip::from(&mut pw.resid)
-            .and(&heights)
-            .and(&w.disp)
-            .and(&bonded)
-            .for_each(|r, &f, &u, &b| {
-                *r = if b { d - f - u } else { 0.0 };
-                rr += *r * *r;
-            });
+        let rr = {
+            let u = w.disp.as_slice().expect("contiguous");
+            let resid = pw.resid.as_slice_mut().expect("contiguous");
+            chunked_mut(resid, |k, r| {
+                let base = k * CHUNK;
+                let mut s = 0.0;
+                for (i, r) in r.iter_mut().enumerate() {
+                    let e = base + i;
+                    *r = if c[e] { d - f[e] - u[e] } else { 0.0 };
+                    s += *r * *r;
+                }
+                s
+            })
+        };
         let residual = (rr / n_c as f64).sqrt() / scale;
         if rr <= target || it >= max_it {
             return Convergence {
@@ -108,40 +155,79 @@ pub(crate) fn pcg(
         while it < max_it {
             it += 1;
             op.apply(w.dir.view(), w.kdir.view_mut());
-            let mut sq = 0.0;
-            Zip::from(&w.dir)
-                .and(&w.kdir)
-                .and(&bonded)
-                .for_each(|&s, &q, &b| {
-                    if b {
-                        sq += s * q
+            let sq = {
+                let (s, q) = (
+                    w.dir.as_slice().expect("contiguous"),
+                    w.kdir.as_slice().expect("contiguous"),
+                );
+                chunk_sum(len, |r| {
+                    let mut acc = 0.0;
+                    for e in r {
+                        if c[e] {
+                            acc += s[e] * q[e];
+                        }
                     }
-                });
+                    acc
+                })
+            };
             let alpha = rz / sq;
-            let mut rr_new = 0.0;
-            Zip::from(&mut pressure)
-                .and(&mut pw.resid)
-                .and(&mut w.disp)
-                .and(&w.dir)
-                .and(&w.kdir)
-                .and(&bonded)
-                .for_each(|p, r, u, &s, &q, &b| {
-                    *u += alpha * q;
-                    if b {
-                        *p += alpha * s;
-                        *r -= alpha * q;
-                        rr_new += *r * *r;
+            let rr_new = {
+                use rayon::prelude::*;
+                let p = pressure.as_slice_mut().expect("contiguous pressure");
+                let r = pw.resid.as_slice_mut().expect("contiguous");
+                let u = w.disp.as_slice_mut().expect("contiguous");
+                let (s, q) = (
+                    w.dir.as_slice().expect("contiguous"),
+                    w.kdir.as_slice().expect("contiguous"),
+                );
+                let step = |k: usize, p: &mut [f64], r: &mut [f64], u: &mut [f64]| {
+                    let base = k * CHUNK;
+                    let mut acc = 0.0;
+                    for i in 0..p.len() {
+                        let e = base + i;
+                        u[i] += alpha * q[e];
+                        if c[e] {
+                            p[i] += alpha * s[e];
+                            r[i] -= alpha * q[e];
+                            acc += r[i] * r[i];
+                        }
                     }
-                });
+                    acc
+                };
+                let sums: Vec<f64> = if len >= PARALLEL_MIN {
+                    p.par_chunks_mut(CHUNK)
+                        .zip(r.par_chunks_mut(CHUNK))
+                        .zip(u.par_chunks_mut(CHUNK))
+                        .enumerate()
+                        .map(|(k, ((p, r), u))| step(k, p, r, u))
+                        .collect()
+                } else {
+                    p.chunks_mut(CHUNK)
+                        .zip(r.chunks_mut(CHUNK))
+                        .zip(u.chunks_mut(CHUNK))
+                        .enumerate()
+                        .map(|(k, ((p, r), u))| step(k, p, r, u))
+                        .collect()
+                };
+                sums.iter().sum::<f64>()
+            };
             if rr_new <= target {
                 break;
             }
             let rz_new = precondition(op, pw, bonded, preconditioned);
             let beta = rz_new / rz;
             rz = rz_new;
-            Zip::from(&mut w.dir)
-                .and(&pw.zres)
-                .for_each(|s, &z| *s = z + beta * *s);
+            {
+                let z = pw.zres.as_slice().expect("contiguous");
+                let s = w.dir.as_slice_mut().expect("contiguous");
+                chunked_mut(s, |k, s| {
+                    let base = k * CHUNK;
+                    for (i, s) in s.iter_mut().enumerate() {
+                        *s = z[base + i] + beta * *s;
+                    }
+                    0.0
+                });
+            }
             if it % REFRESH == 0 {
                 // Long runs: refresh `K p` so round-off in the carried product cannot build up.
                 op.apply(pressure.view(), w.disp.view_mut());
@@ -151,6 +237,24 @@ pub(crate) fn pcg(
             op.apply(pressure.view(), w.disp.view_mut());
         }
     }
+}
+
+/// Runs `f(chunk index, chunk)` over the [`CHUNK`]s of `v` (in parallel when long) and returns
+/// the sum of its results in chunk order.
+fn chunked_mut(v: &mut [f64], f: impl Fn(usize, &mut [f64]) -> f64 + Sync) -> f64 {
+    use rayon::prelude::*;
+    let sums: Vec<f64> = if v.len() >= PARALLEL_MIN {
+        v.par_chunks_mut(CHUNK)
+            .enumerate()
+            .map(|(k, c)| f(k, c))
+            .collect()
+    } else {
+        v.chunks_mut(CHUNK)
+            .enumerate()
+            .map(|(k, c)| f(k, c))
+            .collect()
+    };
+    sums.iter().sum()
 }
 
 /// Iterations between refreshes of the carried product `K p` in long solves.
@@ -168,18 +272,21 @@ fn precondition(
     } else {
         w.zres.assign(&w.resid);
     }
-    let mut rz = 0.0;
-    Zip::from(&mut w.zres)
-        .and(&w.resid)
-        .and(&bonded)
-        .for_each(|z, &r, &b| {
-            if b {
-                rz += r * *z;
+    let c = bonded.as_slice().expect("contiguous mask");
+    let r = w.resid.as_slice().expect("contiguous");
+    chunked_mut(w.zres.as_slice_mut().expect("contiguous"), |k, z| {
+        let base = k * CHUNK;
+        let mut acc = 0.0;
+        for (i, z) in z.iter_mut().enumerate() {
+            let e = base + i;
+            if c[e] {
+                acc += r[e] * *z;
             } else {
                 *z = 0.0;
             }
-        });
-    rz
+        }
+        acc
+    })
 }
 
 #[cfg(test)]
