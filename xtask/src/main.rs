@@ -36,13 +36,16 @@ commands:
 
 fn main() -> Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
+    // Benchmarks run inside a pool of all cores (or RAYON_NUM_THREADS), as `tack run` does:
+    // solves called from outside a pool stay on the calling thread.
+    let pool = || rayon::ThreadPoolBuilder::new().build();
     match args.first().map(String::as_str) {
         Some("reproduce") => reproduce::run(&args[1..]),
-        Some("bench-kernels") => bench::kernels(),
-        Some("bench-jkr") => bench::jkr(&args[1..]),
-        Some("bench-contact") => bench::contact(&args[1..]).map(|_| ()),
-        Some("bench-rough") => bench::rough(&args[1..]),
-        Some("bench") => bench::all(&args[1..]),
+        Some("bench-kernels") => pool()?.install(bench::kernels),
+        Some("bench-jkr") => pool()?.install(|| bench::jkr(&args[1..])),
+        Some("bench-contact") => pool()?.install(|| bench::contact(&args[1..]).map(|_| ())),
+        Some("bench-rough") => pool()?.install(|| bench::rough(&args[1..])),
+        Some("bench") => pool()?.install(|| bench::all(&args[1..])),
         Some("-h" | "--help") | None => {
             println!("{USAGE}");
             Ok(())

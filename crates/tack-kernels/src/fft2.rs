@@ -71,10 +71,13 @@ impl Fft2 {
         }
     }
 
-    /// Number of lanes for this call: the current pool's threads on large grids, else one.
-    /// Allocates the lanes' scratch the first time a pool of that size is seen.
+    /// Number of lanes for this call: the current pool's threads on large grids when called
+    /// from inside a rayon pool (`ThreadPool::install`), else one: handing every transform from
+    /// an outside thread to the pool and back costs more than it saves. Allocates the lanes'
+    /// scratch the first time a pool of that size is seen.
     fn lanes(&mut self) -> usize {
-        let lanes = if self.mx * self.my >= PARALLEL_MIN {
+        let inside = rayon::current_thread_index().is_some();
+        let lanes = if inside && self.mx * self.my >= PARALLEL_MIN {
             rayon::current_num_threads().clamp(1, self.mh.min(self.mx))
         } else {
             1
@@ -127,10 +130,17 @@ impl Fft2 {
         self.real.slice_mut(ndarray::s![..nx, ..]).fill(0.0);
         self.real.slice_mut(ndarray::s![..nx, ..ny]).assign(&input);
         self.forward(nx);
-        self.cols
-            .par_chunks_mut(self.mx * 64)
-            .zip(kernel.par_chunks(self.mx * 64))
-            .for_each(|(c, k)| c.iter_mut().zip(k).for_each(|(c, &k)| *c *= k));
+        let multiply = |c: &mut [Complex<f64>], k: &[f64]| {
+            c.iter_mut().zip(k).for_each(|(c, &k)| *c *= k);
+        };
+        if self.lanes() == 1 {
+            multiply(&mut self.cols, kernel);
+        } else {
+            self.cols
+                .par_chunks_mut(self.mx * 64)
+                .zip(kernel.par_chunks(self.mx * 64))
+                .for_each(|(c, k)| multiply(c, k));
+        }
         self.inverse(nx);
         out.assign(&self.real.slice(ndarray::s![..nx, ..ny]));
     }
@@ -147,25 +157,34 @@ impl Fft2 {
         let (mx, my, mh) = (self.mx, self.my, self.mh);
         let lanes = self.lanes();
         let r2c = &self.r2c;
-        let per = nx.div_ceil(lanes).max(1);
-        let real = self.real.as_slice_mut().expect("standard layout");
-        real[..nx * my]
-            .par_chunks_mut(per * my)
-            .zip(self.rows[..nx * mh].par_chunks_mut(per * mh))
-            .zip(self.scratch.par_iter_mut())
-            .for_each(|((real, rows), (scratch, _))| {
-                for (row, out) in real.chunks_exact_mut(my).zip(rows.chunks_exact_mut(mh)) {
-                    r2c.process_with_scratch(row, out, scratch)
-                        .expect("planned lengths");
-                }
-            });
+        let rows_fft = |real: &mut [f64], rows: &mut [Complex<f64>], scratch: &mut Scratch| {
+            for (row, out) in real.chunks_exact_mut(my).zip(rows.chunks_exact_mut(mh)) {
+                r2c.process_with_scratch(row, out, scratch)
+                    .expect("planned lengths");
+            }
+        };
+        let real = &mut self.real.as_slice_mut().expect("standard layout")[..nx * my];
+        let rows = &mut self.rows[..nx * mh];
+        if lanes == 1 {
+            rows_fft(real, rows, &mut self.scratch[0].0);
+        } else {
+            let per = nx.div_ceil(lanes).max(1);
+            real.par_chunks_mut(per * my)
+                .zip(rows.par_chunks_mut(per * mh))
+                .zip(self.scratch.par_iter_mut())
+                .for_each(|((real, rows), (scratch, _))| rows_fft(real, rows, scratch));
+        }
         transpose(&self.rows, &mut self.cols, nx, mh, mx, lanes);
         let fwd = &self.fwd;
-        let per = mh.div_ceil(lanes);
-        self.cols
-            .par_chunks_mut(per * mx)
-            .zip(self.scratch.par_iter_mut())
-            .for_each(|(cols, (_, scratch))| fwd.process_with_scratch(cols, scratch));
+        if lanes == 1 {
+            fwd.process_with_scratch(&mut self.cols, &mut self.scratch[0].1);
+        } else {
+            let per = mh.div_ceil(lanes);
+            self.cols
+                .par_chunks_mut(per * mx)
+                .zip(self.scratch.par_iter_mut())
+                .for_each(|(cols, (_, scratch))| fwd.process_with_scratch(cols, scratch));
+        }
     }
 
     /// Inverse of `self.cols` into rows `..nx` of `self.real`.
@@ -173,30 +192,39 @@ impl Fft2 {
         let (mx, mh, my) = (self.mx, self.mh, self.my);
         let lanes = self.lanes();
         let inv = &self.inv;
-        let per = mh.div_ceil(lanes);
-        self.cols
-            .par_chunks_mut(per * mx)
-            .zip(self.scratch.par_iter_mut())
-            .for_each(|(cols, (_, scratch))| inv.process_with_scratch(cols, scratch));
+        if lanes == 1 {
+            inv.process_with_scratch(&mut self.cols, &mut self.scratch[0].1);
+        } else {
+            let per = mh.div_ceil(lanes);
+            self.cols
+                .par_chunks_mut(per * mx)
+                .zip(self.scratch.par_iter_mut())
+                .for_each(|(cols, (_, scratch))| inv.process_with_scratch(cols, scratch));
+        }
         transpose(&self.cols, &mut self.rows, mh, mx, mh, lanes);
         let c2r = &self.c2r;
-        let per = nx.div_ceil(lanes).max(1);
-        let real = self.real.as_slice_mut().expect("standard layout");
-        real[..nx * my]
-            .par_chunks_mut(per * my)
-            .zip(self.rows[..nx * mh].par_chunks_mut(per * mh))
-            .zip(self.scratch.par_iter_mut())
-            .for_each(|((real, rows), (scratch, _))| {
-                for (row, spec) in real.chunks_exact_mut(my).zip(rows.chunks_exact_mut(mh)) {
-                    // A real signal's DC (and even-length Nyquist) bins are real; drop round-off.
-                    spec[0].im = 0.0;
-                    if my % 2 == 0 {
-                        spec[mh - 1].im = 0.0;
-                    }
-                    c2r.process_with_scratch(spec, row, scratch)
-                        .expect("planned lengths");
+        let rows_ifft = |real: &mut [f64], rows: &mut [Complex<f64>], scratch: &mut Scratch| {
+            for (row, spec) in real.chunks_exact_mut(my).zip(rows.chunks_exact_mut(mh)) {
+                // A real signal's DC (and even-length Nyquist) bins are real; drop round-off.
+                spec[0].im = 0.0;
+                if my % 2 == 0 {
+                    spec[mh - 1].im = 0.0;
                 }
-            });
+                c2r.process_with_scratch(spec, row, scratch)
+                    .expect("planned lengths");
+            }
+        };
+        let real = &mut self.real.as_slice_mut().expect("standard layout")[..nx * my];
+        let rows = &mut self.rows[..nx * mh];
+        if lanes == 1 {
+            rows_ifft(real, rows, &mut self.scratch[0].0);
+        } else {
+            let per = nx.div_ceil(lanes).max(1);
+            real.par_chunks_mut(per * my)
+                .zip(rows.par_chunks_mut(per * mh))
+                .zip(self.scratch.par_iter_mut())
+                .for_each(|((real, rows), (scratch, _))| rows_ifft(real, rows, scratch));
+        }
     }
 }
 
@@ -212,27 +240,32 @@ fn transpose(
     lanes: usize,
 ) {
     let per = cols.div_ceil(lanes).div_ceil(BLOCK).max(1) * BLOCK;
-    dst[..cols * dst_stride]
-        .par_chunks_mut(per * dst_stride)
-        .enumerate()
-        .for_each(|(band, dst)| {
-            let first = band * per;
-            let last = (first + per).min(cols);
-            for j0 in (first..last).step_by(BLOCK) {
-                for i0 in (0..rows).step_by(BLOCK) {
-                    for j in j0..(j0 + BLOCK).min(last) {
-                        let d = &mut dst[(j - first) * dst_stride..];
-                        for i in i0..(i0 + BLOCK).min(rows) {
-                            d[i] = src[i * cols + j];
-                        }
+    let band_copy = |band: usize, dst: &mut [Complex<f64>]| {
+        let first = band * per;
+        let last = (first + per).min(cols);
+        for j0 in (first..last).step_by(BLOCK) {
+            for i0 in (0..rows).step_by(BLOCK) {
+                for j in j0..(j0 + BLOCK).min(last) {
+                    let d = &mut dst[(j - first) * dst_stride..];
+                    for i in i0..(i0 + BLOCK).min(rows) {
+                        d[i] = src[i * cols + j];
                     }
                 }
-                for j in j0..(j0 + BLOCK).min(last) {
-                    let k = j - first;
-                    dst[k * dst_stride + rows..(k + 1) * dst_stride].fill(Complex::new(0.0, 0.0));
-                }
             }
-        });
+            for j in j0..(j0 + BLOCK).min(last) {
+                let k = j - first;
+                dst[k * dst_stride + rows..(k + 1) * dst_stride].fill(Complex::new(0.0, 0.0));
+            }
+        }
+    };
+    let dst = &mut dst[..cols * dst_stride];
+    if lanes == 1 {
+        band_copy(0, dst);
+    } else {
+        dst.par_chunks_mut(per * dst_stride)
+            .enumerate()
+            .for_each(|(band, dst)| band_copy(band, dst));
+    }
 }
 
 #[cfg(test)]

@@ -52,13 +52,19 @@ const CHUNK: usize = 8192;
 /// Vectors shorter than this run their chunks on the calling thread.
 const PARALLEL_MIN: usize = 128 * 128;
 
+/// Whether vectors of `len` elements run their chunks in parallel: long ones, and only inside
+/// a rayon pool (a hand-off from an outside thread per loop costs more than it saves).
+fn parallel(len: usize) -> bool {
+    len >= PARALLEL_MIN && rayon::current_thread_index().is_some()
+}
+
 /// Sums `f` over the chunks of `0..len` (see [`CHUNK`]), in parallel on the current rayon pool
 /// when the vectors are long, always in the same order.
 fn chunk_sum(len: usize, f: impl Fn(std::ops::Range<usize>) -> f64 + Sync) -> f64 {
     use rayon::prelude::*;
     let chunks = len.div_ceil(CHUNK);
     let range = |k: usize| k * CHUNK..((k + 1) * CHUNK).min(len);
-    let sums: Vec<f64> = if len >= PARALLEL_MIN {
+    let sums: Vec<f64> = if parallel(len) {
         (0..chunks).into_par_iter().map(|k| f(range(k))).collect()
     } else {
         (0..chunks).map(|k| f(range(k))).collect()
@@ -194,7 +200,7 @@ pub(crate) fn pcg(
                     }
                     acc
                 };
-                let sums: Vec<f64> = if len >= PARALLEL_MIN {
+                let sums: Vec<f64> = if parallel(len) {
                     p.par_chunks_mut(CHUNK)
                         .zip(r.par_chunks_mut(CHUNK))
                         .zip(u.par_chunks_mut(CHUNK))
@@ -243,7 +249,7 @@ pub(crate) fn pcg(
 /// the sum of its results in chunk order.
 fn chunked_mut(v: &mut [f64], f: impl Fn(usize, &mut [f64]) -> f64 + Sync) -> f64 {
     use rayon::prelude::*;
-    let sums: Vec<f64> = if v.len() >= PARALLEL_MIN {
+    let sums: Vec<f64> = if parallel(v.len()) {
         v.par_chunks_mut(CHUNK)
             .enumerate()
             .map(|(k, c)| f(k, c))
