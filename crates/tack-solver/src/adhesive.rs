@@ -77,9 +77,6 @@ pub struct AdhesiveOptions {
     pub nested_start: bool,
 }
 
-/// Nested starts stop coarsening below this many elements per side.
-const COARSEST: usize = 32;
-
 /// The inexact rounds' tolerance tightens by this factor each time a round finds nothing.
 const LOOSE_TIGHTENING: f64 = 100.0;
 
@@ -343,24 +340,9 @@ impl AdhesiveSolver {
     /// changes. Returns the CG iterations spent on the coarse grids (in fine-grid units: each
     /// coarse iteration counted as a quarter of the level above).
     fn start_from_coarse(&mut self, d: f64) -> Result<usize, SolverError> {
-        let grid = *self.base.grid();
-        let (nx, ny) = grid.shape();
-        if nx % 2 == 1 || ny % 2 == 1 || nx.min(ny) < 2 * COARSEST {
+        let Some((surface, op)) = self.base.coarsened() else {
             return Ok(0);
-        }
-        let coarse_grid =
-            tack_geometry::Grid::new(nx / 2, ny / 2, 2.0 * grid.dx(), grid.boundary())
-                .expect("a coarsened valid grid is valid");
-        let f = self.base.heights();
-        let heights = Array2::from_shape_fn((nx / 2, ny / 2), |(i, j)| {
-            0.25 * (f[[2 * i, 2 * j]]
-                + f[[2 * i + 1, 2 * j]]
-                + f[[2 * i, 2 * j + 1]]
-                + f[[2 * i + 1, 2 * j + 1]])
-        });
-        let surface = Surface::new(coarse_grid, heights).expect("averages of finite heights");
-        let op = tack_kernels::operator_for(coarse_grid, self.base.op.e_star())
-            .expect("validated modulus");
+        };
         let mut coarse = AdhesiveSolver::new(op, &surface, 0.0, 1.0, self.options)?;
         let r = coarse.step(d)?;
         if r.full_contact || r.n_bonded == 0 {

@@ -97,11 +97,37 @@ impl SolverBase {
         self.pressure.iter().copied().fold(f64::INFINITY, f64::min)
     }
 
+    /// The problem on the grid coarsened 2 × 2 (heights averaged) with its operator, or `None`
+    /// when a side is odd or below `2 × COARSEST`: the coarse-to-fine starts of both solvers.
+    pub(crate) fn coarsened(&self) -> Option<(Surface, Box<dyn ElasticOperator>)> {
+        let grid = *self.grid();
+        let (nx, ny) = grid.shape();
+        if nx % 2 == 1 || ny % 2 == 1 || nx.min(ny) < 2 * COARSEST {
+            return None;
+        }
+        let coarse_grid = Grid::new(nx / 2, ny / 2, 2.0 * grid.dx(), grid.boundary())
+            .expect("a coarsened valid grid is valid");
+        let f = self.heights();
+        let heights = Array2::from_shape_fn((nx / 2, ny / 2), |(i, j)| {
+            0.25 * (f[[2 * i, 2 * j]]
+                + f[[2 * i + 1, 2 * j]]
+                + f[[2 * i, 2 * j + 1]]
+                + f[[2 * i + 1, 2 * j + 1]])
+        });
+        let surface = Surface::new(coarse_grid, heights).expect("averages of finite heights");
+        let op =
+            tack_kernels::operator_for(coarse_grid, self.op.e_star()).expect("validated modulus");
+        Some((surface, op))
+    }
+
     /// Force, mean pressure and area of the current pressure with `n_contact` elements in contact.
     pub(crate) fn totals(&self, n_contact: usize) -> Totals {
         Totals::new(self.grid(), &self.pressure, n_contact)
     }
 }
+
+/// Coarse-to-fine starts stop coarsening below this many elements per side.
+const COARSEST: usize = 32;
 
 fn mean_height(surface: &Surface) -> f64 {
     surface.heights().mean().unwrap_or(0.0)

@@ -5,9 +5,9 @@
 //! an optional coarse-to-fine start and, on free grids, iterations confined to where contact
 //! can occur.
 
-use ndarray::{Array2, Zip, s};
-use tack_geometry::{Grid, Surface, Window};
-use tack_kernels::{ElasticOperator, operator_for};
+use ndarray::{Zip, s};
+use tack_geometry::{Surface, Window};
+use tack_kernels::ElasticOperator;
 
 use crate::base::SolverBase;
 use crate::state::Convergence;
@@ -151,9 +151,6 @@ pub(crate) struct PolonskyKeer {
 /// Iterations between recomputations of `K p` from scratch (bounds round-off in the update).
 const REFRESH: usize = 50;
 
-/// Coarse-to-fine starts stop coarsening below this many elements per side.
-const COARSEST: usize = 32;
-
 impl PolonskyKeer {
     /// A solver for `surface` pressed against the half-space described by `op`.
     pub(crate) fn new(
@@ -269,22 +266,9 @@ impl PolonskyKeer {
     /// Fills `pressure` with the prolonged solution of the 2 × 2-coarsened problem, if the grid
     /// can be coarsened.
     fn start_from_coarse(&mut self, d: f64) -> Result<(), SolverError> {
-        let grid = *self.base.grid();
-        let (nx, ny) = grid.shape();
-        if nx % 2 == 1 || ny % 2 == 1 || nx.min(ny) < 2 * COARSEST {
+        let Some((surface, op)) = self.base.coarsened() else {
             return Ok(());
-        }
-        let coarse_grid = Grid::new(nx / 2, ny / 2, 2.0 * grid.dx(), grid.boundary())
-            .expect("a coarsened valid grid is valid");
-        let f = self.base.heights();
-        let heights = Array2::from_shape_fn((nx / 2, ny / 2), |(i, j)| {
-            0.25 * (f[[2 * i, 2 * j]]
-                + f[[2 * i + 1, 2 * j]]
-                + f[[2 * i, 2 * j + 1]]
-                + f[[2 * i + 1, 2 * j + 1]])
-        });
-        let surface = Surface::new(coarse_grid, heights).expect("finite heights");
-        let op = operator_for(coarse_grid, self.base.op.e_star()).expect("validated modulus");
+        };
         // The coarse answer only seeds the fine iterations: a looser tolerance suffices.
         let options = SolverOptions {
             tolerance: self.options.tolerance.max(1e-6),
@@ -439,7 +423,8 @@ impl PolonskyKeer {
 mod tests {
     use super::*;
     use std::f64::consts::PI;
-    use tack_geometry::{Boundary, FlatPunch, Sphere, Waviness2d};
+    use tack_geometry::{Boundary, FlatPunch, Grid, Sphere, Waviness2d};
+    use tack_kernels::operator_for;
 
     /// The Polonsky–Keer engine (its iteration and cropping details are tested here; the
     /// methods' agreement in `tests/nonadhesive.rs`).
