@@ -110,6 +110,17 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
             num(fr),
             num(fc)
         ));
+        if let Some(&err) = s.extra.get("pull_off_error_estimate") {
+            let relative = if s.pull_off_force != 0.0 {
+                format!(" ({:.2}% of F)", 100.0 * err / s.pull_off_force.abs())
+            } else {
+                String::new()
+            };
+            lines.push(format!(
+                "            error estimate of F(Δx) = {} = |F(Δx) − F(2Δx)|{relative}",
+                num(err)
+            ));
+        }
     }
     let sphere = matches!(f.geometry, Geometry::Sphere { .. });
     if let (Some(&p_star), Some(&p_min)) = (s.extra.get("p_star"), s.extra.get("min_mean_pressure"))
@@ -333,6 +344,16 @@ mod tests {
         );
         assert!(
             text.contains(&total) && text.contains("coarse (2Δx) run"),
+            "{text}"
+        );
+        let s = &outcome.result.summary;
+        let err = s.extra["pull_off_error_estimate"];
+        assert_eq!(
+            err,
+            (s.pull_off_force - s.extra["pull_off_force_coarse"]).abs()
+        );
+        assert!(
+            text.contains(&format!("error estimate of F(Δx) = {}", num(err))),
             "{text}"
         );
     }

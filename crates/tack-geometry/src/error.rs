@@ -44,6 +44,20 @@ pub enum GeometryError {
         /// The Nyquist wave vector along an axis, `π/Δx`.
         q_nyquist: f64,
     },
+    /// A height map has content above the Nyquist wave of the grid of twice its element size.
+    #[error(
+        "the height map is not band-limited to the grid of twice its element size: a share {} of \
+         its rms lies above that grid's Nyquist wave π/(2Δx), where at most {} is allowed (filter \
+         the map to wave vectors |q| ≤ π/(2Δx), or run without the coarse grid)",
+        num(*share),
+        num(*allowed)
+    )]
+    AboveNyquist {
+        /// The measured share (rms of the content above over the rms of the map).
+        share: f64,
+        /// The largest share allowed.
+        allowed: f64,
+    },
     /// A height map could not be read; the message names the file, line and column.
     #[error("height map: {0}")]
     Parse(String),

@@ -3,7 +3,9 @@
 //! A [`Grid`] is a validated set of square elements with a boundary kind; a [`Surface`] holds
 //! one height per element. Shapes ([`Sphere`], [`Waviness1d`], [`Waviness2d`], [`FlatPunch`])
 //! are analytic height functions sampled onto a grid; [`rough_surface`] generates seeded random
-//! roughness and [`read_height_map_file`] imports measured heights. Surfaces compose by adding
+//! roughness (one continuous surface whatever the resolution) and [`read_height_map_file`]
+//! imports measured heights; [`coarsen_band_limited`] takes a band-limited map to twice its
+//! element size. Surfaces compose by adding
 //! heights, so a macro shape plus roughness needs no special case.
 //!
 //! Element `(i, j)` has its centre at `((i − ⌊nx/2⌋)Δx, (j − ⌊ny/2⌋)Δx)`, so the sphere's apex
@@ -40,6 +42,7 @@
 mod error;
 mod grid;
 mod heightmap;
+mod resample;
 mod rough;
 mod shapes;
 mod surface;
@@ -47,6 +50,7 @@ mod surface;
 pub use error::GeometryError;
 pub use grid::{Boundary, Grid, MAX_ELEMENTS_PER_AXIS};
 pub use heightmap::{height_map_surface, read_height_map_file, read_height_map_text};
+pub use resample::{BAND_LIMIT_TOLERANCE, coarsen_band_limited, share_above_coarse_nyquist};
 pub use rough::{RoughSpec, rough_surface};
 pub use shapes::{DEFAULT_PUNCH_LIFT, FlatPunch, PunchFace, Shape, Sphere, Waviness1d, Waviness2d};
 pub use surface::{Surface, Window};

@@ -1,16 +1,23 @@
-//! Seeded random rough surfaces by Fourier filtering (Pohrt & Li 2014 style, docs/theory.md §4).
+//! Seeded random rough surfaces by Fourier filtering (Pohrt & Li 2014 style, docs/theory.md §4):
+//! one continuous surface, sampled at whatever resolution the grid has.
 //!
-//! The spectrum has amplitude `|q|^−(H+1)` on the band `q0 ≤ |q| ≤ q1` (power `C ∝ q^−2−2H`)
-//! and zero elsewhere, with uniform random phases; the inverse transform is real by Hermitian
-//! symmetry, its mean is removed and it is scaled to the requested rms height. Only the phases
-//! are random: the amplitudes are exactly the power law, except at the few self-conjugate
-//! (Nyquist) entries, which must be real and get `a·cos φ` (see `half_spectrum`).
+//! The surface is `h(x) = Σ_m c_m·exp(i q_m·x)` over the integer wave vectors `m` of the period
+//! `Lx × Ly` (`q_m = 2π(mx/Lx, my/Ly)`) with `q0 ≤ |q_m| ≤ q1`, `|c_m| ∝ |q_m|^−(H+1)` (power
+//! `C ∝ q^−2−2H`), `c_−m = conj(c_m)` (a real surface), and a random phase per wave vector. It is
+//! scaled so that its rms (the continuous one, `Σ|c_m|²`) is the requested `h`, and sampled at
+//! the element centres, `x = ((i − ⌊nx/2⌋)Δx, (j − ⌊ny/2⌋)Δx)`. A grid represents the wave
+//! vectors in its box `|mx| ≤ ⌊nx/2⌋`, `|my| ≤ ⌊ny/2⌋`; the two `±n/2` waves of an even side
+//! meet in one Nyquist entry, summed as the samples see them (aliased, exactly).
 //!
-//! Reproducibility: the phases come from `ChaCha8Rng::seed_from_u64(seed)`, one `u64` per entry
-//! of the half spectrum `(kx, ky) ∈ [0, nx) × [0, ny/2]` in row-major order (`ky` fastest),
-//! drawn for every entry whatever its amplitude. The draws therefore depend on the grid shape
-//! only, so changing `h`, `H`, `q0` or `q1` keeps the phase of every remaining wave. Everything
-//! runs on one thread.
+//! Reproducibility: the phase of `c_m` is the first `u64` of ChaCha8 stream `m` (the signed
+//! components zig-zag encoded, `my` in the low 32 bits) of `ChaCha8Rng::seed_from_u64(seed)`,
+//! for the wave vector of the pair `±m` with `my > 0` (or `my = 0`, `mx > 0`); the other one is
+//! its conjugate. The phases therefore depend on the seed and the wave vector only: for a fixed
+//! band the `n × n` and `2n × 2n` grids over the same period sample one surface and agree at
+//! their coinciding element centres to rounding, and changing `h`, `H`, `q0` or `q1` keeps the
+//! phase of every remaining wave. The rms of the *samples* equals `h` exactly when no Nyquist
+//! entry is aliased (`q1 < π/Δx`); with the paper's `q1 = π/Δx` the two axis Nyquist pairs make
+//! it differ, by 1e-5 relative or less on the test grids. Everything runs on one thread.
 
 use std::f64::consts::{PI, TAU};
 
@@ -60,6 +67,7 @@ fn q_min(grid: &Grid) -> f64 {
 }
 
 /// Signed wave number of FFT index `k` on an axis of `n` points.
+#[cfg(test)]
 fn signed(k: usize, n: usize) -> f64 {
     if k <= n / 2 {
         k as f64
@@ -70,34 +78,51 @@ fn signed(k: usize, n: usize) -> f64 {
 
 /// Generates a random rough surface on `grid` (its boundary kind is kept).
 ///
-/// The surface is one period of a pattern of period `Lx × Ly` and has zero mean and rms
-/// height exactly `spec.rms` (to rounding). Errors name the offending field.
+/// The surface is one period of a pattern of period `Lx × Ly` with zero mean and rms height
+/// `spec.rms` (the continuous surface's; see the module text for the samples'). Errors name
+/// the offending field.
 pub fn rough_surface(grid: Grid, spec: &RoughSpec) -> Result<Surface, GeometryError> {
     let (nx, ny) = grid.shape();
-    let columns_hat = half_spectrum(&grid, spec)?;
+    let (columns_hat, power) = half_spectrum(&grid, spec)?;
     let mut columns = Array2::<Complex<f64>>::zeros(columns_hat.dim());
     ndifft(&columns_hat, &mut columns, &FftHandler::new(nx), 0);
     let mut heights = Array2::<f64>::zeros((nx, ny));
     ndifft_r2c(&columns, &mut heights, &R2cFftHandler::new(ny), 1);
-    let n = grid.len() as f64;
-    let mean = heights.sum() / n;
-    heights -= mean;
-    let rms = (heights.iter().map(|h| h * h).sum::<f64>() / n).sqrt();
-    heights *= if spec.rms == 0.0 { 0.0 } else { spec.rms / rms };
+    // The inverse transforms divide by nx·ny; c_m was drawn with amplitude |q|^−(H+1), whose
+    // continuous mean square is `power`.
+    heights *= if spec.rms == 0.0 {
+        0.0
+    } else {
+        grid.len() as f64 * spec.rms / power.sqrt()
+    };
     Surface::new(grid, heights)
 }
 
+/// Zig-zag code of a signed wave number: 0, −1, 1, −2, 2, … ↦ 0, 1, 2, 3, 4, …
+fn zigzag(m: i64) -> u64 {
+    ((m << 1) ^ (m >> 63)) as u64
+}
+
+/// The phase (radians in `[0, 2π)`) of the wave vector `(mx, my)`: the first `u64` of the
+/// ChaCha8 stream numbered by the wave vector.
+fn phase(rng: &mut ChaCha8Rng, mx: i64, my: i64) -> f64 {
+    rng.set_stream((zigzag(mx) << 32) | zigzag(my));
+    rng.set_word_pos(0);
+    (rng.next_u64() >> 11) as f64 * (TAU / (1u64 << 53) as f64)
+}
+
 /// Validates `spec` against `grid` and builds the half spectrum `(nx, ny/2 + 1)` that an
-/// inverse c2c transform along x followed by an inverse c2r transform along y turns into
-/// the (unscaled) surface.
+/// inverse c2c transform along x followed by an inverse c2r transform along y turns into the
+/// surface (times `nx·ny`, with amplitudes `|q|^−(H+1)`), and the continuous mean square of
+/// that unscaled surface, `Σ_m |q_m|^−2(H+1)` over every represented wave vector.
 ///
-/// In the self-paired columns `ky = 0` and `ky = ny/2` (even `ny`) the entry at `nx − kx`
-/// is the conjugate of the one at `kx`; the self-conjugate entries (`kx = 0` or `nx/2`) are
-/// `a·cos φ`, the value of a wave of random phase sampled at the Nyquist rate.
+/// Entry `(kx, ky)` holds every wave vector `m ≡ (kx, ky)` (mod the grid) of the box, each
+/// times `exp(i q_m·x₀)` for the centre `x₀` of element `(0, 0)`; the entries are Hermitian
+/// in the self-paired columns `ky = 0` and `ky = ny/2` because `c_−m = conj(c_m)`.
 pub(crate) fn half_spectrum(
     grid: &Grid,
     spec: &RoughSpec,
-) -> Result<Array2<Complex<f64>>, GeometryError> {
+) -> Result<(Array2<Complex<f64>>, f64), GeometryError> {
     let hurst = spec.hurst;
     if !(hurst > 0.0 && hurst < 1.0) {
         return Err(GeometryError::OutOfRange {
@@ -125,39 +150,40 @@ pub(crate) fn half_spectrum(
     }
 
     let (nx, ny) = grid.shape();
+    let (nx_i, ny_i) = (nx as i64, ny as i64);
+    // Element (0, 0) sits at x₀ = −(⌊nx/2⌋, ⌊ny/2⌋)·Δx.
+    let (cx, cy) = (nx_i / 2, ny_i / 2);
     let mut rng = ChaCha8Rng::seed_from_u64(spec.seed);
     let mut hat = Array2::<Complex<f64>>::zeros((nx, ny / 2 + 1));
-    let mut any = false;
-    for ((kx, ky), entry) in hat.indexed_iter_mut() {
-        let phase = (rng.next_u64() >> 11) as f64 * (TAU / (1u64 << 53) as f64);
-        let qx = TAU * signed(kx, nx) / grid.lx();
-        let qy = TAU * signed(ky, ny) / grid.ly();
-        let q = qx.hypot(qy);
-        if q < q0 * (1.0 - EDGE) || q > q1 * (1.0 + EDGE) {
-            continue;
+    let mut power = 0.0;
+    for my in -(ny_i / 2)..=ny_i / 2 {
+        let qy = TAU * my as f64 / grid.ly();
+        let ky = my.rem_euclid(ny_i) as usize;
+        for mx in -(nx_i / 2)..=nx_i / 2 {
+            let q = (TAU * mx as f64 / grid.lx()).hypot(qy);
+            if q < q0 * (1.0 - EDGE) || q > q1 * (1.0 + EDGE) {
+                continue;
+            }
+            let amplitude = q.powf(-(hurst + 1.0));
+            power += amplitude * amplitude;
+            if ky > ny / 2 {
+                continue; // held by the conjugate entry of the c2r half spectrum
+            }
+            let c = if my > 0 || (my == 0 && mx > 0) {
+                Complex::from_polar(amplitude, phase(&mut rng, mx, my))
+            } else {
+                Complex::from_polar(amplitude, phase(&mut rng, -mx, -my)).conj()
+            };
+            // exp(i q_m·x₀) = exp(−2πi (mx·cx/nx + my·cy/ny)), reduced exactly in integers.
+            let turns = (mx * cx).rem_euclid(nx_i) as f64 / nx as f64
+                + (my * cy).rem_euclid(ny_i) as f64 / ny as f64;
+            hat[[mx.rem_euclid(nx_i) as usize, ky]] += c * Complex::from_polar(1.0, -TAU * turns);
         }
-        any = true;
-        let amplitude = q.powf(-(hurst + 1.0));
-        let self_paired = ky == 0 || 2 * ky == ny;
-        let self_conjugate = kx == 0 || 2 * kx == nx;
-        *entry = if self_paired && self_conjugate {
-            Complex::new(amplitude * phase.cos(), 0.0)
-        } else {
-            Complex::from_polar(amplitude, phase)
-        };
     }
-    if !any {
+    if power == 0.0 {
         return Err(band_error);
     }
-    for ky in [0, ny / 2]
-        .into_iter()
-        .filter(|&ky| ky == 0 || 2 * ky == ny)
-    {
-        for kx in nx / 2 + 1..nx {
-            hat[[kx, ky]] = hat[[nx - kx, ky]].conj();
-        }
-    }
-    Ok(hat)
+    Ok((hat, power))
 }
 
 #[cfg(test)]
@@ -186,23 +212,98 @@ mod tests {
             .collect()
     }
 
+    fn sample_rms(s: &Surface) -> f64 {
+        let n = s.grid().len() as f64;
+        (s.heights().iter().map(|h| h * h).sum::<f64>() / n).sqrt()
+    }
+
     #[test]
     fn rms_and_mean_are_exact_on_odd_even_and_strip_grids() {
         for (nx, ny) in [(64, 64), (33, 20), (17, 31), (64, 1), (1, 40)] {
             let g = grid(nx, ny);
-            let s = rough_surface(g, &RoughSpec::paper_defaults(g, 2.5e-3, 0.7, 7)).unwrap();
-            let n = g.len() as f64;
-            let rms = (s.heights().iter().map(|h| h * h).sum::<f64>() / n).sqrt();
+            // Below the Nyquist wave nothing aliases: the samples' rms is the surface's.
+            let spec = RoughSpec {
+                q1: 0.9 * PI / g.dx(),
+                ..RoughSpec::paper_defaults(g, 2.5e-3, 0.7, 7)
+            };
+            let s = rough_surface(g, &spec).unwrap();
+            let rms = sample_rms(&s);
             assert!((rms / 2.5e-3 - 1.0).abs() < 1e-12, "{nx}×{ny}: rms {rms}");
             assert!(
                 s.mean().abs() < 1e-12 * 2.5e-3,
                 "{nx}×{ny}: mean {}",
                 s.mean()
             );
+            // The paper's band ends on the Nyquist waves, whose ± pair the samples alias:
+            // the samples' rms then differs from the surface's by their share only.
+            let paper = rough_surface(g, &RoughSpec::paper_defaults(g, 2.5e-3, 0.7, 7)).unwrap();
+            let rms = sample_rms(&paper);
+            eprintln!(
+                "{nx}×{ny}: paper band, sample rms / h − 1 = {:.2e}",
+                rms / 2.5e-3 - 1.0
+            );
+            assert!((rms / 2.5e-3 - 1.0).abs() < 1e-3, "{nx}×{ny}: rms {rms}");
+            assert!(paper.mean().abs() < 1e-12 * 2.5e-3);
         }
         let g = grid(16, 16);
         let flat = rough_surface(g, &RoughSpec::paper_defaults(g, 0.0, 0.5, 1)).unwrap();
         assert_eq!(flat, Surface::flat(g));
+    }
+
+    /// The surface sampled on a grid of `(nx, ny)` elements of size `dx`.
+    fn sampled(nx: usize, ny: usize, dx: f64, boundary: Boundary, spec: &RoughSpec) -> Surface {
+        rough_surface(Grid::new(nx, ny, dx, boundary).unwrap(), spec).unwrap()
+    }
+
+    #[test]
+    fn one_band_gives_one_continuous_surface_at_every_resolution() {
+        // Period 1.2 × 0.8; the band ends at or below the coarsest grid's Nyquist wave (the
+        // 15 × 10 grid, π/Δx = 12.5π), so every grid samples the same waves. Element (i, j) of a
+        // grid is centred at ((i − ⌊nx/2⌋)Δx, (j − ⌊ny/2⌋)Δx): the coarse centre i is the
+        // fine centre 2i − 2⌊nx/2⌋ + ⌊2nx/2⌋.
+        let lx = 1.2;
+        for (q1, hurst, seed) in [(12.5 * PI, 0.3, 1), (10.0 * PI, 0.8, 2024)] {
+            let spec = RoughSpec {
+                rms: 1e-3,
+                hurst,
+                q0: TAU / lx,
+                q1,
+                seed,
+            };
+            for (nx, ny) in [(30, 20), (15, 10)] {
+                for boundary in [Boundary::Free, Boundary::Periodic] {
+                    let dx = lx / nx as f64;
+                    let coarse = sampled(nx, ny, dx, boundary, &spec);
+                    for factor in [2, 4] {
+                        let fine = sampled(
+                            factor * nx,
+                            factor * ny,
+                            dx / factor as f64,
+                            boundary,
+                            &spec,
+                        );
+                        let map =
+                            |i: usize, n: usize| factor * i - factor * (n / 2) + factor * n / 2;
+                        let mut worst: f64 = 0.0;
+                        for ((i, j), h) in coarse.heights().indexed_iter() {
+                            let f = fine.heights()[[map(i, nx), map(j, ny)]];
+                            worst = worst.max((h - f).abs());
+                        }
+                        assert!(
+                            worst < 1e-12 * spec.rms,
+                            "{nx}×{ny} vs ×{factor}: largest difference {worst:e}"
+                        );
+                    }
+                }
+            }
+        }
+        // The paper's band follows the grid (q1 = π/Δx): refining adds waves, so the
+        // surfaces differ, though every wave they share keeps its phase.
+        let g = grid(32, 32);
+        let g2 = Grid::new(64, 64, 0.25, Boundary::Free).unwrap();
+        let a = rough_surface(g, &RoughSpec::paper_defaults(g, 1.0, 0.5, 5)).unwrap();
+        let b = rough_surface(g2, &RoughSpec::paper_defaults(g2, 1.0, 0.5, 5)).unwrap();
+        assert!((a.heights()[[16, 16]] - b.heights()[[32, 32]]).abs() > 1e-6);
     }
 
     #[test]
@@ -268,7 +369,7 @@ mod tests {
         for (nx, ny) in [(8, 6), (7, 6), (8, 5), (5, 5)] {
             let g = grid(nx, ny);
             let spec = RoughSpec::paper_defaults(g, 1.0, 0.5, 11);
-            let hat = half_spectrum(&g, &spec).unwrap();
+            let (hat, _) = half_spectrum(&g, &spec).unwrap();
             assert_eq!(hat[[0, 0]], Complex::new(0.0, 0.0), "no mean");
             let mut cols = hat.clone();
             ndifft(&hat, &mut cols, &FftHandler::new(nx), 0);
@@ -286,6 +387,37 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn phases_are_uniform_and_independent_across_wave_vectors_and_seeds() {
+        // 4 seeds × 1 088 wave vectors: a mean of exp(iφ) beyond 4/√N, or two equal phases,
+        // would mean the streams repeat.
+        let mut all = Vec::new();
+        for seed in 0..4 {
+            let mut rng = ChaCha8Rng::seed_from_u64(seed);
+            for my in 0..=16 {
+                for mx in -32..32 {
+                    all.push(phase(&mut rng, mx, my));
+                }
+            }
+        }
+        let n = all.len() as f64;
+        let (c, s) = all
+            .iter()
+            .fold((0.0, 0.0), |(c, s), p| (c + p.cos(), s + p.sin()));
+        assert!(c.hypot(s) / n < 4.0 / n.sqrt(), "mean {:e}", c.hypot(s) / n);
+        let mut sorted = all.clone();
+        sorted.sort_by(f64::total_cmp);
+        assert!(sorted.windows(2).all(|w| w[0] < w[1]), "a phase repeats");
+        assert!(all.iter().all(|p| (0.0..TAU).contains(p)));
+        // Lag-one correlation along mx, as a check on stream independence.
+        let cos: Vec<f64> = all.iter().map(|p| p.cos()).collect();
+        let lag: f64 = cos.windows(2).map(|w| w[0] * w[1]).sum::<f64>() / n;
+        assert!(
+            lag.abs() < 4.0 * 0.5 / n.sqrt(),
+            "lag-one correlation {lag}"
+        );
     }
 
     #[test]
@@ -312,9 +444,9 @@ mod tests {
         let s = rough_surface(g, &RoughSpec::paper_defaults(g, 1.0, 0.5, 42)).unwrap();
         let h = s.heights();
         for (got, want) in [
-            (h[[0, 0]], 2.01224511035386e-1),
-            (h[[3, 5]], 1.57405779250175),
-            (h[[10, 2]], -1.41179916004006),
+            (h[[0, 0]], 9.31579811952505e-1),
+            (h[[3, 5]], -2.39401374822905e-1),
+            (h[[10, 2]], 1.04169102531819),
         ] {
             assert!(
                 (got / want - 1.0).abs() < 1e-12,

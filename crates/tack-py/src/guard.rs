@@ -1,13 +1,18 @@
 //! Running solver work from Python: the GIL released, Ctrl-C and progress callbacks through the
 //! solver's `Observer`, panics caught.
 //!
-//! [`detached`] runs a closure with the GIL released inside `catch_unwind`. The
-//! [`PyObserver`] it hands the closure re-attaches to the interpreter at most every
-//! [`CHECK_INTERVAL`] (after a step): it runs `check_signals` (so SIGINT raises
-//! `KeyboardInterrupt` in Python's handler) and calls the progress callback; an exception from
-//! either stops the path through `Observer::cancelled`, and [`detached`] raises it.
+//! [`detached`] runs a closure with the GIL released inside `catch_unwind`, on a worker thread
+//! while the calling thread watches for signals: CPython runs signal handlers on its main
+//! thread only, and a run inside a rayon pool calls its observer from a pool thread. Every
+//! [`CHECK_INTERVAL`] the calling thread re-attaches and runs `check_signals` (so SIGINT raises
+//! `KeyboardInterrupt` in Python's handler); an exception sets a flag that the [`PyObserver`]
+//! turns into `Observer::cancelled`. The observer also calls the progress callback at most
+//! every [`CHECK_INTERVAL`] (after a step); an exception from it stops the path the same way,
+//! and [`detached`] raises what stopped it.
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use pyo3::exceptions::PyKeyboardInterrupt;
@@ -27,24 +32,21 @@ pub struct PyObserver {
     latest: Option<(usize, Phase, StepRecord)>,
     reported: Option<usize>,
     error: Option<PyErr>,
+    interrupted: Arc<AtomicBool>,
 }
 
 impl PyObserver {
-    /// An observer that calls `progress` (a callable taking one dict) with the latest step.
-    pub fn new(progress: Option<Py<PyAny>>) -> Self {
+    /// An observer that calls `progress` (a callable taking one dict) with the latest step and
+    /// stops the run once `interrupted` is set (by the thread watching for signals).
+    pub fn new(progress: Option<Py<PyAny>>, interrupted: Arc<AtomicBool>) -> Self {
         Self {
             progress,
             last_check: Instant::now(),
             latest: None,
             reported: None,
             error: None,
+            interrupted,
         }
-    }
-
-    /// Checks signals and reports progress now (attached to the interpreter).
-    fn check(&mut self, py: Python<'_>) -> PyResult<()> {
-        py.check_signals()?;
-        self.report(py)
     }
 
     /// Calls the progress callback with the latest step, unless it saw it already.
@@ -89,13 +91,13 @@ impl Observer for PyObserver {
     }
 
     fn cancelled(&mut self) -> bool {
-        if self.error.is_some() {
+        if self.error.is_some() || self.interrupted.load(Ordering::Relaxed) {
             return true;
         }
-        if self.last_check.elapsed() < CHECK_INTERVAL {
+        if self.progress.is_none() || self.last_check.elapsed() < CHECK_INTERVAL {
             return false;
         }
-        let outcome = Python::attach(|py| self.check(py));
+        let outcome = Python::attach(|py| self.report(py));
         self.last_check = Instant::now();
         if let Err(e) = outcome {
             self.error = Some(e);
@@ -105,7 +107,8 @@ impl Observer for PyObserver {
     }
 }
 
-/// Runs `work` with the GIL released and a [`PyObserver`] for `progress`; a run stopped by the
+/// Runs `work` with the GIL released and a [`PyObserver`] for `progress`, on a worker thread
+/// while this thread checks for signals every [`CHECK_INTERVAL`]; a run stopped by the
 /// observer raises what stopped it (`KeyboardInterrupt`, the callback's exception), a tack
 /// error its Python exception, a panic `InternalError`.
 pub fn detached<T, F>(py: Python<'_>, progress: Option<Py<PyAny>>, work: F) -> PyResult<T>
@@ -113,13 +116,37 @@ where
     T: Send,
     F: FnOnce(&mut PyObserver) -> Result<T, tack::Error> + Send,
 {
-    let mut observer = PyObserver::new(progress);
-    let outcome = py.detach(|| catch_unwind(AssertUnwindSafe(|| work(&mut observer))));
+    let interrupted = Arc::new(AtomicBool::new(false));
+    let mut observer = PyObserver::new(progress, Arc::clone(&interrupted));
+    let mut signal = None;
+    let outcome = py.detach(|| {
+        let watcher = std::thread::current();
+        std::thread::scope(|scope| {
+            let worker = scope.spawn(|| {
+                let outcome = catch_unwind(AssertUnwindSafe(|| work(&mut observer)));
+                watcher.unpark();
+                outcome
+            });
+            while !worker.is_finished() {
+                std::thread::park_timeout(CHECK_INTERVAL);
+                if signal.is_none()
+                    && !worker.is_finished()
+                    && let Err(e) = Python::attach(|py| py.check_signals())
+                {
+                    signal = Some(e);
+                    interrupted.store(true, Ordering::Relaxed);
+                }
+            }
+            // The worker caught its own panics; a failed join is one of those re-raised.
+            worker.join().unwrap_or_else(Err)
+        })
+    });
     match outcome {
         Err(panic) => Err(panic_error(panic.as_ref())),
         Ok(Err(e)) if e.is_cancelled() => Err(observer
             .error
             .take()
+            .or(signal)
             .unwrap_or_else(|| PyKeyboardInterrupt::new_err(e.to_string()))),
         Ok(Err(e)) => Err(to_py(&e)),
         Ok(Ok(value)) => {

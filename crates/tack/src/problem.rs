@@ -728,7 +728,7 @@ fn add_roughness(
 
 /// Reads a height map (HDF5 by extension, else text) and checks its `dx` against the grid's.
 /// A text map without a `# dx = ...` header takes the grid's `dx`.
-fn read_map(
+pub(crate) fn read_map(
     full: &Path,
     given: &Path,
     dataset: Option<&str>,

@@ -113,8 +113,7 @@ pub fn run(
     let problem = Problem::from_scene(scene)?;
     // The coarse scene is validated before the (long) fine solve.
     let coarse = if options.richardson {
-        let c = coarsened(scene, &problem)?;
-        Some(Problem::from_scene(&c)?)
+        Some(coarse_problem(scene, &problem)?)
     } else {
         None
     };
@@ -142,6 +141,10 @@ pub fn run(
         let extra = &mut result.summary.extra;
         extra.insert("pull_off_force_coarse".into(), coarse_f);
         extra.insert("pull_off_force_richardson".into(), extrapolated);
+        extra.insert(
+            "pull_off_error_estimate".into(),
+            tack_solver::pull_off_error_estimate(fine_f, coarse_f),
+        );
         if let Some(f_jkr) = problem.references.f_jkr {
             extra.insert("pull_off_ratio_richardson".into(), extrapolated / f_jkr);
         }
@@ -390,7 +393,7 @@ pub const MIN_TENSILE_STEPS: usize = 3;
 /// Names of every scalar [`summary`] can record: the [`tack_io::Summary`] fields, then its
 /// `extra` keys. A run need not have all of them (`d_jkr` only for spheres, `crop_rows` only
 /// when cropped, ...). Parameter sweeps collect quantities by these names.
-pub const SUMMARY_QUANTITIES: [&str; 19] = [
+pub const SUMMARY_QUANTITIES: [&str; 20] = [
     "pull_off_force",
     "f_jkr",
     "pull_off_ratio",
@@ -410,6 +413,7 @@ pub const SUMMARY_QUANTITIES: [&str; 19] = [
     "pull_off_force_coarse",
     "pull_off_force_richardson",
     "pull_off_ratio_richardson",
+    "pull_off_error_estimate",
 ];
 
 /// The summary quantity `name` (a field of [`tack_io::Summary`] or a key of its `extra`), NaN
@@ -492,50 +496,95 @@ pub fn surface_file(problem: &Problem, provenance: tack_io::Provenance) -> tack_
     }
 }
 
-/// The scene on a grid of twice the element size over (at least) the same domain, for the
-/// Richardson extrapolation of `tack run --richardson`: the Pohrt–Popov criterion converges at
-/// first order in Δx, so `2·F(Δx) − F(2Δx)` cancels the leading error (smooth sphere: +6.9% at
-/// a_c/Δx = 20 becomes −0.3%). The geometry must not depend on the grid: random roughness
-/// (realization and q1 = π/Δx follow the grid) and height maps are refused, and periodic grids
-/// need even sides (the period is kept).
-pub fn coarsened(scene: &Scene, problem: &Problem) -> Result<Scene, SceneError> {
-    let refuse = |reason: &str| SceneError::Inconsistent(format!("--richardson {reason}"));
+/// The scene's problem on a grid of twice the element size over (at least) the same domain,
+/// for the Richardson extrapolation of `tack run --richardson`: the Pohrt–Popov criterion
+/// converges at first order in Δx, so `2·F(Δx) − F(2Δx)` cancels the leading error (smooth
+/// sphere: +6.9% at a_c/Δx = 20 becomes −0.3%).
+///
+/// The body must be the same on both grids. Shapes are analytic. Random roughness is one
+/// continuous surface per band (`tack_geometry::rough_surface`), so it needs a band the coarse
+/// grid holds, `roughness.q1 ≤ π/(2Δx)` given explicitly (the default `q1 = π/Δx` follows the
+/// grid), and even grid sides (the period is kept). A height map (`roughness.kind = "file"`)
+/// must be band-limited to `π/(2Δx)` and is read at the coarse centres
+/// (`tack_geometry::coarsen_band_limited`). Periodic grids need even sides.
+pub fn coarse_problem(scene: &Scene, problem: &Problem) -> Result<Problem, SceneError> {
+    let refuse = |reason: String| SceneError::Inconsistent(format!("--richardson {reason}"));
+    let grid = problem.grid;
+    let (nx, ny) = grid.shape();
+    let odd = |n: usize| n % 2 == 1 && n > 1;
+    let q_coarse = std::f64::consts::PI / (2.0 * grid.dx());
+    let mut file = scene.file.clone();
+    let mut coarse_map = None;
     match &scene.file.roughness {
-        Some(Roughness::Random { .. }) => {
-            return Err(refuse(
-                "needs a geometry that does not depend on the grid; roughness.kind = \"random\" \
-                 is generated on the grid (its realization and q1 = π/Δx change with Δx)",
-            ));
+        Some(Roughness::Random { q1, .. }) => {
+            let Some(q1) = *q1 else {
+                return Err(refuse(format!(
+                    "with roughness.kind = \"random\" needs a band the coarse (2Δx) grid holds: \
+                     set roughness.q1 ≤ π/(2Δx) = {} (by default q1 = π/Δx follows the grid, \
+                     so each grid would sample another surface)",
+                    crate::scene::num(q_coarse)
+                )));
+            };
+            if q1 > q_coarse * (1.0 + 1e-9) {
+                return Err(refuse(format!(
+                    "with roughness.kind = \"random\": roughness.q1 = {} is above π/(2Δx) = {}, \
+                     the Nyquist wave of the coarse (2Δx) grid; allowed: q0 < q1 ≤ {}",
+                    crate::scene::num(q1),
+                    crate::scene::num(q_coarse),
+                    crate::scene::num(q_coarse)
+                )));
+            }
+            if odd(nx) || odd(ny) {
+                return Err(refuse(format!(
+                    "with roughness.kind = \"random\" needs even grid sides (the coarse grid \
+                     keeps the period of the surface); the grid is {nx} × {ny}"
+                )));
+            }
         }
-        Some(Roughness::File { .. }) => {
-            return Err(refuse(
-                "needs a geometry that does not depend on the grid; a height map \
-                 (roughness.kind = \"file\") is given per element",
-            ));
+        Some(Roughness::File { path, dataset }) => {
+            let fine = crate::problem::read_map(
+                &scene.base_dir.join(path),
+                path,
+                dataset.as_deref(),
+                &grid,
+            )?;
+            let map =
+                tack_geometry::coarsen_band_limited(&fine, tack_geometry::BAND_LIMIT_TOLERANCE)
+                    .map_err(|e| refuse(format!("roughness.path = `{}`: {e}", path.display())))?;
+            file.roughness = None;
+            coarse_map = Some(map);
         }
         _ => {}
     }
-    let grid = problem.grid;
-    let (nx, ny) = grid.shape();
     let periodic = grid.boundary() == tack_geometry::Boundary::Periodic;
-    if periodic && (nx % 2 == 1 || (ny % 2 == 1 && ny > 1)) {
+    if periodic && (odd(nx) || odd(ny)) {
         return Err(refuse(
-            "on a periodic grid needs even grid sides (the coarse grid keeps the period)",
+            "on a periodic grid needs even grid sides (the coarse grid keeps the period)".into(),
         ));
     }
     let half = |n: usize| if n == 1 { 1 } else { n.div_ceil(2) };
-    let mut file = scene.file.clone();
     (file.grid.n, file.grid.length) = (None, None);
     file.grid.nx = Some(half(nx));
     file.grid.ny = Some(half(ny));
     file.grid.dx = Some(2.0 * grid.dx());
-    let text = toml::to_string(&file).map_err(|e| refuse(&e.to_string()))?;
-    Ok(Scene {
+    let text = toml::to_string(&file).map_err(|e| refuse(e.to_string()))?;
+    let coarse = Scene {
         file,
         text: format!("# tack run --richardson: the coarse (2Δx) scene\n{text}"),
         base_dir: scene.base_dir.clone(),
         origin: scene.origin.clone(),
-    })
+    };
+    match &coarse_map {
+        Some(map) => {
+            let (lo, hi) = map
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &h| {
+                    (lo.min(h), hi.max(h))
+                });
+            Problem::build(&coarse, Some((map, (hi - lo).max(0.0))))
+        }
+        None => Problem::from_scene(&coarse),
+    }
 }
 
 /// Fails early (before a long solve) when the output cannot be written: missing parent
@@ -593,8 +642,7 @@ unload_step = 0.002
     fn richardson_runs_the_scene_at_twice_the_element_size() {
         let fine = scene(SPHERE);
         let problem = Problem::from_scene(&fine).unwrap();
-        let coarse = coarsened(&fine, &problem).unwrap();
-        let cp = Problem::from_scene(&coarse).unwrap();
+        let cp = coarse_problem(&fine, &problem).unwrap();
         assert_eq!(cp.grid.shape(), (21, 21));
         assert_eq!(cp.grid.dx(), 0.04);
         // Same domain or more: 21 · 0.04 ≥ 41 · 0.02.
@@ -730,19 +778,110 @@ unload_step = 0.002
     }
 
     #[test]
+    fn richardson_takes_band_limited_roughness_and_maps_as_the_same_body() {
+        // 40 × 40 elements of 0.02: the coarse grid's Nyquist wave is π/(2Δx) = 25π ≈ 78.54,
+        // and coarse centre (i, j) is fine centre (2i, 2j).
+        let sphere = SPHERE.replace("n = 41", "n = 40");
+        let same_body = |fine: &Problem, coarse: &Problem| {
+            assert_eq!(coarse.grid.shape(), (20, 20));
+            let (f, c) = (fine.surface.heights(), coarse.surface.heights());
+            let worst = c
+                .indexed_iter()
+                .map(|((i, j), h)| (h - f[[2 * i, 2 * j]]).abs())
+                .fold(0.0, f64::max);
+            assert!(worst < 1e-15, "largest difference {worst:e}");
+        };
+        let random = |q1: &str| {
+            scene(&format!(
+                "{sphere}[roughness]\nkind = \"random\"\nh = 0.001\nhurst = 0.5\n{q1}seed = 3\n"
+            ))
+        };
+        let rough = random("q1 = 78.5\n");
+        let fine = Problem::from_scene(&rough).unwrap();
+        same_body(&fine, &coarse_problem(&rough, &fine).unwrap());
+        let above = random("q1 = 80.0\n");
+        let err = coarse_problem(&above, &Problem::from_scene(&above).unwrap())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("roughness.q1 = 80 is above π/(2Δx) = 78.53"),
+            "{err}"
+        );
+
+        // The same roughness as a text map, on the same sphere.
+        let dir = std::env::temp_dir().join(format!("tack-richardson-map-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let smooth = Problem::from_scene(&scene(&sphere)).unwrap();
+        let rough_only = fine.surface.heights() - smooth.surface.heights();
+        let write_map = |name: &str, heights: &ndarray::Array2<f64>| {
+            let mut text = String::from("# dx = 0.02\n");
+            for row in heights.rows() {
+                let cells: Vec<String> = row.iter().map(|h| format!("{h:e}")).collect();
+                text.push_str(&cells.join(","));
+                text.push('\n');
+            }
+            std::fs::write(dir.join(name), text).unwrap();
+        };
+        write_map("band.txt", &rough_only);
+        let mapped = |name: &str| {
+            Scene::parse(
+                &format!("{sphere}[roughness]\nkind = \"file\"\npath = \"{name}\"\n"),
+                &dir,
+                &[],
+            )
+            .unwrap()
+        };
+        let map_scene = mapped("band.txt");
+        let fine = Problem::from_scene(&map_scene).unwrap();
+        same_body(&fine, &coarse_problem(&map_scene, &fine).unwrap());
+        let outcome = run(
+            &map_scene,
+            &RunOptions {
+                command_line: None,
+                richardson: true,
+                threads: None,
+            },
+            &mut (),
+        )
+        .unwrap();
+        let e = &outcome.result.summary.extra;
+        let (f, c) = (outcome.path.pull_off_force(), e["pull_off_force_coarse"]);
+        assert_eq!(e["pull_off_error_estimate"], (f - c).abs());
+        assert!(f < 0.0 && c < 0.0 && f != c);
+
+        // Content above the coarse Nyquist wave: a wave at the fine grid's Nyquist.
+        let mut spiky = rough_only.clone();
+        for ((i, _), h) in spiky.indexed_iter_mut() {
+            *h += if i % 2 == 0 { 1e-4 } else { -1e-4 };
+        }
+        write_map("spiky.txt", &spiky);
+        let spiky_scene = mapped("spiky.txt");
+        let err = coarse_problem(&spiky_scene, &Problem::from_scene(&spiky_scene).unwrap())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("roughness.path = `spiky.txt`")
+                && err.contains("not band-limited")
+                && err.contains("π/(2Δx)"),
+            "{err}"
+        );
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
     fn richardson_refuses_grid_dependent_geometry() {
         let rough = scene(&format!(
             "{SPHERE}[roughness]\nkind = \"random\"\nh = 0.001\nhurst = 0.5\n"
         ));
         let p = Problem::from_scene(&rough).unwrap();
-        let err = coarsened(&rough, &p).unwrap_err().to_string();
+        let err = coarse_problem(&rough, &p).unwrap_err().to_string();
         assert!(
-            err.contains("--richardson") && err.contains("random"),
+            err.contains("--richardson") && err.contains("random") && err.contains("roughness.q1"),
             "{err}"
         );
         let periodic = scene(&SPHERE.replace("dx = 0.02", "dx = 0.02\nboundary = \"periodic\""));
         let p = Problem::from_scene(&periodic).unwrap();
-        let err = coarsened(&periodic, &p).unwrap_err().to_string();
+        let err = coarse_problem(&periodic, &p).unwrap_err().to_string();
         assert!(err.contains("even"), "{err}");
     }
 
