@@ -1,6 +1,7 @@
 //! `cargo xtask`: project automation: reproduce the paper's datasets and run benchmarks.
 
 mod bench;
+mod convergence;
 mod engine;
 mod figures;
 mod plot;
@@ -32,7 +33,12 @@ commands:
                           512): plain, cropped, sub-grid CG, both
   bench [--full]          every speed table (operator, CG iteration, JKR path, rough sphere
                           with/without crop and sub-grid CG, 15-realization sweep point on 1
-                          and 2 threads); writes results/bench.json";
+                          and 2 threads); writes results/bench.json
+  convergence [N...]      pull-off convergence on smooth, wavy (α = 0.5, 1) and band-limited
+                          rough spheres (H = 0.3, 0.7, three seeds) at n = 64 128 256 512 (or
+                          the N given): Richardson, observed order, error estimate against the
+                          distance to the finest Richardson value, time per level; writes
+                          results/convergence.json";
 
 fn main() -> Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -46,6 +52,7 @@ fn main() -> Result<()> {
         Some("bench-contact") => pool()?.install(|| bench::contact(&args[1..]).map(|_| ())),
         Some("bench-rough") => pool()?.install(|| bench::rough(&args[1..])),
         Some("bench") => pool()?.install(|| bench::all(&args[1..])),
+        Some("convergence") => pool()?.install(|| convergence::run(&args[1..])),
         Some("-h" | "--help") | None => {
             println!("{USAGE}");
             Ok(())

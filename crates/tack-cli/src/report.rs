@@ -117,7 +117,8 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
                 String::new()
             };
             lines.push(format!(
-                "            error estimate of F(Δx) = {} = |F(Δx) − F(2Δx)|{relative}",
+                "            error estimate of F(Δx) = {}{relative}: the larger of |F(Δx) − F(2Δx)| \
+                 and, for spheres, 1.4·(Δx/a_c)·|F|",
                 num(err)
             ));
         }

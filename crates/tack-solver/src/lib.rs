@@ -100,7 +100,9 @@ pub use adhesive::{
 pub use clusters::count_clusters;
 pub use contact::{ContactMethod, ContactSolver};
 pub use crop::{adhesive_reach, contact_window, touches_edge};
-pub use extrapolate::{pull_off_error_estimate, richardson_first_order};
+pub use extrapolate::{
+    CRITERION_ERROR_COEFFICIENT, pull_off_error_estimate, richardson_first_order,
+};
 pub use options::{SolverError, SolverOptions};
 pub use path::{
     ApproachPath, Observer, PathResult, Phase, SnapshotRequest, StepFields, pull_off_step,

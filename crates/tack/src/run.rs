@@ -141,9 +141,17 @@ pub fn run(
         let extra = &mut result.summary.extra;
         extra.insert("pull_off_force_coarse".into(), coarse_f);
         extra.insert("pull_off_force_richardson".into(), extrapolated);
+        // The sphere's JKR pull-off radius sets the criterion's error floor.
+        let dx_over_a_c = match scene.file.geometry {
+            crate::scene::Geometry::Sphere { radius } if problem.gamma > 0.0 => Some(
+                problem.grid.dx()
+                    / tack_analytics::jkr_pull_off_radius(problem.e_star, problem.gamma, radius),
+            ),
+            _ => None,
+        };
         extra.insert(
             "pull_off_error_estimate".into(),
-            tack_solver::pull_off_error_estimate(fine_f, coarse_f),
+            tack_solver::pull_off_error_estimate(fine_f, coarse_f, dx_over_a_c),
         );
         if let Some(f_jkr) = problem.references.f_jkr {
             extra.insert("pull_off_ratio_richardson".into(), extrapolated / f_jkr);
@@ -846,7 +854,10 @@ unload_step = 0.002
         .unwrap();
         let e = &outcome.result.summary.extra;
         let (f, c) = (outcome.path.pull_off_force(), e["pull_off_force_coarse"]);
-        assert_eq!(e["pull_off_error_estimate"], (f - c).abs());
+        // The larger of the change between the levels and the criterion's floor 1.4·Δx/a_c.
+        let a_c = tack_analytics::jkr_pull_off_radius(1.0, 0.05, 1.0);
+        let floor = 1.4 * (0.02 / a_c) * f.abs();
+        assert_eq!(e["pull_off_error_estimate"], (f - c).abs().max(floor));
         assert!(f < 0.0 && c < 0.0 && f != c);
 
         // Content above the coarse Nyquist wave: a wave at the fine grid's Nyquist.
