@@ -21,7 +21,7 @@ pub struct RunOptions {
     /// Command line to record in the provenance; default: this process's.
     pub command_line: Option<String>,
     /// Also run the scene on a grid of twice the element size and record the Richardson
-    /// extrapolation of the pull-off force (see [`coarsened`]).
+    /// extrapolation of the pull-off force (see [`coarse_problem`]).
     pub richardson: bool,
     /// Threads one solve uses, 1 to [`MAX_THREADS`]: its FFTs are split into lanes across
     /// them, and the result is bit-identical for any count. `None`: the current rayon pool
