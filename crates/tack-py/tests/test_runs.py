@@ -208,6 +208,18 @@ def test_richardson(small_sphere):
     )
 
 
+def test_richardson_on_band_limited_roughness(repo):
+    scene = repo / "data/examples/sphere_random_roughness.toml"
+    # The default band follows the grid (q1 = pi/dx): one surface per grid is impossible.
+    with pytest.raises(ValueError, match="roughness.q1"):
+        tack.run(scene, richardson=True)
+    # dx = 0.25: the coarse grid's Nyquist wave is pi/(2 dx) = 2 pi.
+    result = tack.run(scene, overrides={"roughness.q1": 6.28}, richardson=True)
+    extra = result.summary
+    change = abs(result.pull_off_force - extra["pull_off_force_coarse"])
+    assert extra["pull_off_error_estimate"] >= change > 0
+
+
 def test_a_stopped_run_says_so(repo):
     result = tack.run(
         repo / "data/examples/smooth_jkr_sphere.toml",

@@ -165,7 +165,9 @@ def run(
             ``converged``) at most every 0.1 s and after the last step. An exception it raises
             stops the run and propagates.
         richardson: also run the scene at twice the element size and record the Richardson
-            extrapolation ``2F(dx) - F(2dx)`` in the summary (``pull_off_force_richardson``).
+            extrapolation ``2F(dx) - F(2dx)`` in the summary (``pull_off_force_richardson``)
+            with the error estimate of the fine force (``pull_off_error_estimate``). Random
+            roughness needs an explicit ``roughness.q1 <= pi/(2 dx)``.
 
     Raises:
         SceneError: the scene is unreadable or invalid (the message names the field).
