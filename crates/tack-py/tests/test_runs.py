@@ -38,6 +38,21 @@ def test_contact_over_several_approaches_follows_hertz():
     np.testing.assert_allclose(forces, expected, rtol=0.03)
 
 
+def test_contact_gives_the_same_bits_on_any_thread_count():
+    # 128² periodic: large enough for the FFTs to run in lanes on 2 threads.
+    dx = 1.0 / 128
+    heights = tack.surface.random((128, 128), dx=dx, rms=1e-3, hurst=0.8, seed=4)
+    runs = [
+        tack.contact(heights, dx=dx, e_star=1.0, approach=-2e-3, periodic=True, threads=t)
+        for t in (1, 2)
+    ]
+    assert runs[0].converged and 0 < runs[0].area < 1
+    assert np.array_equal(runs[0].pressure, runs[1].pressure)
+    assert runs[0].force == runs[1].force
+    with pytest.raises(ValueError, match="threads = 0"):
+        tack.contact(heights, dx=dx, e_star=1.0, approach=1e-3, periodic=True, threads=0)
+
+
 def test_the_jkr_example_ratio(repo):
     result = tack.run(repo / "data/examples/smooth_jkr_sphere.toml")
     assert round(result.pull_off_ratio, 4) == 1.1343

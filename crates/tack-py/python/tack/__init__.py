@@ -311,6 +311,7 @@ def contact(
     periodic: bool = ...,
     tolerance: Optional[float] = ...,
     max_iterations: Optional[int] = ...,
+    threads: Optional[int] = ...,
 ) -> ContactResult: ...
 @overload
 def contact(
@@ -322,6 +323,7 @@ def contact(
     periodic: bool = ...,
     tolerance: Optional[float] = ...,
     max_iterations: Optional[int] = ...,
+    threads: Optional[int] = ...,
 ) -> "list[ContactResult]": ...
 def contact(
     heights: Any,
@@ -332,6 +334,7 @@ def contact(
     periodic: bool = False,
     tolerance: Optional[float] = None,
     max_iterations: Optional[int] = None,
+    threads: Optional[int] = None,
 ) -> Union[ContactResult, "list[ContactResult]"]:
     """Frictionless non-adhesive contact of a height array pressed by ``approach``.
 
@@ -345,6 +348,8 @@ def contact(
         periodic: the array is one period of a periodic body (the approach is then measured
             from the deformed mean plane).
         tolerance, max_iterations: the conjugate-gradient stopping rule (defaults 1e-10, 5000).
+        threads: threads of the solve (default: every core); the result is the same bits on
+            any count.
 
     Returns:
         A :class:`ContactResult` (``pressure`` and ``gap`` arrays of the heights' shape,
@@ -365,5 +370,6 @@ def contact(
         periodic=bool(periodic),
         tolerance=None if tolerance is None else float(tolerance),
         max_iterations=None if max_iterations is None else int(max_iterations),
+        threads=_threads(threads),
     )
     return states[0] if scalar else states

@@ -120,6 +120,7 @@ def contact(
     periodic: bool = ...,
     tolerance: Optional[float] = ...,
     max_iterations: Optional[int] = ...,
+    threads: Optional[int] = ...,
 ) -> List[ContactResult]: ...
 def rough(
     nx: int,
