@@ -18,8 +18,8 @@ use tack::heights::{LOAD_DEPTH, PullOffSpec, pull_off};
 const GAMMA: f64 = 1.44868e-4;
 /// Wavelength of the wavy spheres (0.78 a_c; 4Δx at n = 64).
 const LAMBDA: f64 = 0.0625;
-/// Band of the rough spheres: q0 = 2π/L, q1 = 32π (π/(2Δx) at n = 128, so every pair from
-/// (128, 64) on samples one surface).
+/// Band of the rough spheres: q0 = 2π/L, q1 = 32π (π/(2Δx) at n = 64, so every pair from
+/// (64, 32) on samples one surface).
 const Q1: f64 = 32.0 * PI;
 /// Adhesion parameter α* (Eq. 11) of the rough spheres.
 const ALPHA_STAR: f64 = 0.4;
@@ -113,7 +113,7 @@ fn order(f1: f64, f2: f64, f3: f64) -> f64 {
     ((f1 - f2).abs() / (f2 - f3).abs()).log2()
 }
 
-/// `cargo xtask convergence [N...]`: the table for levels N (default 64 128 256 512).
+/// `cargo xtask convergence [N...]`: the table for levels N (default 64 128 256 512 1024).
 pub fn run(args: &[String]) -> Result<()> {
     let mut levels: Vec<usize> = args
         .iter()
@@ -121,7 +121,7 @@ pub fn run(args: &[String]) -> Result<()> {
         .collect::<Result<_, _>>()
         .map_err(|e| anyhow::anyhow!("levels must be grid sizes: {e}"))?;
     if levels.is_empty() {
-        levels = vec![64, 128, 256, 512];
+        levels = vec![64, 128, 256, 512, 1024];
     }
     levels.sort_unstable();
     ensure!(levels.len() >= 2, "give at least two levels");
@@ -138,43 +138,57 @@ pub fn run(args: &[String]) -> Result<()> {
     let a_c = tack::analytics::jkr_pull_off_radius(1.0, GAMMA, 1.0);
     println!(
         "pull-off |F/F_JKR| against n (L = R, a_c/Δx = {a_c:.4} n), Richardson 2F(n) − F(n/2), \
-         observed order from three levels, error estimate |F(n) − F(n/2)| against the distance \
-         to the finest Richardson value"
+         observed order from three levels; the first-order estimate |F(n) − F(n/2)| and tack's \
+         estimate max(|F(n) − F(n/2)|, 1.4·(Δx/a_c)·F) against the distance to the finest level"
     );
     let mut json = Vec::new();
+    // Over the levels that have a coarser one and are not the finest: (covered by the
+    // first-order estimate, covered by tack's, Richardson closer to the finest, cases).
+    let mut tally = (0, 0, 0, 0);
     for body in bodies {
         let rows = study(body, &levels)?;
-        let best = 2.0 * rows[rows.len() - 1].ratio - rows[rows.len() - 2].ratio;
+        let finest = rows[rows.len() - 1].ratio;
         println!("\n{}", body.label());
         println!(
-            "   {:>5} {:>7} {:>9} {:>11} {:>7} {:>10} {:>10} {:>8} {:>6}",
+            "   {:>5} {:>7} {:>9} {:>11} {:>7} {:>9} {:>9} {:>10} {:>8} {:>6}",
             "n",
             "a_c/Δx",
             "|F/F_JKR|",
             "Richardson",
             "order",
+            "|ΔF|",
             "estimate",
-            "distance",
+            "|F − F_N|",
             "time [s]",
             "steps"
         );
         for (k, r) in rows.iter().enumerate() {
             let coarse = (k > 0).then(|| rows[k - 1].ratio);
             let richardson = coarse.map_or(f64::NAN, |c| 2.0 * r.ratio - c);
-            let estimate = coarse.map_or(f64::NAN, |c| (r.ratio - c).abs());
+            let change = coarse.map_or(f64::NAN, |c| (r.ratio - c).abs());
+            let estimate = coarse.map_or(f64::NAN, |c| {
+                tack::solver::pull_off_error_estimate(r.ratio, c, Some(1.0 / (a_c * r.n as f64)))
+            });
             let p = if k > 1 {
                 order(rows[k - 2].ratio, rows[k - 1].ratio, r.ratio)
             } else {
                 f64::NAN
             };
-            let distance = (r.ratio - best).abs();
+            let distance = (r.ratio - finest).abs();
+            if k > 0 && k + 1 < rows.len() {
+                tally.0 += usize::from(distance <= change);
+                tally.1 += usize::from(distance <= estimate);
+                tally.2 += usize::from((richardson - finest).abs() < distance);
+                tally.3 += 1;
+            }
             println!(
-                "   {:>5} {:>7.1} {:>9.4} {:>11.4} {:>7.2} {:>10.4} {:>10.4} {:>8.2} {:>6}",
+                "   {:>5} {:>7.1} {:>9.4} {:>11.4} {:>7.2} {:>9.4} {:>9.4} {:>10.4} {:>8.2} {:>6}",
                 r.n,
                 a_c * r.n as f64,
                 r.ratio,
                 richardson,
                 p,
+                change,
                 estimate,
                 distance,
                 r.seconds,
@@ -189,12 +203,14 @@ pub fn run(args: &[String]) -> Result<()> {
             };
             json.push(format!(
                 "  {{\"body\": \"{}\", \"n\": {}, \"ratio\": {}, \"richardson\": {}, \"order\": {}, \
-                 \"estimate\": {}, \"distance_to_best\": {}, \"seconds\": {}, \"steps\": {}}}",
+                 \"change\": {}, \"estimate\": {}, \"distance_to_finest\": {}, \"seconds\": {}, \
+                 \"steps\": {}}}",
                 body.label(),
                 r.n,
                 num(r.ratio),
                 num(richardson),
                 num(p),
+                num(change),
                 num(estimate),
                 num(distance),
                 num(r.seconds),
@@ -202,6 +218,11 @@ pub fn run(args: &[String]) -> Result<()> {
             ));
         }
     }
+    let (first, ours, closer, cases) = tally;
+    println!(
+        "\nagainst the finest level, over {cases} levels between the coarsest and the finest: \
+         |ΔF| covered {first}, tack's estimate {ours}; Richardson was closer than F in {closer}"
+    );
     std::fs::create_dir_all("results")?;
     std::fs::write(
         "results/convergence.json.tmp",

@@ -118,8 +118,9 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
             };
             lines.push(format!(
                 "            error estimate of F(Δx) = {}{relative}: the larger of |F(Δx) − F(2Δx)| \
-                 and, for spheres, 1.4·(Δx/a_c)·|F|",
-                num(err)
+                 and, for spheres, {}·(Δx/a_c)·|F|",
+                num(err),
+                tack::solver::CRITERION_ERROR_COEFFICIENT
             ));
         }
     }

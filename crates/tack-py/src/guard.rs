@@ -7,8 +7,9 @@
 //! [`CHECK_INTERVAL`] the calling thread re-attaches and runs `check_signals` (so SIGINT raises
 //! `KeyboardInterrupt` in Python's handler); an exception sets a flag that the [`PyObserver`]
 //! turns into `Observer::cancelled`. The observer also calls the progress callback at most
-//! every [`CHECK_INTERVAL`] (after a step); an exception from it stops the path the same way,
-//! and [`detached`] raises what stopped it.
+//! every [`CHECK_INTERVAL`] (after a step), from the worker thread (holding the GIL, as any
+//! Python thread does); an exception from it stops the path the same way, and [`detached`]
+//! raises what stopped it.
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::Arc;
@@ -120,17 +121,18 @@ where
     let mut observer = PyObserver::new(progress, Arc::clone(&interrupted));
     let mut signal = None;
     let outcome = py.detach(|| {
-        let watcher = std::thread::current();
+        let (done, finished) = std::sync::mpsc::channel::<()>();
         std::thread::scope(|scope| {
             let worker = scope.spawn(|| {
                 let outcome = catch_unwind(AssertUnwindSafe(|| work(&mut observer)));
-                watcher.unpark();
+                // The watcher may have stopped listening already; nothing to report then.
+                let _ = done.send(());
                 outcome
             });
-            while !worker.is_finished() {
-                std::thread::park_timeout(CHECK_INTERVAL);
+            while let Err(std::sync::mpsc::RecvTimeoutError::Timeout) =
+                finished.recv_timeout(CHECK_INTERVAL)
+            {
                 if signal.is_none()
-                    && !worker.is_finished()
                     && let Err(e) = Python::attach(|py| py.check_signals())
                 {
                     signal = Some(e);
@@ -141,12 +143,15 @@ where
             worker.join().unwrap_or_else(Err)
         })
     });
+    // `check_signals` consumed the signal: raise it even when the run ended before it noticed.
+    if let Some(e) = signal {
+        return Err(observer.error.take().unwrap_or(e));
+    }
     match outcome {
         Err(panic) => Err(panic_error(panic.as_ref())),
         Ok(Err(e)) if e.is_cancelled() => Err(observer
             .error
             .take()
-            .or(signal)
             .unwrap_or_else(|| PyKeyboardInterrupt::new_err(e.to_string()))),
         Ok(Err(e)) => Err(to_py(&e)),
         Ok(Ok(value)) => {

@@ -23,7 +23,7 @@ pub const CRITERION_ERROR_COEFFICIENT: f64 = 1.4;
 ///
 /// `|fine − coarse|` alone is the error of `fine` when the error is first order in Δx, as on
 /// the smooth sphere. Rough and wavy fronts do not converge that cleanly: their pull-off
-/// changes by fits and starts between levels (observed orders from −3 to +4), so two levels
+/// changes by fits and starts between levels (observed orders from −3.8 to +5.8), so two levels
 /// may agree by accident. Measured on 9 bodies at n = 128, 256, 512 against n = 1024
 /// (`cargo xtask convergence`, README): `|fine − coarse|` covered the actual error in 14 of 27
 /// cases (worst: 28× too small), this estimate in 26 (the miss: a wavy sphere whose pull-off

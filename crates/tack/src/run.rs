@@ -560,12 +560,19 @@ pub fn coarse_problem(scene: &Scene, problem: &Problem) -> Result<Problem, Scene
                 tack_geometry::coarsen_band_limited(&fine, tack_geometry::BAND_LIMIT_TOLERANCE)
                     .map_err(|e| refuse(format!("roughness.path = `{}`: {e}", path.display())))?;
             file.roughness = None;
-            coarse_map = Some(map);
+            // The fine map's range, so both runs crop by the same rule.
+            let (lo, hi) = fine
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &h| {
+                    (lo.min(h), hi.max(h))
+                });
+            coarse_map = Some((map, (hi - lo).max(0.0)));
         }
         _ => {}
     }
     let periodic = grid.boundary() == tack_geometry::Boundary::Periodic;
-    if periodic && (odd(nx) || odd(ny)) {
+    // A periodic strip may be one element wide along y only (as before); nx = 1 is refused.
+    if periodic && (nx % 2 == 1 || odd(ny)) {
         return Err(refuse(
             "on a periodic grid needs even grid sides (the coarse grid keeps the period)".into(),
         ));
@@ -583,14 +590,7 @@ pub fn coarse_problem(scene: &Scene, problem: &Problem) -> Result<Problem, Scene
         origin: scene.origin.clone(),
     };
     match &coarse_map {
-        Some(map) => {
-            let (lo, hi) = map
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &h| {
-                    (lo.min(h), hi.max(h))
-                });
-            Problem::build(&coarse, Some((map, (hi - lo).max(0.0))))
-        }
+        Some((map, range)) => Problem::build(&coarse, Some((map, *range))),
         None => Problem::from_scene(&coarse),
     }
 }

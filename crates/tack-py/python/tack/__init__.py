@@ -162,8 +162,9 @@ def run(
             split into lanes across them; the result is bit-identical for any count.
         progress: ``True`` draws a progress line on ``sys.stderr``; a callable is called with a
             dict (``step``, ``phase``, ``approach``, ``force``, ``area``, ``n_bonded``,
-            ``converged``) at most every 0.1 s and after the last step. An exception it raises
-            stops the run and propagates.
+            ``converged``) at most every 0.1 s and after the last step, from a worker thread
+            during the run (the calling thread watches for Ctrl-C meanwhile). An exception it
+            raises stops the run and propagates.
         richardson: also run the scene at twice the element size and record the Richardson
             extrapolation ``2F(dx) - F(2dx)`` in the summary (``pull_off_force_richardson``)
             with the error estimate of the fine force (``pull_off_error_estimate``). Random
