@@ -165,26 +165,16 @@ impl Fft2 {
         };
         let real = &mut self.real.as_slice_mut().expect("standard layout")[..nx * my];
         let rows = &mut self.rows[..nx * mh];
-        if lanes == 1 {
-            rows_fft(real, rows, &mut self.scratch[0].0);
-        } else {
-            let per = nx.div_ceil(lanes).max(1);
-            real.par_chunks_mut(per * my)
-                .zip(rows.par_chunks_mut(per * mh))
-                .zip(self.scratch.par_iter_mut())
-                .for_each(|((real, rows), (scratch, _))| rows_fft(real, rows, scratch));
-        }
+        in_row_bands(real, rows, (my, mh), &mut self.scratch, lanes, rows_fft);
         transpose(&self.rows, &mut self.cols, nx, mh, mx, lanes);
         let fwd = &self.fwd;
-        if lanes == 1 {
-            fwd.process_with_scratch(&mut self.cols, &mut self.scratch[0].1);
-        } else {
-            let per = mh.div_ceil(lanes);
-            self.cols
-                .par_chunks_mut(per * mx)
-                .zip(self.scratch.par_iter_mut())
-                .for_each(|(cols, (_, scratch))| fwd.process_with_scratch(cols, scratch));
-        }
+        in_column_bands(
+            &mut self.cols,
+            mx,
+            &mut self.scratch,
+            lanes,
+            |cols, scratch| fwd.process_with_scratch(cols, scratch),
+        );
     }
 
     /// Inverse of `self.cols` into rows `..nx` of `self.real`.
@@ -192,15 +182,13 @@ impl Fft2 {
         let (mx, mh, my) = (self.mx, self.mh, self.my);
         let lanes = self.lanes();
         let inv = &self.inv;
-        if lanes == 1 {
-            inv.process_with_scratch(&mut self.cols, &mut self.scratch[0].1);
-        } else {
-            let per = mh.div_ceil(lanes);
-            self.cols
-                .par_chunks_mut(per * mx)
-                .zip(self.scratch.par_iter_mut())
-                .for_each(|(cols, (_, scratch))| inv.process_with_scratch(cols, scratch));
-        }
+        in_column_bands(
+            &mut self.cols,
+            mx,
+            &mut self.scratch,
+            lanes,
+            |cols, scratch| inv.process_with_scratch(cols, scratch),
+        );
         transpose(&self.cols, &mut self.rows, mh, mx, mh, lanes);
         let c2r = &self.c2r;
         let rows_ifft = |real: &mut [f64], rows: &mut [Complex<f64>], scratch: &mut Scratch| {
@@ -216,15 +204,49 @@ impl Fft2 {
         };
         let real = &mut self.real.as_slice_mut().expect("standard layout")[..nx * my];
         let rows = &mut self.rows[..nx * mh];
-        if lanes == 1 {
-            rows_ifft(real, rows, &mut self.scratch[0].0);
-        } else {
-            let per = nx.div_ceil(lanes).max(1);
-            real.par_chunks_mut(per * my)
-                .zip(rows.par_chunks_mut(per * mh))
-                .zip(self.scratch.par_iter_mut())
-                .for_each(|((real, rows), (scratch, _))| rows_ifft(real, rows, scratch));
-        }
+        in_row_bands(real, rows, (my, mh), &mut self.scratch, lanes, rows_ifft);
+    }
+}
+
+/// Runs `f` on the real rows (length `my`) and their half spectra (length `mh`), `(my, mh)`
+/// = `row_lengths`, split into `lanes` contiguous bands of whole rows, each with its lane's
+/// row scratch; one lane runs on the calling thread.
+fn in_row_bands(
+    real: &mut [f64],
+    rows: &mut [Complex<f64>],
+    (my, mh): (usize, usize),
+    scratch: &mut [(Scratch, Scratch)],
+    lanes: usize,
+    f: impl Fn(&mut [f64], &mut [Complex<f64>], &mut Scratch) + Sync,
+) {
+    if lanes == 1 {
+        f(real, rows, &mut scratch[0].0);
+    } else {
+        let per = (real.len() / my).div_ceil(lanes).max(1);
+        real.par_chunks_mut(per * my)
+            .zip(rows.par_chunks_mut(per * mh))
+            .zip(scratch.par_iter_mut())
+            .for_each(|((real, rows), (scratch, _))| f(real, rows, scratch));
+    }
+}
+
+/// Runs `f` on the columns (each `mx` entries, stored one after another in `cols`) split into
+/// `lanes` contiguous bands of whole columns, each with its lane's column scratch; one lane
+/// runs on the calling thread.
+fn in_column_bands(
+    cols: &mut [Complex<f64>],
+    mx: usize,
+    scratch: &mut [(Scratch, Scratch)],
+    lanes: usize,
+    f: impl Fn(&mut [Complex<f64>], &mut Scratch) + Sync,
+) {
+    if lanes == 1 {
+        f(cols, &mut scratch[0].1);
+    } else {
+        let per = (cols.len() / mx).div_ceil(lanes);
+        cols.par_chunks_mut(per * mx)
+            .zip(scratch.par_iter_mut())
+            .for_each(|(cols, (_, scratch))| f(cols, scratch));
     }
 }
 
