@@ -1,7 +1,7 @@
-//! Running the scenes of the figures that are not sweeps (Figures 1, 2 and 4): one helper that
-//! builds a [`Problem`], solves its load–unload path with `tack::run::solve` (on the crop window,
-//! coarse retraction included) keeping only the fields a figure asks for (on the full grid),
-//! and runs batches in parallel (rayon) with a progress line per finished run. Figures 5–8 run
+//! Running the scenes of the figures that are not sweeps (Figures 1, 2 and 4) through the
+//! library's run engine (`tack::run`), with a [`Keeper`] observer for the fields a figure asks
+//! for beyond the pull-off and last contact (on the full grid), and batches in parallel (rayon)
+//! with a progress line per finished run. Figures 5–8 run
 //! through `tack::sweep` instead (`crate::sweeps`).
 //!
 //! Determinism: every run is sequential; a batch is collected in input order, so the results
@@ -11,11 +11,11 @@ use std::collections::BTreeMap;
 use std::path::Path;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::time::Instant;
 
 use anyhow::{Context, Result};
 use ndarray::Array2;
 use rayon::prelude::*;
+use tack::scene::Snapshots;
 use tack::{Problem, Scene};
 use tack_solver::{Observer, PathResult, Phase, StepFields, StepRecord, count_clusters};
 
@@ -55,6 +55,8 @@ pub struct RunOutput {
     pub problem: Problem,
     /// Steps and kept fields (snapshots on the full grid).
     pub path: PathResult,
+    /// The result the run engine assembled (with the kept fields).
+    pub result: tack_io::RunResult,
     /// A bonded element reached the border of a cropped window (the crop may have cut contact).
     pub touched_edge: bool,
     /// Wall time of the solve in seconds.
@@ -90,77 +92,76 @@ impl RunOutput {
     }
 }
 
-/// Builds the problem (validation, surface, crop window) and solves its path.
+/// Runs the scene through the library's run engine (`tack::run`: validation, the solve on the
+/// crop window, the result), keeping the fields of `spec.keep`: the pull-off and last-contact
+/// fields by the scene's own `output.snapshots = "pull_off"`, the break-up and periodic unload
+/// fields by a [`Keeper`] observer.
 pub fn run(spec: &RunSpec) -> Result<RunOutput> {
-    let started = Instant::now();
-    let problem = Problem::from_scene(&spec.scene).with_context(|| format!("run {}", spec.name))?;
-    let path = walk(&problem, spec.keep)?;
+    let mut scene = spec.scene.clone();
+    scene.file.output.snapshots = if spec.keep.pull_off || spec.keep.last_contact {
+        Snapshots::PullOff
+    } else {
+        Snapshots::None
+    };
+    let periodic = scene.file.grid.boundary == tack::scene::BoundaryKind::Periodic;
+    let mut keeper = Keeper::new(spec.keep, periodic);
+    let options = tack::RunOptions {
+        command_line: Some(tack::provenance::command_line()),
+        ..tack::RunOptions::default()
+    };
+    let mut outcome =
+        tack::run(&scene, &options, &mut keeper).with_context(|| format!("run {}", spec.name))?;
+    let mut kept: BTreeMap<usize, StepFields> = keeper.into_snapshots();
+    for s in std::mem::take(&mut outcome.path.snapshots) {
+        kept.insert(s.step, s);
+    }
+    outcome.replace_snapshots(kept.into_values().collect());
     Ok(RunOutput {
         name: spec.name.clone(),
         scene: spec.scene.clone(),
-        touched_edge: path.records.iter().any(|r| r.edge_contact),
-        problem,
-        path,
-        seconds: started.elapsed().as_secs_f64(),
+        touched_edge: outcome.path.records.iter().any(|r| r.edge_contact),
+        seconds: outcome.wall_time.as_secs_f64(),
+        problem: outcome.problem,
+        path: outcome.path,
+        result: outcome.result,
     })
 }
 
-/// The load–unload path of `problem` (`tack::run::solve`: on the crop window, again on the
-/// full grid should contact reach its edge), keeping the fields `keep` asks for, on the full
-/// grid.
-fn walk(problem: &Problem, keep: Keep) -> Result<PathResult> {
-    let periodic = problem.grid.boundary() == tack_geometry::Boundary::Periodic;
-    let mut keeper = Keeper::new(keep, periodic, problem.path.max_approach);
-    let mut out = tack::run::solve(problem, &mut keeper)?;
-    out.snapshots = keeper.into_snapshots();
-    Ok(out)
-}
-
-/// Selects the fields of [`Keep`] as the path runs.
+/// Keeps the fields of [`Keep::break_up`] and [`Keep::unload_every`] as the path runs (the
+/// pull-off and last contact are the run's own snapshots).
 struct Keeper {
     keep: Keep,
     periodic: bool,
     kept: BTreeMap<usize, StepFields>,
-    /// The least force so far and its fields.
-    best: Option<(f64, StepFields)>,
     /// The previous unload step (break-up detection).
     prev: Option<StepFields>,
-    /// The latest unload step with a bonded element.
-    last: Option<StepFields>,
-    /// Approach at or below which the next `unload_every` field is kept.
-    next_every: f64,
-    /// The path's deepest approach, where `next_every` starts.
-    next_every_start: f64,
+    /// Approach at or below which the next `unload_every` field is kept; `None` before the
+    /// first unload step.
+    next_every: Option<f64>,
     broken: bool,
 }
 
 impl Keeper {
-    fn new(keep: Keep, periodic: bool, max_approach: f64) -> Self {
+    fn new(keep: Keep, periodic: bool) -> Self {
         Self {
             keep,
             periodic,
             kept: BTreeMap::new(),
-            best: None,
             prev: None,
-            last: None,
-            next_every: max_approach,
-            next_every_start: max_approach,
+            next_every: None,
             broken: false,
         }
     }
 
-    /// The kept fields in step order.
-    fn into_snapshots(mut self) -> Vec<StepFields> {
-        for s in [self.best.map(|b| b.1), self.last].into_iter().flatten() {
-            self.kept.insert(s.step, s);
-        }
-        self.kept.into_values().collect()
+    /// The kept fields by step.
+    fn into_snapshots(self) -> BTreeMap<usize, StepFields> {
+        self.kept
     }
 }
 
 impl Observer for Keeper {
     fn on_restart(&mut self) {
-        *self = Self::new(self.keep, self.periodic, self.next_every_start);
+        *self = Self::new(self.keep, self.periodic);
     }
 
     fn on_fields(
@@ -171,24 +172,20 @@ impl Observer for Keeper {
         pressure: &Array2<f64>,
         bonded: &Array2<bool>,
     ) {
+        if phase != Phase::Unload {
+            return;
+        }
         let snap = || StepFields {
             step,
             pressure: pressure.clone(),
             bonded: bonded.clone(),
         };
         let keep = self.keep;
-        if keep.pull_off && !rec.full_contact && self.best.as_ref().is_none_or(|b| rec.force < b.0)
-        {
-            self.best = Some((rec.force, snap()));
-        }
-        if phase != Phase::Unload {
-            return;
-        }
         if let Some(every) = keep.unload_every
-            && rec.approach <= self.next_every
+            && self.next_every.is_none_or(|next| rec.approach <= next)
         {
             self.kept.insert(step, snap());
-            self.next_every = rec.approach - every;
+            self.next_every = Some(rec.approach - every);
         }
         if keep.break_up
             && !self.broken
@@ -201,9 +198,6 @@ impl Observer for Keeper {
             self.kept.insert(pr.step, pr);
             self.kept.insert(step, snap());
             self.broken = true;
-        }
-        if keep.last_contact && rec.n_bonded > 0 {
-            self.last = Some(snap());
         }
         if keep.break_up {
             self.prev = Some(snap());
@@ -262,13 +256,10 @@ fn describe(r: &RunOutput) -> String {
 /// written (the others served the figure's selection).
 pub fn write_run(dir: &Path, r: &RunOutput, shown: &[usize]) -> Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
-    let prov = tack::provenance::provenance(&r.scene, &r.problem, tack::provenance::command_line());
     let last = r.path.records.iter().rposition(|s| s.n_bonded > 0);
     let keep = |k: usize| k == r.pull_off_step() || Some(k) == last || shown.contains(&k);
-    let mut path = r.path.clone();
-    path.snapshots.retain(|s| keep(s.step));
-    // The kept fields are on the full grid already (`tack::run::solve`).
-    let mut result = tack::run::result_file(&r.problem, &path, prov);
+    let mut result = r.result.clone();
+    result.snapshots.retain(|s| keep(s.step));
     result.summary.extra.insert("wall_time_s".into(), r.seconds);
     let file = dir.join(format!("{}.h5", r.name));
     tack_io::write_result(&file, &result).with_context(|| format!("writing {}", file.display()))

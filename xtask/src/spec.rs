@@ -12,7 +12,7 @@ use anyhow::{Context, Result, bail};
 use serde::Deserialize;
 use serde::de::DeserializeOwned;
 use tack::Scene;
-use tack::scene::SceneFile;
+use tack::scene::SceneSchema;
 
 /// The top level of a spec file.
 #[derive(Debug, Deserialize)]
@@ -105,7 +105,7 @@ impl FigureSpec {
     }
 
     /// The base scene with the mode's overrides.
-    pub fn scene(&self) -> Result<SceneFile> {
+    pub fn scene(&self) -> Result<SceneSchema> {
         match &self.base {
             Some(s) => Ok(s.file.clone()),
             None => bail!("{}: has no [scene]", self.path.display()),
@@ -119,6 +119,6 @@ impl FigureSpec {
 }
 
 /// A scene built in code from a (modified) base scene.
-pub fn scene(file: SceneFile, dir: &Path) -> Result<Scene> {
+pub fn scene(file: SceneSchema, dir: &Path) -> Result<Scene> {
     Ok(Scene::from_file(file, dir)?)
 }

@@ -14,7 +14,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
-use tack::SceneFile;
+use tack::SceneSchema;
 use tack::sweep::{SWEEP_COPY, Sweep, SweepOptions, point_path, run_sweep, verify_point};
 
 /// The sections of a scene in the order docs/scenes.md documents them.
@@ -33,7 +33,7 @@ pub struct PointScene {
     /// What the point is, for a reader of the sweep file.
     pub note: String,
     /// The scene, exactly as the figure built it.
-    pub scene: SceneFile,
+    pub scene: SceneSchema,
 }
 
 /// A figure's sweep: the generated file, where it runs, and its points in order.
@@ -376,7 +376,7 @@ impl tack::sweep::SweepObserver for PrintFailures {
 mod tests {
     use super::*;
 
-    fn scene(gamma: f64, radius: f64, n: usize) -> SceneFile {
+    fn scene(gamma: f64, radius: f64, n: usize) -> SceneSchema {
         let text = format!(
             "version = 1\n[material]\ne_star = 1.0\ngamma = {gamma}\n[geometry]\n\
              shape = \"sphere\"\nradius = {radius}\n[grid]\nn = {n}\ndx = 0.6\n[protocol]\n\

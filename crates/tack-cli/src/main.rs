@@ -10,10 +10,11 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use clap::{Parser, Subcommand};
+use tack::RunOptions;
+use tack::engine;
 use tack::merge::{self, MergeOptions};
 use tack::problem::Problem;
 use tack::provenance;
-use tack::run::{self, RunOptions};
 use tack::scene::Scene;
 use tack::sweep::{self, Shard, Sweep, SweepOptions};
 use tack_cli::plot;
@@ -148,15 +149,16 @@ fn execute(command: Command) -> anyhow::Result<()> {
                 threads,
             };
             let scene = Scene::load(&scene, &set)?;
-            let outcome = run::run_to_file(&scene, &output, &options, &mut Progress::new(quiet))?;
+            let outcome =
+                engine::run_to_file(&scene, &output, &options, &mut Progress::new(quiet))?;
             print!("{}", report::report(&scene, &outcome, Some(&output)));
         }
         Command::Surface { scene, output, set } => {
             let scene = Scene::load(&scene, &set)?;
-            run::check_output_path(&output)?;
+            engine::check_output_path(&output)?;
             let problem = Problem::from_scene(&scene)?;
             let prov = provenance::provenance(&scene, &problem, provenance::command_line());
-            tack_io::write_result(&output, &run::surface_file(&problem, prov))?;
+            tack_io::write_result(&output, &tack::summary::surface_file(&problem, prov))?;
             let g = problem.grid;
             println!(
                 "wrote {}: {} x {} heights, dx = {}, min {}, max {}",
@@ -190,10 +192,15 @@ fn execute(command: Command) -> anyhow::Result<()> {
                         num(c)
                     ))
             );
+            let steps = p.path.step_bound();
+            let bound = if steps < p.path.max_steps {
+                format!("{steps} steps: the path's own count")
+            } else {
+                format!("protocol.max_steps = {steps} steps: retraction ends when contact is lost")
+            };
             println!(
-                "  memory: at most about {} (protocol.max_steps = {} steps)",
-                tack::memory::bytes(tack::memory::of_problem(&p).total()),
-                p.path.max_steps
+                "  memory: at most about {} ({bound})",
+                tack::memory::bytes(p.memory_estimate().total()),
             );
         }
         Command::Sweep {

@@ -106,7 +106,7 @@ impl<'a> Figure<'a> {
 pub fn plot_file(input: &Path, output: &Path) -> anyhow::Result<()> {
     let format = Format::of(output)?;
     // Before reading: an existing FIFO or device under the output name is never replaced.
-    tack::run::check_output_path(output)?;
+    tack::engine::check_output_path(output)?;
     let result = tack_io::read_result(input)?;
     if result.curve.is_empty() {
         bail!(

@@ -50,38 +50,78 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
         }
     ));
     let loads = path.phases.iter().filter(|&&ph| ph == Phase::Load).count();
-    lines.push(format!(
-        "path        {} steps ({} load, {} unload), d from {} to {} and back{}",
-        path.records.len(),
-        loads,
-        path.records.len() - loads,
-        num(p.path.start),
-        num(p.path.max_approach),
-        if path.completed {
-            ""
-        } else {
-            "; STOPPED at protocol.max_steps before detachment"
-        }
-    ));
-    let adhesive = p.gamma > 0.0;
-    match path.pull_off_step() {
-        Some(i) if adhesive => lines.push(format!(
-            "pull-off    F = {} at d = {} (the least force over the steps not in full contact)",
-            num(s.pull_off_force),
-            num(path.records[i].approach)
-        )),
-        Some(_) => {
-            let peak = path
-                .records
-                .iter()
-                .max_by(|a, b| a.force.total_cmp(&b.force));
+    // An indentation has no pull-off: only the force of its one state.
+    let adhesive = p.gamma > 0.0 && !p.path.is_indentation();
+    let periodic = p.grid.boundary() == tack::geometry::Boundary::Periodic;
+    let stopped = if path.completed {
+        ""
+    } else if adhesive {
+        "; STOPPED at protocol.max_steps before detachment"
+    } else {
+        "; STOPPED at protocol.max_steps before contact was lost"
+    };
+    if p.path.is_indentation() {
+        lines.push(format!(
+            "path        indentation: one step to d = {}{stopped}",
+            num(p.path.max_approach)
+        ));
+    } else {
+        lines.push(format!(
+            "path        {} steps ({} load, {} unload), d from {} to {} and back{stopped}",
+            path.records.len(),
+            loads,
+            path.records.len() - loads,
+            num(p.path.start),
+            num(p.path.max_approach),
+        ));
+    }
+    let full = path.records.iter().filter(|r| r.full_contact).count();
+    if full > 0 {
+        lines.push(format!(
+            "contact     FULL CONTACT in {full} of {} steps (periodic grid: every element \
+             touches; the force there is not fixed by the approach)",
+            path.records.len()
+        ));
+    }
+    if p.path.is_indentation() {
+        if let Some(r) = path.records.last() {
             lines.push(format!(
-                "force       no adhesion (gamma = 0), no pull-off; peak load F = {} at d = {}",
-                num(peak.map_or(f64::NAN, |r| r.force)),
-                num(peak.map_or(f64::NAN, |r| r.approach))
+                "force       F = {} at d = {}, contact area {}{}",
+                num(r.force),
+                num(r.approach),
+                num(r.area),
+                if r.full_contact {
+                    " (full contact)"
+                } else {
+                    ""
+                }
             ));
         }
-        None => lines.push("pull-off    none: no step outside full contact".to_owned()),
+    } else {
+        match path.pull_off_step() {
+            Some(i) if adhesive => lines.push(format!(
+                "pull-off    F = {} at d = {}{}",
+                num(s.pull_off_force),
+                num(path.records[i].approach),
+                if periodic {
+                    " (the least force over the steps not in full contact)"
+                } else {
+                    " (the least force over the path)"
+                }
+            )),
+            Some(_) => {
+                let peak = path
+                    .records
+                    .iter()
+                    .max_by(|a, b| a.force.total_cmp(&b.force));
+                lines.push(format!(
+                    "force       no adhesion (gamma = 0), no pull-off; peak load F = {} at d = {}",
+                    num(peak.map_or(f64::NAN, |r| r.force)),
+                    num(peak.map_or(f64::NAN, |r| r.approach))
+                ));
+            }
+            None => lines.push("pull-off    none: no step outside full contact".to_owned()),
+        }
     }
     if adhesive && s.f_jkr.is_finite() && s.f_jkr != 0.0 {
         lines.push(format!(

@@ -580,7 +580,7 @@ fn zipped_sweep_runs_and_merges_every_field_as_a_column() {
             tack::scene::Geometry::Sphere { radius: r }
         );
         assert_eq!(parsed.file.material.gamma, g);
-        assert_eq!(parsed.file.protocol.load_step, column(2)[k]);
+        assert_eq!(parsed.file.protocol.load_step, Some(column(2)[k]));
         let f_jkr = -1.5 * std::f64::consts::PI * g * r;
         assert!(
             pull_off[k] < 0.0 && (pull_off[k] / ratio[k] / f_jkr - 1.0).abs() < 1e-12,

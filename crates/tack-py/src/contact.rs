@@ -96,7 +96,7 @@ pub fn contact(
     max_iterations: Option<usize>,
     threads: Option<usize>,
 ) -> PyResult<Vec<ContactResult>> {
-    let pool = tack::run::thread_pool("threads", threads).map_err(value_error)?;
+    let pool = tack::engine::thread_pool("threads", threads).map_err(value_error)?;
     let heights = heights.as_array().to_owned();
     if let Some(((i, j), h)) = heights.indexed_iter().find(|(_, h)| !h.is_finite()) {
         return Err(value_error(format!(

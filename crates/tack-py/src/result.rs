@@ -207,7 +207,7 @@ impl Result {
     /// must exist.
     fn write(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
         released(py, || {
-            tack::run::check_output_path(&path).map_err(|e| to_py(&e))?;
+            tack::engine::check_output_path(&path).map_err(|e| to_py(&e))?;
             tack::io::write_result(&path, &self.inner).map_err(|e| to_py(&e.into()))
         })
     }

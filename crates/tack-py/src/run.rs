@@ -13,7 +13,7 @@ use crate::guard::detached;
 use crate::result::Result;
 
 /// Largest accepted `threads`.
-pub const MAX_THREADS: usize = tack::run::MAX_THREADS;
+pub const MAX_THREADS: usize = tack::MAX_THREADS;
 
 /// Checks `threads` (1..=[`MAX_THREADS`]) before anything runs: the threads one solve splits
 /// its FFTs across (bit-identical results on any count).

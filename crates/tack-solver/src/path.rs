@@ -96,6 +96,70 @@ impl ApproachPath {
         Ok(path)
     }
 
+    /// One step pressed in to `approach` and no retraction: an indentation (the force, area
+    /// and fields of one state). With adhesion the step bonds what touches, as the first step
+    /// of any path does.
+    ///
+    /// ```
+    /// use tack_solver::ApproachPath;
+    /// let path = ApproachPath::indentation(0.01)?;
+    /// assert!(path.is_indentation());
+    /// assert_eq!(path.step_bound(), 1);
+    /// # Ok::<(), tack_solver::SolverError>(())
+    /// ```
+    pub fn indentation(approach: f64) -> Result<Self, SolverError> {
+        // The steps are never taken (one load step lands on `max_approach`, and retraction
+        // stops before its first step); they only need to be valid.
+        let step = if approach.is_finite() && approach != 0.0 {
+            approach.abs()
+        } else {
+            1.0
+        };
+        let path = Self {
+            start: approach,
+            max_approach: approach,
+            load_step: step,
+            unload_step: step,
+            coarse_unload_step: None,
+            retract_to: Some(approach),
+            max_steps: Self::DEFAULT_MAX_STEPS,
+        };
+        path.validate()?;
+        Ok(path)
+    }
+
+    /// Whether the path stops at its deepest approach (`retract_to = max_approach`: no
+    /// retraction step), as [`ApproachPath::indentation`] does.
+    pub fn is_indentation(&self) -> bool {
+        self.retract_to == Some(self.max_approach)
+    }
+
+    /// The most steps the path can take: exact for the load phase; for the retraction, the
+    /// steps down to `retract_to` when it is set (with a coarse step, as many as fine steps
+    /// would take: an upper bound), else `max_steps` (retraction ends when contact is lost,
+    /// which only the solve tells). Never above `max_steps`. Memory bounds use it.
+    pub fn step_bound(&self) -> usize {
+        let load = if self.max_approach > self.start {
+            ((self.max_approach - self.start) / self.load_step).ceil() + 1.0
+        } else {
+            1.0
+        };
+        let total = match self.retract_to {
+            Some(r) => {
+                let fine = self
+                    .unload_step
+                    .min(self.coarse_unload_step.unwrap_or(self.unload_step));
+                load + ((self.max_approach - r) / fine).floor()
+            }
+            None => return self.max_steps,
+        };
+        if total.is_finite() && total < self.max_steps as f64 {
+            total as usize
+        } else {
+            self.max_steps
+        }
+    }
+
     /// Checks finiteness and ordering; errors name the `protocol.*` field.
     pub fn validate(&self) -> Result<(), SolverError> {
         validate::finite("protocol.start", self.start)?;
@@ -113,11 +177,11 @@ impl ApproachPath {
             });
         }
         if let Some(r) = self.retract_to {
-            validate::below(
+            validate::at_most(
                 "protocol.retract_to",
                 r,
                 self.max_approach,
-                "a finite number < protocol.max_approach",
+                "a finite number ≤ protocol.max_approach (equal: no retraction, an indentation)",
             )?;
         }
         validate::at_least_one("protocol.max_steps", self.max_steps)?;

@@ -67,14 +67,14 @@ pub(crate) fn at_least_one(field: &'static str, n: usize) -> Result<usize, Solve
     }
 }
 
-/// A bound `v` below `limit` (`v < limit`, finite), e.g. `protocol.retract_to`.
-pub(crate) fn below(
+/// A bound `v` at most `limit` (`v ≤ limit`, finite), e.g. `protocol.retract_to`.
+pub(crate) fn at_most(
     field: &'static str,
     v: f64,
     limit: f64,
     allowed: &'static str,
 ) -> Result<f64, SolverError> {
-    if v.is_finite() && v < limit {
+    if v.is_finite() && v <= limit {
         Ok(v)
     } else {
         out_of_range(field, v, allowed)

@@ -29,261 +29,44 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-use std::time::Instant;
-
 use ndarray::Array2;
-use tack_geometry::{Boundary, Grid, Surface};
+use tack_geometry::{Boundary, Grid};
 
+use crate::Error;
+use crate::engine::{RunOptions, RunOutcome};
+pub use crate::problem::HeightBody;
 use crate::problem::{Problem, SPHERE_FIT_MARGIN};
-use crate::run::{RunOptions, RunOutcome};
+pub use crate::pull_off_path::{
+    COARSE_PER_UNLOAD_STEP, COARSE_UNLOAD_STEP, LOAD_DEPTH, Paraboloid, UNLOAD_STEP, fit_paraboloid,
+};
 use crate::scene::{
     BoundaryKind, Geometry, GridSpec, Material, OutputSpec, Protocol, SCENE_VERSION, Scene,
-    SceneError, SceneFile, Snapshots, SolverSpec,
+    SceneError, SceneSchema, Snapshots, SolverSpec,
 };
-use crate::{Error, provenance};
 
-/// Default load depth of [`pull_off`], in units of d_s = (Rγ²/E*²)^(1/3): the path loads in one
-/// step to this many d_s below the top of the roughness (the paper's rough-sphere runs; on a
-/// smooth sphere it bonds a disc of about 1.6 a_c).
-pub const LOAD_DEPTH: f64 = 3.0;
+/// The former name of [`HeightBody`] (its field `heights` made `Heights { heights }` read
+/// twice).
+#[deprecated(since = "0.1.0", note = "renamed `HeightBody`")]
+pub type Heights<'a> = HeightBody<'a>;
 
-/// Default coarse retraction step of [`pull_off`] (while the force is compressive), in d_s.
-pub const COARSE_UNLOAD_STEP: f64 = 0.2;
-
-/// Default retraction step of [`pull_off`] through the tensile part, in d_s (the quick mode of
-/// `cargo xtask reproduce`; the full mode uses 0.01).
-pub const UNLOAD_STEP: f64 = 0.02;
-
-/// Coarse retraction step over the fine one when no radius sets the scale.
-pub const COARSE_PER_UNLOAD_STEP: f64 = 10.0;
-
-/// A rigid body given as heights in memory, for [`problem`] and [`run`].
-#[derive(Debug, Clone, Copy)]
-pub struct Heights<'a> {
-    /// Heights `(nx, ny)`, added to the scene's own body; the shape must be the scene grid's.
-    pub heights: &'a Array2<f64>,
-    /// Height range (max − min) of the body's roughness, its deviation from the smooth
-    /// macroscopic shape, for the crop rule (`tack_solver::contact_window`); `None`: the range
-    /// of the whole array (always safe, but a curved body then leaves little to crop).
-    pub roughness_range: Option<f64>,
-    /// Radius of the sphere the body approximates: the summary then carries the JKR references
-    /// (`f_jkr`, `pull_off_ratio`, `d_jkr`) of that sphere. `None`: no references.
-    pub radius: Option<f64>,
-}
-
-/// The scene's problem with `heights.heights` added to its body: validated as
+/// The scene's problem with `body.heights` added to its body: validated as
 /// [`Problem::from_scene`] validates a scene (the first touch, the path, the crop window are
-/// those of the sum), plus the JKR references of `heights.radius`.
-pub fn problem(scene: &Scene, heights: &Heights<'_>) -> Result<Problem, SceneError> {
-    let range = match heights.roughness_range {
-        Some(r) if r.is_finite() && r >= 0.0 => r,
-        Some(r) => {
-            return Err(SceneError::out_of_range(
-                "roughness_range",
-                r,
-                "a finite number ≥ 0",
-            ));
-        }
-        None => {
-            let (lo, hi) = min_max(heights.heights.iter().copied());
-            (hi - lo).max(0.0)
-        }
-    };
-    let mut problem = Problem::build(scene, Some((heights.heights, range)))?;
-    if let Some(r) = heights.radius {
-        if !(r.is_finite() && r > 0.0) {
-            return Err(SceneError::out_of_range("radius", r, "a finite number > 0"));
-        }
-        if problem.gamma > 0.0 {
-            let (e_star, gamma) = (problem.e_star, problem.gamma);
-            problem.references.f_jkr = Some(tack_analytics::jkr_pull_off_force(gamma, r));
-            problem.references.d_jkr =
-                Some(tack_analytics::jkr_pull_off_approach(e_star, gamma, r));
-        }
-    }
-    Ok(problem)
+/// those of the sum), plus the JKR references of `body.radius`.
+pub fn problem(scene: &Scene, body: &HeightBody<'_>) -> Result<Problem, SceneError> {
+    Problem::build(scene, Some(body))
 }
 
-/// Runs the scene with `heights` added to its body, in memory, as [`crate::run()`] runs a scene
-/// (progress and cancellation through `observer`). [`RunOptions::richardson`] is refused: the
-/// heights are given per element, so the body cannot be coarsened.
+/// Runs the scene with `body.heights` added to its body, in memory, through the run engine
+/// ([`crate::engine::execute`]: the pool of [`RunOptions::threads`], progress and cancellation
+/// through `observer`). [`RunOptions::richardson`] is refused: the heights are given per
+/// element, so the body cannot be coarsened.
 pub fn run(
     scene: &Scene,
-    heights: &Heights<'_>,
+    body: &HeightBody<'_>,
     options: &RunOptions,
     observer: &mut dyn tack_solver::Observer,
 ) -> Result<RunOutcome, Error> {
-    if options.richardson {
-        return Err(SceneError::Inconsistent(
-            "--richardson needs a geometry that does not depend on the grid; heights given as \
-             an array are given per element"
-                .into(),
-        )
-        .into());
-    }
-    let problem = problem(scene, heights)?;
-    let started = Instant::now();
-    let path = crate::run::solve(&problem, observer)?;
-    let wall_time = started.elapsed();
-    let command_line = options
-        .command_line
-        .clone()
-        .unwrap_or_else(provenance::command_line);
-    let prov = provenance::provenance(scene, &problem, command_line);
-    let result = crate::run::result_file(&problem, &path, prov);
-    Ok(RunOutcome {
-        problem,
-        path,
-        wall_time,
-        coarse_wall_time: None,
-        result,
-    })
-}
-
-/// The surface of a height array on `grid`; errors name `heights` (shape, a non-finite entry).
-pub(crate) fn surface(grid: Grid, heights: &Array2<f64>) -> Result<Surface, SceneError> {
-    let (nx, ny) = heights.dim();
-    if (nx, ny) != grid.shape() {
-        return Err(SceneError::Inconsistent(format!(
-            "heights: the array is {nx} × {ny} but the scene's grid is {} × {}; they must agree",
-            grid.nx(),
-            grid.ny()
-        )));
-    }
-    if let Some(((i, j), h)) = heights.indexed_iter().find(|(_, h)| !h.is_finite()) {
-        return Err(SceneError::out_of_range(
-            format!("heights[{i}, {j}]"),
-            h,
-            "a finite number",
-        ));
-    }
-    Ok(Surface::new(grid, heights.clone())?)
-}
-
-/// A least-squares paraboloid `h ≈ apex + ((x − x0)² + (y − y0)²)/(2R)` through a height array
-/// (tilt and offset included through the vertex), and the residual, the body's roughness.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Paraboloid {
-    /// Radius of curvature `R` (negative for a body curved towards the half-space).
-    pub radius: f64,
-    /// Vertex `(x0, y0)` in tack's coordinates.
-    pub vertex: (f64, f64),
-    /// Height of the vertex.
-    pub apex: f64,
-    /// Least residual `h − paraboloid` over the array.
-    pub residual_min: f64,
-    /// Greatest residual `h − paraboloid` over the array: the top of the roughness above the
-    /// smooth shape.
-    pub residual_max: f64,
-}
-
-impl Paraboloid {
-    /// Range (max − min) of the residual: the roughness range of the crop rule.
-    pub fn residual_range(&self) -> f64 {
-        self.residual_max - self.residual_min
-    }
-
-    /// Whether the paraboloid describes the body as a sphere with roughness: `R > 0`, and its
-    /// rise over the largest disc inside the grid, `(min(Lx, Ly)/2)²/(2R)`, is at least half
-    /// the residual range (a flat rough surface fits a paraboloid too, with a rise far below
-    /// its roughness).
-    pub fn is_sphere_like(&self, grid: &Grid) -> bool {
-        let half = 0.5 * grid.lx().min(grid.ly());
-        self.radius.is_finite()
-            && self.radius > 0.0
-            && half * half / (2.0 * self.radius) >= 0.5 * self.residual_range()
-    }
-}
-
-/// Fits a [`Paraboloid`] to `heights` on elements of size `dx` by least squares; with `radius`
-/// given only the vertex and apex are fitted. `None` when the array has fewer than 3 elements
-/// along an axis, or the fit is singular or flat (no curvature).
-pub fn fit_paraboloid(heights: &Array2<f64>, dx: f64, radius: Option<f64>) -> Option<Paraboloid> {
-    let (nx, ny) = heights.dim();
-    if nx < 3 || ny < 3 || !(dx.is_finite() && dx > 0.0) {
-        return None;
-    }
-    // Coordinates scaled to about [−1, 1] keep the normal equations well conditioned.
-    let scale = 0.5 * dx * nx.max(ny) as f64;
-    let uv = |i: usize, j: usize| {
-        (
-            (i as f64 - (nx / 2) as f64) * dx / scale,
-            (j as f64 - (ny / 2) as f64) * dx / scale,
-        )
-    };
-    // h ≈ c0 + c1 u + c2 v + c3 (u² + v²); with a given radius c3 = scale²/(2R) is fixed.
-    let fixed_c3 = match radius {
-        Some(r) if r.is_finite() && r != 0.0 => Some(scale * scale / (2.0 * r)),
-        Some(_) => return None,
-        None => None,
-    };
-    let m = if fixed_c3.is_some() { 3 } else { 4 };
-    let mut ata = [[0.0_f64; 4]; 4];
-    let mut atb = [0.0_f64; 4];
-    for ((i, j), &h) in heights.indexed_iter() {
-        let (u, v) = uv(i, j);
-        let r2 = u * u + v * v;
-        let row = [1.0, u, v, r2];
-        let target = h - fixed_c3.map_or(0.0, |c3| c3 * r2);
-        for a in 0..m {
-            atb[a] += row[a] * target;
-            for b in 0..m {
-                ata[a][b] += row[a] * row[b];
-            }
-        }
-    }
-    let c = solve_small(ata, atb, m)?;
-    let c3 = fixed_c3.unwrap_or(c[3]);
-    if c3 == 0.0 || !c3.is_finite() {
-        return None;
-    }
-    let (u0, v0) = (-c[1] / (2.0 * c3), -c[2] / (2.0 * c3));
-    let apex = c[0] - (c[1] * c[1] + c[2] * c[2]) / (4.0 * c3);
-    let (residual_min, residual_max) = min_max(heights.indexed_iter().map(|((i, j), &h)| {
-        let (u, v) = uv(i, j);
-        h - (c[0] + c[1] * u + c[2] * v + c3 * (u * u + v * v))
-    }));
-    Some(Paraboloid {
-        radius: radius.unwrap_or(scale * scale / (2.0 * c3)),
-        vertex: (u0 * scale, v0 * scale),
-        apex,
-        residual_min,
-        residual_max,
-    })
-}
-
-/// Solves the leading `m × m` block of `a x = b` by Gaussian elimination with partial pivoting;
-/// `None` when singular.
-fn solve_small(mut a: [[f64; 4]; 4], mut b: [f64; 4], m: usize) -> Option<[f64; 4]> {
-    let norm = a.iter().flatten().fold(0.0_f64, |s, v| s.max(v.abs()));
-    for col in 0..m {
-        let pivot = (col..m).max_by(|&p, &q| a[p][col].abs().total_cmp(&a[q][col].abs()))?;
-        if a[pivot][col].is_nan() || a[pivot][col].abs() <= 1e-12 * norm {
-            return None;
-        }
-        a.swap(col, pivot);
-        b.swap(col, pivot);
-        for row in col + 1..m {
-            let f = a[row][col] / a[col][col];
-            let pivot_row = a[col];
-            for (value, p) in a[row][col..m].iter_mut().zip(&pivot_row[col..m]) {
-                *value -= f * p;
-            }
-            b[row] -= f * b[col];
-        }
-    }
-    let mut x = [0.0; 4];
-    for row in (0..m).rev() {
-        let s: f64 = (row + 1..m).map(|k| a[row][k] * x[k]).sum();
-        x[row] = (b[row] - s) / a[row][row];
-    }
-    Some(x)
-}
-
-fn min_max(values: impl Iterator<Item = f64>) -> (f64, f64) {
-    values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-        (lo.min(v), hi.max(v))
-    })
+    crate::engine::execute(scene, problem(scene, body)?, options, observer)
 }
 
 /// What [`pull_off`] needs besides the heights, and the rule of its default path.
@@ -355,9 +138,9 @@ pub struct PullOffPlan {
 }
 
 impl PullOffPlan {
-    /// The heights as [`run`] takes them, with this plan's radius and roughness range.
-    pub fn heights<'a>(&self, heights: &'a Array2<f64>) -> Heights<'a> {
-        Heights {
+    /// The body as [`run`] takes it: `heights` with this plan's radius and roughness range.
+    pub fn body<'a>(&self, heights: &'a Array2<f64>) -> HeightBody<'a> {
+        HeightBody {
             heights,
             roughness_range: self.fit.map(|f| f.residual_range()),
             radius: self.radius,
@@ -373,7 +156,7 @@ pub fn pull_off_scene(
     let (nx, ny) = heights.dim();
     let grid = Grid::new(nx, ny, spec.dx, spec.boundary)?;
     // Shape and finiteness first: everything below reads the heights.
-    let first_touch = surface(grid, heights)?.min();
+    let first_touch = crate::problem::height_surface(grid, heights)?.min();
     if !(spec.e_star.is_finite() && spec.e_star > 0.0) {
         return Err(tack_kernels::KernelError::Modulus(spec.e_star).into());
     }
@@ -410,10 +193,19 @@ pub fn pull_off_scene(
         (None, Some(f)) if f.is_sphere_like(&grid) => (Some(f.radius), "fitted"),
         _ => (None, "none"),
     };
-    let d_s = radius.map(|r| tack_analytics::jkr_approach_scale(spec.e_star, spec.gamma, r));
-    let max_approach = match (spec.max_approach, d_s, fit) {
-        (Some(d), _, _) => d,
-        (None, Some(d_s), Some(f)) => f.apex + f.residual_max + LOAD_DEPTH * d_s,
+    let rule = match (radius, fit) {
+        (Some(r), Some(f)) => Some(crate::pull_off_path::default_pull_off_path(
+            spec.e_star,
+            spec.gamma,
+            r,
+            f.apex + f.residual_max,
+        )),
+        _ => None,
+    };
+    let d_s = rule.map(|p| p.d_s);
+    let max_approach = match (spec.max_approach, rule) {
+        (Some(d), _) => d,
+        (None, Some(p)) => p.max_approach,
         _ => {
             let why = match fit {
                 None => "no paraboloid fits the array (fewer than 3 elements along an axis, or \
@@ -433,9 +225,9 @@ pub fn pull_off_scene(
             )));
         }
     };
-    let unload_step = match (spec.unload_step, d_s) {
+    let unload_step = match (spec.unload_step, rule) {
         (Some(s), _) => s,
-        (None, Some(d_s)) => UNLOAD_STEP * d_s,
+        (None, Some(p)) => p.unload_step,
         (None, None) => {
             return Err(SceneError::Inconsistent(
                 "unload_step is required with max_approach when the body has no radius (give \
@@ -444,16 +236,16 @@ pub fn pull_off_scene(
             ));
         }
     };
-    let coarse_unload_step = match (spec.coarse_unload_step, d_s) {
+    let coarse_unload_step = match (spec.coarse_unload_step, rule) {
         (Some(s), _) => s,
-        (None, Some(d_s)) => COARSE_UNLOAD_STEP * d_s,
+        (None, Some(p)) => p.coarse_unload_step,
         (None, None) => COARSE_PER_UNLOAD_STEP * unload_step,
     };
     if let (Some(r), Some(f), Boundary::Free) = (radius, fit, spec.boundary) {
         check_contact_fits(&grid, r, &f, max_approach, first_touch)?;
     }
 
-    let file = SceneFile {
+    let file = SceneSchema {
         version: SCENE_VERSION,
         material: Material {
             e_star: spec.e_star,
@@ -479,8 +271,9 @@ pub fn pull_off_scene(
         },
         protocol: Protocol {
             start: Some(max_approach),
-            max_approach,
-            load_step: (max_approach - first_touch).max(unload_step),
+            max_approach: Some(max_approach),
+            load_step: Some((max_approach - first_touch).max(unload_step)),
+            indent: None,
             unload_step: Some(unload_step),
             coarse_unload_step: Some(coarse_unload_step),
             retract_to: None,
@@ -550,41 +343,17 @@ pub fn pull_off(
     observer: &mut dyn tack_solver::Observer,
 ) -> Result<RunOutcome, Error> {
     let plan = pull_off_scene(heights, spec)?;
-    run(&plan.scene, &plan.heights(heights), options, observer)
+    run(&plan.scene, &plan.body(heights), options, observer)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use tack_geometry::{RoughSpec, Sphere, rough_surface};
+    use tack_geometry::{Sphere, Surface};
 
     fn sphere(n: usize, dx: f64, radius: f64) -> Array2<f64> {
         let grid = Grid::square(n, dx, Boundary::Free).unwrap();
         Surface::from_shape(grid, &Sphere::new(radius).unwrap()).into_heights()
-    }
-
-    #[test]
-    fn the_fit_recovers_an_offset_paraboloid() {
-        let (nx, ny, dx) = (40, 30, 0.1);
-        let grid = Grid::new(nx, ny, dx, Boundary::Free).unwrap();
-        let h = Array2::from_shape_fn((nx, ny), |(i, j)| {
-            let (x, y) = (grid.x(i) - 0.7, grid.y(j) + 0.4);
-            3.0 + (x * x + y * y) / (2.0 * 5.0)
-        });
-        for radius in [None, Some(5.0)] {
-            let f = fit_paraboloid(&h, dx, radius).unwrap();
-            assert!((f.radius - 5.0).abs() < 1e-9, "{f:?}");
-            assert!((f.vertex.0 - 0.7).abs() < 1e-9 && (f.vertex.1 + 0.4).abs() < 1e-9);
-            assert!((f.apex - 3.0).abs() < 1e-9);
-            assert!(f.residual_range() < 1e-9);
-            assert!(f.is_sphere_like(&grid));
-        }
-        // A strip has no paraboloid; a flat rough surface is not sphere-like.
-        assert!(fit_paraboloid(&Array2::zeros((64, 1)), dx, None).is_none());
-        let grid = Grid::square(64, dx, Boundary::Free).unwrap();
-        let rough = rough_surface(grid, &RoughSpec::paper_defaults(grid, 0.01, 0.5, 3)).unwrap();
-        let f = fit_paraboloid(rough.heights(), dx, None);
-        assert!(f.is_none_or(|f| !f.is_sphere_like(&grid)), "{f:?}");
     }
 
     #[test]
@@ -597,13 +366,13 @@ mod tests {
         assert!((fitted / radius - 1.0).abs() < 1e-12, "{fitted}");
         // d_s = (8 · 0.125²)^(1/3) = 0.5: load to 3 d_s, retract by 0.1, then by 0.01.
         let p = plan.scene.file.protocol;
-        assert!((p.max_approach - 1.5).abs() < 1e-12, "{p:?}");
+        assert!((p.max_approach.unwrap() - 1.5).abs() < 1e-12, "{p:?}");
         assert!((p.coarse_unload_step.unwrap() - 0.1).abs() < 1e-12);
         assert!((p.unload_step.unwrap() - 0.01).abs() < 1e-12);
         assert!(plan.scene.text.starts_with("# tack::heights::pull_off"));
         let outcome = run(
             &plan.scene,
-            &plan.heights(&heights),
+            &plan.body(&heights),
             &RunOptions::default(),
             &mut (),
         )
@@ -680,14 +449,14 @@ mod tests {
             richardson: true,
             ..RunOptions::default()
         };
-        let e = run(&plan.scene, &plan.heights(&heights), &options, &mut ())
+        let e = run(&plan.scene, &plan.body(&heights), &options, &mut ())
             .unwrap_err()
             .to_string();
         assert!(e.contains("--richardson"), "{e}");
         // The array must have the scene grid's shape.
         let e = problem(
             &plan.scene,
-            &Heights {
+            &HeightBody {
                 heights: &Array2::zeros((8, 8)),
                 roughness_range: None,
                 radius: None,

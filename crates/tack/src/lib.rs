@@ -37,18 +37,24 @@
 //! ```
 //!
 //! - [`scene`]: the TOML schema (`version = 1`), loading, [`overrides`] (`--set key=value`);
-//! - [`problem`]: validation into grid, surface, crop window, path and closed-form references;
-//! - [`run()`](run::run): the solve in memory, with progress and cancellation through a
-//!   [`solver::Observer`], the summary and the Richardson coarse run;
+//! - [`problem`]: the one builder that validates a scene into grid, surface, crop window, path
+//!   and closed-form references ([`pull_off_path`]: the default pull-off path);
+//! - [`engine`]: the run engine ([`engine::execute`]: thread pool, timing, the solve with
+//!   progress and cancellation through a [`solver::Observer`], Richardson, provenance, result);
+//!   [`run()`] runs a scene through it;
+//! - [`summary`]: the result's summary, warnings and curve; [`coarse`]: the Richardson grid;
 //! - [`heights`]: runs on a body given as a height array in memory, with a default pull-off
 //!   path (what the Python package's `tack.pull_off` calls);
-//! - [`provenance`]: git revision, timestamps, command line;
-//! - [`sweep`]: parameter sweeps (sharded, parallel, resumable), [`merge`] into one table.
+//! - [`provenance`]: git revision, timestamps, command line; [`memory`]: the memory bound.
+//!
+//! Parameter sweeps live in the `tack-sweep` crate, built on this one.
 //!
 //! The numerical crates are re-exported ([`geometry`], [`kernels`], [`solver`], [`analytics`],
 //! [`io`]) with [`ndarray`], so a program depending on `tack` alone reaches every type its API
 //! uses.
 
+pub mod coarse;
+pub mod engine;
 pub mod error;
 pub mod heights;
 pub mod memory;
@@ -56,14 +62,43 @@ pub mod merge;
 pub mod overrides;
 pub mod problem;
 pub mod provenance;
-pub mod run;
+pub mod pull_off_path;
 pub mod scene;
+pub mod summary;
 pub mod sweep;
 
-pub use error::Error;
+/// The former home of the run engine and the result assembly, kept for programs written
+/// against it.
+#[deprecated(
+    since = "0.1.0",
+    note = "split into `tack::engine` (run, options, outcome), `tack::summary` (summary, \
+            curve, `assemble_result`) and `tack::coarse` (`coarse_problem`)"
+)]
+pub mod run {
+    pub use crate::coarse::coarse_problem;
+    pub use crate::engine::*;
+    pub use crate::summary::*;
+
+    /// Renamed [`crate::summary::assemble_result`] (it writes no file).
+    #[deprecated(since = "0.1.0", note = "renamed `tack::summary::assemble_result`")]
+    pub fn result_file(
+        problem: &crate::Problem,
+        path: &crate::solver::PathResult,
+        provenance: crate::io::Provenance,
+    ) -> crate::io::RunResult {
+        crate::summary::assemble_result(problem, path, provenance)
+    }
+}
+
+pub use engine::{
+    MAX_THREADS, RunOptions, RunOutcome, check_threads, execute, run, run_file, run_to_file,
+};
+pub use error::{Error, SceneError};
 pub use problem::Problem;
-pub use run::{RunOptions, RunOutcome, run, run_file, run_to_file};
-pub use scene::{Scene, SceneError, SceneFile};
+#[allow(deprecated)]
+pub use scene::SceneFile;
+pub use scene::{SCENE_VERSION, Scene, SceneSchema};
+pub use summary::{SUMMARY_QUANTITIES, summary_quantity};
 
 pub use ndarray;
 pub use tack_analytics as analytics;

@@ -13,8 +13,9 @@
 //!   step, `{ every = k }`: one in k, `{ steps = [...] }`: the listed ones, `"pull_off"`: two);
 //! - step records: [`STEP_RECORD_BYTES`] per step, `protocol.max_steps` of them.
 //!
-//! The path's length is not known before it runs (retraction ends when contact is lost), so
-//! the bound takes `protocol.max_steps` steps. A scene whose estimate exceeds the machine's
+//! The path's length is known before it runs when it ends at `protocol.retract_to` or is an
+//! indentation (`tack_solver::ApproachPath::step_bound`); a retraction that ends when contact is
+//! lost is bounded by `protocol.max_steps` steps. A scene whose estimate exceeds the machine's
 //! memory (`MemTotal` of `/proc/meminfo`) or, on every machine, [`HARD_LIMIT_BYTES`] is refused
 //! with the bytes needed against those available, naming `grid.n`, `output.snapshots` and
 //! `protocol.max_steps`.
@@ -91,11 +92,6 @@ pub fn estimate(grid: &Grid, max_steps: usize, snapshots: &SnapshotRequest) -> E
     }
 }
 
-/// The estimate for a validated problem (what `tack check` prints).
-pub fn of_problem(problem: &crate::Problem) -> Estimate {
-    estimate(&problem.grid, problem.path.max_steps, &problem.snapshots)
-}
-
 /// The machine's memory from `/proc/meminfo`: (`MemTotal`, `MemAvailable`) in bytes; `None`
 /// where the file does not exist or lacks `MemTotal` (not Linux).
 pub fn machine_memory() -> Option<(f64, Option<f64>)> {
@@ -134,13 +130,15 @@ pub fn bytes(b: f64) -> String {
 
 /// Refuses an estimate above `machine` (`(MemTotal, MemAvailable)`, when known) or above
 /// [`HARD_LIMIT_BYTES`]. `grid_field` names the grid size (`grid.n` or `grid.nx × grid.ny`),
-/// `snapshots_text` the value of `output.snapshots` as written.
+/// `steps_from` where the step count `max_steps` comes from (`protocol.max_steps = N`, or the
+/// path's own count), `snapshots_text` the value of `output.snapshots` as written.
 pub fn check(
     e: &Estimate,
     machine: Option<(f64, Option<f64>)>,
     grid_field: &str,
     grid: &Grid,
     max_steps: usize,
+    steps_from: &str,
     snapshots_text: &str,
 ) -> Result<(), SceneError> {
     let total = e.total();
@@ -167,8 +165,8 @@ pub fn check(
     Err(SceneError::Inconsistent(format!(
         "the run may need about {} of memory, more than available: {against}. The estimate: \
          {} of working fields for {grid_field} = {} × {} elements, {} for up to {} snapshots \
-         (output.snapshots = {snapshots_text} over protocol.max_steps = {max_steps} steps), {} \
-         for {max_steps} step records (protocol.max_steps); lower protocol.max_steps, keep fewer \
+         (output.snapshots = {snapshots_text} over {max_steps} steps at most: {steps_from}), {} \
+         for {max_steps} step records; lower protocol.max_steps, keep fewer \
          snapshots (output.snapshots = \"pull_off\" or {{ every = k }}) or use a smaller \
          {grid_field}",
         bytes(total),
@@ -215,9 +213,17 @@ mod tests {
         let g = grid(2048);
         let e = estimate(&g, 100_000, &SnapshotRequest::All);
         let machine = Some((16.0 * 1024f64.powi(3), Some(8.0 * 1024f64.powi(3))));
-        let err = check(&e, machine, "grid.n", &g, 100_000, "\"all\"")
-            .unwrap_err()
-            .to_string();
+        let err = check(
+            &e,
+            machine,
+            "grid.n",
+            &g,
+            100_000,
+            "protocol.max_steps = 100000",
+            "\"all\"",
+        )
+        .unwrap_err()
+        .to_string();
         for part in [
             "output.snapshots = \"all\"",
             "protocol.max_steps = 100000",
@@ -230,9 +236,17 @@ mod tests {
             assert!(err.contains(part), "{part:?} missing: {err}");
         }
         // Without /proc/meminfo, the hard bound.
-        let err = check(&e, None, "grid.n", &g, 100_000, "\"all\"")
-            .unwrap_err()
-            .to_string();
+        let err = check(
+            &e,
+            None,
+            "grid.n",
+            &g,
+            100_000,
+            "protocol.max_steps = 100000",
+            "\"all\"",
+        )
+        .unwrap_err()
+        .to_string();
         assert!(err.contains("refuses runs above 1.0 TiB"), "{err}");
         // 10^18 steps of records alone, on any machine.
         let small = grid(32);
@@ -244,13 +258,25 @@ mod tests {
                 "grid.n",
                 &small,
                 1_000_000_000_000_000_000,
+                "protocol.max_steps",
                 "\"none\""
             )
             .is_err()
         );
         // What fits passes.
         let e = estimate(&small, 100_000, &SnapshotRequest::Every(100));
-        assert!(check(&e, machine, "grid.n", &small, 100_000, "{ every = 100 }").is_ok());
+        assert!(
+            check(
+                &e,
+                machine,
+                "grid.n",
+                &small,
+                100_000,
+                "",
+                "{ every = 100 }"
+            )
+            .is_ok()
+        );
     }
 
     #[test]

@@ -11,7 +11,7 @@ use tack_io::{
 };
 
 use crate::provenance;
-use crate::run::summary_quantity;
+use crate::summary::summary_quantity;
 use crate::sweep::{Axis, Sweep, SweepError, point_path, verify_point};
 
 /// How [`merge`] behaves.

@@ -18,8 +18,8 @@ use tack_solver::{
 };
 
 use crate::scene::{
-    BoundaryKind, DEFAULT_MAX_STEPS, Geometry, GridSpec, PunchKind, Roughness, Scene, SceneError,
-    num,
+    BoundaryKind, DEFAULT_MAX_STEPS, Geometry, GridSpec, Protocol, PunchKind, Roughness, Scene,
+    SceneError, num,
 };
 
 /// Relative tolerance on a height map's `dx` against `grid.dx`.
@@ -93,6 +93,9 @@ pub struct Problem {
     /// under-resolved pull-off, a closed-form reference that does not apply); the summary
     /// carries them on, with the run's own.
     pub warnings: Vec<String>,
+    /// The body includes heights given as an array in memory ([`crate::heights`]): defined per
+    /// element, so a Richardson coarse grid cannot carry it.
+    pub heights_in_memory: bool,
 }
 
 /// Least pull-off contact radius over element size, a_c/Δx (JKR radius for spheres, the punch
@@ -111,12 +114,10 @@ impl Problem {
         Self::build(scene, None)
     }
 
-    /// [`Problem::from_scene`] with `extra` heights added to the scene's body and their
-    /// roughness range added to the crop rule's (`crate::heights`: bodies held in memory).
-    pub(crate) fn build(
-        scene: &Scene,
-        extra: Option<(&ndarray::Array2<f64>, f64)>,
-    ) -> Result<Self, SceneError> {
+    /// The one problem builder: [`Problem::from_scene`], and with `body` its heights added to
+    /// the scene's body, their roughness range added to the crop rule's and their radius giving
+    /// the JKR references (`crate::heights`: bodies held in memory).
+    pub(crate) fn build(scene: &Scene, body: Option<&HeightBody<'_>>) -> Result<Self, SceneError> {
         let f = &scene.file;
         let (e_star, gamma) = (f.material.e_star, f.material.gamma);
         if !(e_star.is_finite() && e_star > 0.0) {
@@ -130,7 +131,9 @@ impl Problem {
             ));
         }
         let grid = build_grid(&f.grid)?;
-        check_memory(scene, &grid)?;
+        // The working fields before anything of the grid's size is allocated; the snapshots
+        // and records once the path's step count is known.
+        check_memory(scene, &grid, None)?;
         let mut surface = base_surface(grid, &f.geometry)?;
         let mut seed = None;
         let mut references = References::default();
@@ -165,9 +168,36 @@ impl Problem {
                     Some(tack_analytics::alpha_star(e_star, gamma, h, hurst, q0, q1));
             }
         }
-        if let Some((heights, range)) = extra {
-            surface.add(&crate::heights::surface(grid, heights)?)?;
-            roughness_range += range;
+        // The smooth macroscopic shape, to find the top of the roughness for the default
+        // pull-off path.
+        let top_of_roughness = |surface: &Surface, smooth: &Surface| {
+            (surface.heights() - smooth.heights())
+                .iter()
+                .copied()
+                .fold(f64::NEG_INFINITY, f64::max)
+        };
+        let smooth = base_surface(grid, &f.geometry)?;
+        let mut body_radius = None;
+        if let Some(body) = body {
+            let array = height_surface(grid, body.heights)?;
+            roughness_range += match body.roughness_range {
+                Some(r) if r.is_finite() && r >= 0.0 => r,
+                Some(r) => {
+                    return Err(SceneError::out_of_range(
+                        "roughness_range",
+                        r,
+                        "a finite number ≥ 0",
+                    ));
+                }
+                None => (array.max() - array.min()).max(0.0),
+            };
+            if let Some(r) = body.radius
+                && !(r.is_finite() && r > 0.0)
+            {
+                return Err(SceneError::out_of_range("radius", r, "a finite number > 0"));
+            }
+            body_radius = body.radius;
+            surface.add(&array)?;
         }
         let mut warnings = Vec::new();
         check_scales(
@@ -221,46 +251,32 @@ impl Problem {
             }
             _ => {}
         }
+        if let Some(r) = body_radius
+            && gamma > 0.0
+        {
+            references.f_jkr = Some(tack_analytics::jkr_pull_off_force(gamma, r));
+            references.d_jkr = Some(tack_analytics::jkr_pull_off_approach(e_star, gamma, r));
+        }
 
-        let p = &f.protocol;
-        for (field, v) in [
-            ("protocol.max_approach", p.max_approach),
-            ("protocol.load_step", p.load_step),
-        ] {
-            if !v.is_finite() {
-                return Err(SceneError::out_of_range(field, v, "a finite number"));
-            }
-        }
-        if p.load_step <= 0.0 {
-            return Err(SceneError::out_of_range(
-                "protocol.load_step",
-                p.load_step,
-                "a finite number > 0",
-            ));
-        }
         let first_touch = surface.min();
-        if p.max_approach <= first_touch {
-            return Err(SceneError::Inconsistent(format!(
-                "protocol.max_approach = {} never touches the surface: the first touch is at \
-                 approach {first_touch} (the lowest surface height); protocol.max_approach must \
-                 be > {first_touch}, e.g. {}",
-                p.max_approach,
-                first_touch + 10.0 * p.load_step
-            )));
-        }
-        let path = ApproachPath {
-            start: p
-                .start
-                .unwrap_or((first_touch + p.load_step).min(p.max_approach)),
-            max_approach: p.max_approach,
-            load_step: p.load_step,
-            unload_step: p.unload_step.unwrap_or(p.load_step),
-            coarse_unload_step: p.coarse_unload_step,
-            retract_to: p.retract_to,
-            max_steps: p.max_steps.unwrap_or(DEFAULT_MAX_STEPS),
+        let sphere_radius = match f.geometry {
+            Geometry::Sphere { radius } => Some(radius),
+            _ => body_radius,
         };
+        let path = approach_path(
+            &f.protocol,
+            &PathBody {
+                grid: &grid,
+                surface: &surface,
+                top_of_roughness: top_of_roughness(&surface, &smooth),
+                sphere_radius,
+                e_star,
+                gamma,
+            },
+        )?;
         path.validate()?;
         check_fits(&f.grid, &grid, &f.geometry, &path, first_touch)?;
+        check_memory(scene, &grid, Some(path.step_bound()))?;
 
         let defaults = AdhesiveOptions::default();
         let s = &f.solver;
@@ -334,7 +350,15 @@ impl Problem {
             seed,
             references,
             warnings,
+            heights_in_memory: body.is_some(),
         })
+    }
+
+    /// What the run may need in memory (what `tack check` prints): working fields, the
+    /// snapshots `output.snapshots` keeps and the step records, over the path's step bound
+    /// ([`tack_solver::ApproachPath::step_bound`]).
+    pub fn memory_estimate(&self) -> crate::memory::Estimate {
+        crate::memory::estimate(&self.grid, self.path.step_bound(), &self.snapshots)
     }
 
     /// A fresh solver for this problem (builds the elastic operator: FFT plans, kernel spectrum),
@@ -355,12 +379,237 @@ impl Problem {
     }
 }
 
-/// Refuses a scene whose run cannot fit the machine's memory (see [`crate::memory`]); before
-/// the surface or anything else of the grid's size is allocated.
-fn check_memory(scene: &Scene, grid: &Grid) -> Result<(), SceneError> {
+/// A rigid body given as heights in memory, added to a scene's body (`crate::heights::problem`,
+/// `crate::heights::run`).
+#[derive(Debug, Clone, Copy)]
+pub struct HeightBody<'a> {
+    /// Heights `(nx, ny)`, added to the scene's own body; the shape must be the scene grid's.
+    pub heights: &'a ndarray::Array2<f64>,
+    /// Height range (max − min) of the body's roughness, its deviation from the smooth
+    /// macroscopic shape, for the crop rule (`tack_solver::contact_window`); `None`: the range
+    /// of the whole array (always safe, but a curved body then leaves little to crop).
+    pub roughness_range: Option<f64>,
+    /// Radius of the sphere the body approximates: the summary then carries the JKR references
+    /// (`f_jkr`, `pull_off_ratio`, `d_jkr`) of that sphere, and a scene without
+    /// `protocol.max_approach` gets the default pull-off path of that radius. `None`: no
+    /// references.
+    pub radius: Option<f64>,
+}
+
+/// The surface of a height array on `grid`; errors name `heights` (shape, a non-finite entry).
+pub(crate) fn height_surface(
+    grid: Grid,
+    heights: &ndarray::Array2<f64>,
+) -> Result<Surface, SceneError> {
+    let (nx, ny) = heights.dim();
+    if (nx, ny) != grid.shape() {
+        return Err(SceneError::Inconsistent(format!(
+            "heights: the array is {nx} × {ny} but the scene's grid is {} × {}; they must agree",
+            grid.nx(),
+            grid.ny()
+        )));
+    }
+    if let Some(((i, j), h)) = heights.indexed_iter().find(|(_, h)| !h.is_finite()) {
+        return Err(SceneError::out_of_range(
+            format!("heights[{i}, {j}]"),
+            h,
+            "a finite number",
+        ));
+    }
+    Ok(Surface::new(grid, heights.clone())?)
+}
+
+/// What the approach path is built from besides `[protocol]`.
+struct PathBody<'a> {
+    grid: &'a Grid,
+    surface: &'a Surface,
+    /// The greatest height of the roughness (and array) above the smooth shape.
+    top_of_roughness: f64,
+    /// The sphere's radius (`geometry.radius`, or the radius of a body given in memory).
+    sphere_radius: Option<f64>,
+    e_star: f64,
+    gamma: f64,
+}
+
+/// The approach path of `[protocol]`: an indentation (`indent`), the given load–unload path
+/// (`max_approach` with `load_step`), or the default pull-off path of a sphere-like body
+/// ([`crate::pull_off_path`]) when neither is given.
+fn approach_path(p: &Protocol, body: &PathBody<'_>) -> Result<ApproachPath, SceneError> {
+    let first_touch = body.surface.min();
+    let max_steps = p.max_steps.unwrap_or(DEFAULT_MAX_STEPS);
+    let finite = |field: &str, v: f64| {
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(SceneError::out_of_range(field, v, "a finite number"))
+        }
+    };
+    let never_touches = |field: &str, d: f64, step: f64| {
+        SceneError::Inconsistent(format!(
+            "{field} = {d} never touches the surface: the first touch is at approach \
+             {first_touch} (the lowest surface height); {field} must be > {first_touch}, e.g. {}",
+            first_touch + step
+        ))
+    };
+    if let Some(d) = p.indent {
+        let others = [
+            ("protocol.start", p.start.is_some()),
+            ("protocol.max_approach", p.max_approach.is_some()),
+            ("protocol.load_step", p.load_step.is_some()),
+            ("protocol.unload_step", p.unload_step.is_some()),
+            (
+                "protocol.coarse_unload_step",
+                p.coarse_unload_step.is_some(),
+            ),
+            ("protocol.retract_to", p.retract_to.is_some()),
+        ];
+        if let Some((field, _)) = others.iter().find(|(_, given)| *given) {
+            return Err(SceneError::Inconsistent(format!(
+                "protocol.indent is one step pressed in with no retraction: leave out {field} \
+                 (or drop protocol.indent for a load–unload path)"
+            )));
+        }
+        let d = finite("protocol.indent", d)?;
+        if d <= first_touch {
+            return Err(never_touches(
+                "protocol.indent",
+                d,
+                0.01 * body.grid.dx().max(first_touch.abs()),
+            ));
+        }
+        let mut path = ApproachPath::indentation(d)?;
+        path.max_steps = max_steps;
+        return Ok(path);
+    }
+    let (max_approach, load_step, unload_step, coarse_unload_step) =
+        match (p.max_approach, p.load_step) {
+            (Some(max_approach), Some(load_step)) => {
+                finite("protocol.max_approach", max_approach)?;
+                finite("protocol.load_step", load_step)?;
+                if load_step <= 0.0 {
+                    return Err(SceneError::out_of_range(
+                        "protocol.load_step",
+                        load_step,
+                        "a finite number > 0",
+                    ));
+                }
+                if max_approach <= first_touch {
+                    return Err(never_touches(
+                        "protocol.max_approach",
+                        max_approach,
+                        10.0 * load_step,
+                    ));
+                }
+                (
+                    max_approach,
+                    load_step,
+                    p.unload_step.unwrap_or(load_step),
+                    p.coarse_unload_step,
+                )
+            }
+            (Some(_), None) => {
+                return Err(SceneError::Inconsistent(
+                    "protocol.load_step is required with protocol.max_approach (the approach \
+                     increment while loading)"
+                        .into(),
+                ));
+            }
+            (None, Some(_)) => {
+                return Err(SceneError::Inconsistent(
+                    "protocol.max_approach is required with protocol.load_step (the deepest \
+                     approach); leave both out for the default pull-off path of a sphere"
+                        .into(),
+                ));
+            }
+            (None, None) => {
+                let rule = default_path(body)?;
+                if p.start.is_some() || p.retract_to.is_some() {
+                    return Err(SceneError::Inconsistent(
+                        "protocol.start and protocol.retract_to need protocol.max_approach and \
+                         protocol.load_step (the default pull-off path sets its own)"
+                            .into(),
+                    ));
+                }
+                let unload = p.unload_step.unwrap_or(rule.unload_step);
+                let coarse = p.coarse_unload_step.unwrap_or(rule.coarse_unload_step);
+                let load = (rule.max_approach - first_touch).max(unload);
+                // One load step straight to the deepest approach.
+                let path = ApproachPath {
+                    start: rule.max_approach,
+                    max_approach: rule.max_approach,
+                    load_step: load,
+                    unload_step: unload,
+                    coarse_unload_step: Some(coarse),
+                    retract_to: None,
+                    max_steps,
+                };
+                return Ok(path);
+            }
+        };
+    Ok(ApproachPath {
+        start: p
+            .start
+            .unwrap_or((first_touch + load_step).min(max_approach)),
+        max_approach,
+        load_step,
+        unload_step,
+        coarse_unload_step,
+        retract_to: p.retract_to,
+        max_steps,
+    })
+}
+
+/// The default pull-off path when `[protocol]` leaves out `max_approach` and `load_step`: the
+/// rule of [`crate::pull_off_path`] for a sphere (`geometry.radius`, or a body in memory with a
+/// radius) or a body whose least-squares paraboloid is sphere-like; refused, naming what is
+/// missing, without adhesion or without a radius.
+fn default_path(body: &PathBody<'_>) -> Result<crate::pull_off_path::PullOffPath, SceneError> {
+    if body.gamma <= 0.0 {
+        return Err(SceneError::Inconsistent(format!(
+            "protocol.max_approach is required: without adhesion (material.gamma = {}) there \
+             is no pull-off to find, so there is no default path; for one state give \
+             protocol.indent = d (one step pressed in to approach d), for a load–unload curve \
+             protocol.max_approach and protocol.load_step",
+            num(body.gamma)
+        )));
+    }
+    let (radius, top) = match body.sphere_radius {
+        Some(r) => (r, body.top_of_roughness),
+        None => {
+            let fit =
+                crate::pull_off_path::fit_paraboloid(body.surface.heights(), body.grid.dx(), None);
+            match fit {
+                Some(f) if f.is_sphere_like(body.grid) => (f.radius, f.apex + f.residual_max),
+                _ => {
+                    return Err(SceneError::Inconsistent(
+                        "protocol.max_approach is required: the default pull-off path needs a \
+                         sphere (geometry.shape = \"sphere\") or a sphere-like height map (its \
+                         least-squares paraboloid curved away from the half-space, rising over \
+                         the grid by at least half the roughness range); give \
+                         protocol.max_approach and protocol.load_step"
+                            .into(),
+                    ));
+                }
+            }
+        }
+    };
+    Ok(crate::pull_off_path::default_pull_off_path(
+        body.e_star,
+        body.gamma,
+        radius,
+        top,
+    ))
+}
+
+/// Refuses a scene whose run cannot fit the machine's memory (see [`crate::memory`]). With
+/// `steps: None` only the working fields count (checked before the surface or anything else of
+/// the grid's size is allocated); with the path's step bound, also its snapshots and records.
+fn check_memory(scene: &Scene, grid: &Grid, steps: Option<usize>) -> Result<(), SceneError> {
     let f = &scene.file;
-    let max_steps = f.protocol.max_steps.unwrap_or(DEFAULT_MAX_STEPS);
-    let request: SnapshotRequest = (&f.output.snapshots).into();
+    let (max_steps, request) = match steps {
+        Some(n) => (n, (&f.output.snapshots).into()),
+        None => (0, SnapshotRequest::None),
+    };
     let estimate = crate::memory::estimate(grid, max_steps, &request);
     let grid_field = if f.grid.n.is_some() {
         "grid.n"
@@ -368,12 +617,19 @@ fn check_memory(scene: &Scene, grid: &Grid) -> Result<(), SceneError> {
         "grid.nx × grid.ny"
     };
     let snapshots = crate::scene::value_text(&f.output.snapshots.clone().into());
+    let cap = f.protocol.max_steps.unwrap_or(DEFAULT_MAX_STEPS);
+    let steps_from = if max_steps < cap {
+        "the path's own step count".to_owned()
+    } else {
+        format!("protocol.max_steps = {cap}, as retraction ends only when contact is lost")
+    };
     crate::memory::check(
         &estimate,
         crate::memory::machine_memory(),
         grid_field,
         grid,
         max_steps,
+        &steps_from,
         &snapshots,
     )
 }
@@ -941,6 +1197,121 @@ load_step = 0.05
         build(SPHERE, sets).unwrap_err().to_string()
     }
 
+    /// [`SPHERE`] without its `[protocol]`.
+    fn no_protocol() -> &'static str {
+        SPHERE.split("[protocol]").next().unwrap()
+    }
+
+    #[test]
+    fn a_scene_without_a_protocol_gets_the_pull_off_rule_of_its_sphere() {
+        let p = build(no_protocol(), &[]).unwrap();
+        let rule = crate::pull_off_path::default_pull_off_path(1.0, 0.1, 1.0, 0.0);
+        assert_eq!(p.path.max_approach, rule.max_approach);
+        // One load step straight to the deepest approach, then the rule's retraction.
+        assert_eq!(p.path.start, rule.max_approach);
+        assert_eq!(p.path.unload_step, rule.unload_step);
+        assert_eq!(p.path.coarse_unload_step, Some(rule.coarse_unload_step));
+        assert_eq!(p.path.retract_to, None);
+        // d_s = (R γ²/E*²)^(1/3) = 0.1^(2/3): 3 d_s deep, 0.02 d_s steps.
+        let d_s = 0.1_f64.powf(2.0 / 3.0);
+        assert!((p.path.max_approach - 3.0 * d_s).abs() < 1e-12);
+        // The same numbers as the pull-off of the sphere given as an array.
+        let grid = p.grid;
+        let heights = Surface::from_shape(grid, &Sphere::new(1.0).unwrap()).into_heights();
+        let spec = crate::heights::PullOffSpec {
+            radius: Some(1.0),
+            ..crate::heights::PullOffSpec::new(0.05, 1.0, 0.1)
+        };
+        let plan = crate::heights::pull_off_scene(&heights, &spec).unwrap();
+        let q = crate::heights::problem(&plan.scene, &plan.body(&heights)).unwrap();
+        assert!((q.path.max_approach - p.path.max_approach).abs() < 1e-12);
+        assert_eq!(q.path.unload_step, p.path.unload_step);
+        // Steps given in the scene are kept.
+        let p = build(no_protocol(), &["protocol.unload_step=0.001"]).unwrap();
+        assert_eq!(p.path.unload_step, 0.001);
+        // Roughness raises the load depth by its top.
+        let rough = format!(
+            "{}[roughness]\nkind = \"waviness2d\"\nh = 0.01\nlambda = 0.8\n",
+            no_protocol()
+        );
+        let p = build(&rough, &[]).unwrap();
+        assert!(
+            p.path.max_approach > rule.max_approach + 0.009,
+            "{:?}",
+            p.path
+        );
+    }
+
+    #[test]
+    fn a_scene_without_a_path_is_refused_where_no_rule_applies() {
+        let e = build(no_protocol(), &["material.gamma=0"])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("protocol.max_approach is required") && e.contains("protocol.indent"),
+            "{e}"
+        );
+        let punch = no_protocol().replace(
+            "shape = \"sphere\"\nradius = 1.0",
+            "shape = \"flat_punch\"\npunch = \"circle\"\nradius = 0.5",
+        );
+        let e = build(&punch, &[]).unwrap_err().to_string();
+        assert!(e.contains("sphere-like"), "{e}");
+        let e = build(no_protocol(), &["protocol.load_step=0.1"])
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("protocol.max_approach is required"), "{e}");
+        let e = build(no_protocol(), &["protocol.max_approach=0.1"])
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("protocol.load_step is required"), "{e}");
+    }
+
+    #[test]
+    fn an_indentation_is_one_step_and_excludes_the_path_fields() {
+        let text = format!("{}[protocol]\nindent = 0.1\n", no_protocol());
+        let p = build(&text, &[]).unwrap();
+        assert!(p.path.is_indentation());
+        assert_eq!((p.path.start, p.path.max_approach), (0.1, 0.1));
+        assert_eq!(p.path.step_bound(), 1);
+        let e = build(&text, &["protocol.load_step=0.01"])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("leave out protocol.load_step"), "{e}");
+        let e = build(&text, &["protocol.indent=-0.5"])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("protocol.indent = -0.5 never touches the surface"),
+            "{e}"
+        );
+        let e = build(&text, &["protocol.indent=\"deep\""])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("protocol.indent"), "{e}");
+    }
+
+    #[test]
+    fn the_memory_bound_counts_the_steps_a_finite_path_takes() {
+        // Every field kept on a 512² grid: an indentation keeps one, not 100000 (439.6 GiB).
+        let text = format!(
+            "{}[protocol]\nindent = 0.1\n[output]\nsnapshots = \"all\"\n",
+            no_protocol()
+        )
+        .replace("n = 64", "n = 512");
+        let p = build(&text, &[]).unwrap();
+        let e = p.memory_estimate();
+        assert_eq!((e.steps, e.snapshots), (1.0, 1.0));
+        assert!(e.total() < 1e9, "{e:?}");
+        // A path down to retract_to: its load and retraction steps, an upper bound.
+        let p = build(SPHERE, &["protocol.retract_to=0.0"]).unwrap();
+        let loads = ((0.5 - p.path.start) / 0.05).ceil() + 1.0;
+        assert_eq!(p.path.step_bound() as f64, loads + (0.5_f64 / 0.05).floor());
+        // A retraction until contact is lost: only max_steps bounds it.
+        let p = build(SPHERE, &[]).unwrap();
+        assert_eq!(p.path.step_bound(), p.path.max_steps);
+    }
+
     #[test]
     fn sphere_problem_has_jkr_references_and_first_touch_start() {
         let p = build(SPHERE, &[]).unwrap();
@@ -1071,7 +1442,7 @@ load_step = 0.05
     }
 
     #[test]
-    fn runs_that_cannot_fit_in_memory_are_refused_before_the_surface_is_built() {
+    fn runs_that_cannot_fit_in_memory_are_refused_before_they_run() {
         // Every step's fields of a 2048² grid over 100000 steps: 6.9 TiB.
         let e = err(&["grid.n=2048", "output.snapshots=\"all\""]);
         assert!(
@@ -1084,7 +1455,8 @@ load_step = 0.05
         // 10^18 step records.
         let e = err(&["protocol.max_steps=1000000000000000000"]);
         assert!(
-            e.contains("for 1000000000000000000 step records (protocol.max_steps)"),
+            e.contains("for 1000000000000000000 step records")
+                && e.contains("protocol.max_steps = 1000000000000000000"),
             "{e}"
         );
         // A bounded path with every field fits.

@@ -5,109 +5,20 @@
 //! the solver settings, the approach path and what to store. `docs/scenes.md` documents every
 //! field; [`crate::problem::Problem::from_scene`] validates the values and builds the surface.
 
-use std::fmt;
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
-use thiserror::Error;
 
+pub use crate::error::{SceneError, num};
 use crate::overrides::apply_overrides;
 
 /// The only scene-file version this build reads.
 pub const SCENE_VERSION: i64 = 1;
 
-/// Everything that can be wrong with a scene; messages name the field, the value and the
-/// allowed range, or the file.
-#[derive(Debug, Error)]
-pub enum SceneError {
-    /// The scene file could not be read.
-    #[error("cannot read scene `{}`: {cause}", path.display())]
-    Read {
-        /// The scene file.
-        path: PathBuf,
-        /// The operating system's error.
-        cause: std::io::Error,
-    },
-    /// The TOML is malformed or does not fit the schema (unknown field, wrong type, missing field).
-    #[error("scene{}: {message}", origin.as_ref().map(|p| format!(" `{}`", p.display())).unwrap_or_default())]
-    Syntax {
-        /// The scene file, when the scene came from one.
-        origin: Option<PathBuf>,
-        /// The parser's message (it names the line and the field).
-        message: String,
-    },
-    /// The `version` key is missing or not supported.
-    #[error(
-        "version = {0} is not supported: this tack reads scene files with version = {SCENE_VERSION}"
-    )]
-    Version(String),
-    /// A `--set key=value` override cannot be applied.
-    #[error("--set {assignment}: {reason}")]
-    Override {
-        /// The override as given.
-        assignment: String,
-        /// Why it cannot be applied.
-        reason: String,
-    },
-    /// A value outside its allowed range.
-    #[error("{field} = {value} is invalid: must be {allowed}")]
-    OutOfRange {
-        /// The offending field, e.g. `material.e_star`.
-        field: String,
-        /// The value given, as written in the message.
-        value: String,
-        /// The allowed range.
-        allowed: String,
-    },
-    /// A combination of fields that cannot work (the message names the fields).
-    #[error("{0}")]
-    Inconsistent(String),
-    /// A geometry error (grid, shape, roughness, height map); names the field.
-    #[error(transparent)]
-    Geometry(#[from] tack_geometry::GeometryError),
-    /// An elastic-operator error; names the field.
-    #[error(transparent)]
-    Kernel(#[from] tack_kernels::KernelError),
-    /// A solver or approach-path error; names the field.
-    #[error(transparent)]
-    Solver(#[from] tack_solver::SolverError),
-}
-
-impl SceneError {
-    /// An [`SceneError::OutOfRange`] from anything printable.
-    pub fn out_of_range(
-        field: impl Into<String>,
-        value: impl fmt::Display,
-        allowed: impl Into<String>,
-    ) -> Self {
-        let value = value.to_string();
-        // A huge or tiny f64 displays as hundreds of digits: show it as 1.797e308 instead.
-        let value = match value.parse::<f64>() {
-            Ok(x) if value.len() > 17 => num(x),
-            _ => value,
-        };
-        Self::OutOfRange {
-            field: field.into(),
-            value,
-            allowed: allowed.into(),
-        }
-    }
-}
-
-/// A number as a person reads it in a message: plain for moderate magnitudes, otherwise in
-/// scientific notation with the shortest digits that round-trip (`1.797e308`, not 309 digits).
-pub fn num(x: f64) -> String {
-    if x == 0.0 || !x.is_finite() || (1e-5..1e16).contains(&x.abs()) {
-        format!("{x}")
-    } else {
-        format!("{x:e}")
-    }
-}
-
 /// The top level of a scene file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct SceneFile {
+pub struct SceneSchema {
     /// Schema version; must be [`SCENE_VERSION`].
     pub version: i64,
     /// `[material]`.
@@ -122,12 +33,18 @@ pub struct SceneFile {
     /// `[solver]`, optional.
     #[serde(default)]
     pub solver: SolverSpec,
-    /// `[protocol]`: the approach path.
+    /// `[protocol]`: the approach path; optional for a pull-off of a sphere-like body (the
+    /// default path of [`crate::pull_off_path`]).
+    #[serde(default)]
     pub protocol: Protocol,
     /// `[output]`, optional.
     #[serde(default)]
     pub output: OutputSpec,
 }
+
+/// The former name of [`SceneSchema`] (it names the schema, not a file).
+#[deprecated(since = "0.1.0", note = "renamed `SceneSchema`")]
+pub type SceneFile = SceneSchema;
 
 /// `[material]`: the elastic half-space and the adhesion.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -283,17 +200,27 @@ pub struct SolverSpec {
     pub round_tolerance: Option<f64>,
 }
 
-/// `[protocol]`: the load–unload approach path (approach positive = pressing).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+/// `[protocol]`: the load–unload approach path (approach positive = pressing). Three forms:
+/// `indent = d` alone (one step pressed in to `d`, no retraction); `max_approach` with
+/// `load_step` (and the optional fields below); or neither, for the default pull-off path of a
+/// sphere-like body (`crate::pull_off_path`; `unload_step` and `coarse_unload_step` may still
+/// be given).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Protocol {
+    /// One step pressed in to this approach and no retraction (an indentation); excludes every
+    /// other field but `max_steps`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub indent: Option<f64>,
     /// First approach; default the first touch, `min f + load_step`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub start: Option<f64>,
-    /// Deepest approach; the load phase ends exactly there.
-    pub max_approach: f64,
-    /// Approach increment while loading (> 0).
-    pub load_step: f64,
+    /// Deepest approach; the load phase ends exactly there. Default: the pull-off rule.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_approach: Option<f64>,
+    /// Approach increment while loading (> 0); required with `max_approach`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub load_step: Option<f64>,
     /// Approach decrement while retracting (> 0); default `load_step`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub unload_step: Option<f64>,
@@ -449,7 +376,7 @@ pub(crate) fn value_text(value: &toml::Value) -> String {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Scene {
     /// The typed content.
-    pub file: SceneFile,
+    pub file: SceneSchema,
     /// The full TOML text after `--set` overrides (the original text when there were none);
     /// recorded verbatim in result files.
     pub text: String,
@@ -482,8 +409,8 @@ impl Scene {
         Self::parse_with_origin(text, base_dir.into(), overrides, None)
     }
 
-    /// A scene from a typed [`SceneFile`] built in code (the recorded text is its serialisation).
-    pub fn from_file(file: SceneFile, base_dir: impl Into<PathBuf>) -> Result<Self, SceneError> {
+    /// A scene from a typed [`SceneSchema`] built in code (the recorded text is its serialisation).
+    pub fn from_file(file: SceneSchema, base_dir: impl Into<PathBuf>) -> Result<Self, SceneError> {
         let text = toml::to_string(&file).map_err(|e| SceneError::Syntax {
             origin: None,
             message: e.to_string(),
@@ -542,12 +469,12 @@ impl From<SceneError> for Fault {
 
 /// The typed scene of a TOML table: version, sections, the types and ranges of every known
 /// field ([`FIELDS`], so the message names the field and what it allows), then the schema.
-fn typed(table: &toml::Table) -> Result<SceneFile, Fault> {
+fn typed(table: &toml::Table) -> Result<SceneSchema, Fault> {
     check_version(table)?;
     check_sections(table)?;
     check_fields(table)?;
     toml::Value::Table(table.clone())
-        .try_into::<SceneFile>()
+        .try_into::<SceneSchema>()
         .map_err(|e| Fault {
             field: None,
             error: SceneError::Syntax {
@@ -565,7 +492,7 @@ fn located(fault: Fault, text: &str, origin: &Option<PathBuf>) -> SceneError {
         // line, else the parser's span unless it starts the document (the whole document:
         // a missing section).
         None => unknown_key_span(text, &plain(&fault.error)).or_else(|| {
-            toml::from_str::<SceneFile>(text)
+            toml::from_str::<SceneSchema>(text)
                 .err()
                 .and_then(|e| e.span())
                 .filter(|s| s.start > 0)
@@ -749,8 +676,9 @@ const FIELDS: [(&str, Kind); 30] = [
 ];
 
 /// The rest of [`FIELDS`] (split to keep each list readable).
-const MORE_FIELDS: [(&str, Kind); 5] = [
+const MORE_FIELDS: [(&str, Kind); 6] = [
     ("solver.round_tolerance", Kind::Number),
+    ("protocol.indent", Kind::Number),
     ("protocol.coarse_unload_step", Kind::Number),
     ("protocol.retract_to", Kind::Number),
     ("protocol.max_steps", AT_LEAST_ONE),
@@ -845,9 +773,10 @@ fn check_version(table: &toml::Table) -> Result<(), SceneError> {
     match table.get("version") {
         None => Err(SceneError::Version(
             "(missing; add `version = 1` at the top)".into(),
+            SCENE_VERSION,
         )),
         Some(toml::Value::Integer(v)) if *v == SCENE_VERSION => Ok(()),
-        Some(v) => Err(SceneError::Version(value_text(v))),
+        Some(v) => Err(SceneError::Version(value_text(v), SCENE_VERSION)),
     }
 }
 

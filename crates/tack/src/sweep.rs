@@ -28,9 +28,10 @@ use rayon::prelude::*;
 use serde::Deserialize;
 use thiserror::Error;
 
+use crate::engine::{self as run, RunOptions};
 use crate::overrides::set_value;
-use crate::run::{self, RunOptions, SUMMARY_QUANTITIES};
 use crate::scene::{Scene, SceneError};
+use crate::summary::SUMMARY_QUANTITIES;
 
 /// The only sweep-file version this build reads.
 pub const SWEEP_VERSION: i64 = 1;
@@ -737,7 +738,7 @@ impl FromStr for Shard {
 }
 
 /// The most worker threads a sweep accepts (the same bound as a run's).
-pub use crate::run::MAX_THREADS;
+pub use crate::engine::MAX_THREADS;
 
 /// How [`run_sweep`] runs.
 #[derive(Debug, Clone, Default)]
@@ -1350,11 +1351,15 @@ load_step = 0.15
             );
             assert_eq!(
                 scene.protocol.max_approach,
-                [2.5, 3.0, 3.5][row],
+                Some([2.5, 3.0, 3.5][row]),
                 "point {i}"
             );
             assert_eq!(scene.grid.n, Some([22, 24, 26][row]), "point {i}");
-            assert_eq!(scene.protocol.load_step, [0.1, 0.15][load], "point {i}");
+            assert_eq!(
+                scene.protocol.load_step,
+                Some([0.1, 0.15][load]),
+                "point {i}"
+            );
             // Fields outside [vary] are the base scene's.
             assert_eq!(scene.grid.dx, Some(0.6));
         }

@@ -22,7 +22,7 @@ use std::sync::Arc;
 
 use anyhow::{Context, Result};
 use serde::Deserialize;
-use tack::scene::{Geometry, SceneFile};
+use tack::scene::{Geometry, SceneSchema};
 use tack_analytics::{
     jkr_approach_hat, jkr_approach_scale, jkr_force_hat, jkr_pull_off_approach, jkr_pull_off_force,
 };
@@ -379,13 +379,13 @@ pub struct PullOff {
 /// elements per side; `n = None` sizes the free grid to hold the contact window of a roughness
 /// of height range `range` (tack-cli crops the grid to that window).
 pub fn sphere_scene(
-    mut file: SceneFile,
+    mut file: SceneSchema,
     offset: f64,
     range: f64,
     dx: f64,
     n: Option<usize>,
     path: &PullOff,
-) -> Result<SceneFile> {
+) -> Result<SceneSchema> {
     let Geometry::Sphere { radius } = file.geometry else {
         anyhow::bail!("a sphere figure needs geometry.shape = \"sphere\"");
     };
@@ -404,8 +404,8 @@ pub fn sphere_scene(
     file.grid.dx = Some(dx);
     let p = &mut file.protocol;
     p.start = None;
-    p.max_approach = d_max;
-    p.load_step = (d_max + range) / path.load_steps.max(1) as f64;
+    p.max_approach = Some(d_max);
+    p.load_step = Some((d_max + range) / path.load_steps.max(1) as f64);
     p.unload_step = Some(path.unload_step * ds);
     p.coarse_unload_step = path.coarse_unload_step.map(|c| c * ds);
     p.retract_to = None;

@@ -5,7 +5,7 @@
 
 use anyhow::{Result, bail};
 use serde::Deserialize;
-use tack::scene::{Geometry, Roughness, SceneFile, Snapshots};
+use tack::scene::{Geometry, Roughness, SceneSchema, Snapshots};
 use tack_analytics::{
     GaussianFit, fit_gaussian, jkr_pull_off_approach, lambda_star, rms_height_from_alpha_star,
 };
@@ -88,12 +88,12 @@ impl Point {
 /// with the grid's q0 = 2π/L, q1 = π/Δx), loaded `path.load_depth` below the highest point of
 /// the roughness so that the first step bonds a compact disc.
 fn rough_scene(
-    base: &SceneFile,
+    base: &SceneSchema,
     p: &Fig7,
     hurst: f64,
     a: f64,
     seed: u64,
-) -> Result<(SceneFile, f64)> {
+) -> Result<(SceneSchema, f64)> {
     let Geometry::Sphere { radius } = base.geometry else {
         bail!("figure 7 needs a sphere");
     };
@@ -118,7 +118,7 @@ fn rough_scene(
 }
 
 /// Figure 7's scene of one (H, α*, seed) in this mode (for Figure 3).
-pub fn scene_for(ctx: &Ctx, hurst: f64, a: f64, seed: u64) -> Result<SceneFile> {
+pub fn scene_for(ctx: &Ctx, hurst: f64, a: f64, seed: u64) -> Result<SceneSchema> {
     let spec = ctx.spec(7)?;
     Ok(rough_scene(&spec.scene()?, &spec.params()?, hurst, a, seed)?.0)
 }

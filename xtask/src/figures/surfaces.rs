@@ -4,7 +4,7 @@
 use anyhow::Result;
 use serde::Deserialize;
 use tack::Problem;
-use tack::scene::{Geometry, SceneFile};
+use tack::scene::{Geometry, SceneSchema};
 use tack_analytics::{jkr_pull_off_approach, jkr_pull_off_radius};
 
 use super::{Ctx, RunFiles, Summary, Table, rough_sphere, wavy_sphere, write_figure};
@@ -38,7 +38,7 @@ struct Cut {
 }
 
 /// The [`Cut`] of `file`.
-fn cut(ctx: &Ctx, file: SceneFile, extent: f64) -> Result<Cut> {
+fn cut(ctx: &Ctx, file: SceneSchema, extent: f64) -> Result<Cut> {
     let p = Problem::from_scene(&scene(file.clone(), &ctx.specs)?)?;
     let radius = match file.geometry {
         Geometry::Sphere { radius } => radius,
@@ -163,7 +163,7 @@ pub fn fig3(ctx: &Ctx) -> Result<Summary> {
             )
         };
         let path = dir.join(format!("{name}.h5"));
-        tack_io::write_result(&path, &tack::run::surface_file(prob, prov))?;
+        tack_io::write_result(&path, &tack::summary::surface_file(prob, prov))?;
     }
     Ok(summary)
 }

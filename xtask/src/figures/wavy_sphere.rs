@@ -9,7 +9,7 @@ use std::sync::Arc;
 use anyhow::{Context, Result, bail};
 use serde::Deserialize;
 use tack::Scene;
-use tack::scene::{Geometry, Roughness, SceneFile};
+use tack::scene::{Geometry, Roughness, SceneSchema};
 use tack_analytics::{
     jkr_pull_off_approach, johnson_alpha, lambda_fit, waviness_amplitude_from_alpha,
 };
@@ -57,7 +57,7 @@ struct Combo {
 }
 
 /// Wavelength, radius and the amplitude of Johnson parameter α for `file`.
-fn geometry(file: &SceneFile) -> Result<(f64, f64)> {
+fn geometry(file: &SceneSchema) -> Result<(f64, f64)> {
     match (file.geometry, &file.roughness) {
         (Geometry::Sphere { radius }, Some(Roughness::Waviness2d { lambda, .. })) => {
             Ok((*lambda, radius))
@@ -68,7 +68,7 @@ fn geometry(file: &SceneFile) -> Result<(f64, f64)> {
 
 /// The scene of one α: `base` with h = sqrt(2λγ/(π²E*))/α, loaded `path.load_depth` below
 /// the top of the waviness (2h) so that the first step bonds a compact disc.
-fn wavy_scene(base: &SceneFile, alpha: f64, p: &Fig4) -> Result<SceneFile> {
+fn wavy_scene(base: &SceneSchema, alpha: f64, p: &Fig4) -> Result<SceneSchema> {
     let (lambda, _) = geometry(base)?;
     let (e, g) = (base.material.e_star, base.material.gamma);
     let h = waviness_amplitude_from_alpha(e, g, alpha, lambda);
@@ -85,14 +85,14 @@ fn wavy_scene(base: &SceneFile, alpha: f64, p: &Fig4) -> Result<SceneFile> {
 }
 
 /// Figure 4's spec in this mode and the scene of Johnson parameter `alpha` (for Figure 3).
-pub fn scene_for(ctx: &Ctx, alpha: f64) -> Result<SceneFile> {
+pub fn scene_for(ctx: &Ctx, alpha: f64) -> Result<SceneSchema> {
     let spec = ctx.spec(4)?;
     wavy_scene(&spec.scene()?, alpha, &spec.params()?)
 }
 
 /// Figure 4's runs: one per α, keeping the pull-off, the last contact and the unload steps
 /// every 0.25 (Rγ²/E*²)^(1/3) for the contact configurations.
-fn runs(ctx: &Ctx, base: &SceneFile, p: &Fig4) -> Result<Vec<Arc<RunOutput>>> {
+fn runs(ctx: &Ctx, base: &SceneSchema, p: &Fig4) -> Result<Vec<Arc<RunOutput>>> {
     let specs = p
         .alphas
         .iter()
@@ -118,7 +118,7 @@ fn runs(ctx: &Ctx, base: &SceneFile, p: &Fig4) -> Result<Vec<Arc<RunOutput>>> {
     run_all("fig4", &specs)
 }
 
-fn radius(file: &SceneFile) -> f64 {
+fn radius(file: &SceneSchema) -> f64 {
     match file.geometry {
         Geometry::Sphere { radius } => radius,
         _ => f64::NAN,
@@ -126,7 +126,7 @@ fn radius(file: &SceneFile) -> f64 {
 }
 
 /// Amplitude h, wavelength λ and Johnson's α of a scene.
-fn wave(file: &SceneFile) -> (f64, f64, f64) {
+fn wave(file: &SceneSchema) -> (f64, f64, f64) {
     match file.roughness {
         Some(Roughness::Waviness2d { h, lambda }) => (
             h,

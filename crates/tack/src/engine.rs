@@ -1,21 +1,26 @@
-//! Running a scene in memory: solve the approach path, assemble the result (curve, snapshots,
-//! surface, summary, provenance), optionally with the Richardson coarse run; writing the result
-//! file is a separate, explicit step ([`RunOutcome::write`]).
+//! The run engine: the one function that turns a validated [`Problem`] into a [`RunOutcome`].
 //!
-//! [`run`] is the whole run; the pieces ([`solve`], [`summary`], [`result_file`]) are public
-//! for tools that assemble their own (xtask's figure engine).
+//! [`execute`] owns everything a run does besides building its problem: the rayon pool of
+//! [`RunOptions::threads`], the timing, the solve (on the crop window, again on the full grid if
+//! contact reaches its edge), the Richardson coarse run, the provenance and the assembly of the
+//! result ([`crate::summary::assemble_result`]). Scene runs ([`run`]), runs of height arrays held
+//! in memory ([`crate::heights::run`], Python's `tack.pull_off`), sweeps and xtask's figure runs
+//! all come through it. Writing the result file is a separate, explicit step
+//! ([`RunOutcome::write`]).
 
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use tack_solver::{Observer, PathResult, Phase, StepRecord};
+use tack_solver::{Observer, PathResult, Phase, StepFields, StepRecord};
 
 use crate::Error;
+use crate::coarse::coarse_problem;
 use crate::problem::Problem;
 use crate::provenance;
-use crate::scene::{Roughness, Scene, SceneError};
+use crate::scene::{Scene, SceneError};
+use crate::summary::assemble_result;
 
-/// What [`run`] records besides the scene.
+/// How [`execute`] runs: threads, the Richardson coarse run, the command line to record.
 #[derive(Debug, Clone, Default)]
 pub struct RunOptions {
     /// Command line to record in the provenance; default: this process's.
@@ -33,6 +38,18 @@ pub struct RunOptions {
 /// exhaust the process's thread limit.
 pub const MAX_THREADS: usize = 1024;
 
+/// The one thread-count check (runs, sweeps, the CLI, Python): `n` in `1..=MAX_THREADS`, else
+/// an error naming `field`, the value and the range.
+pub fn check_threads(field: &str, n: usize) -> Result<usize, Error> {
+    if (1..=MAX_THREADS).contains(&n) {
+        Ok(n)
+    } else {
+        Err(Error::Threads(format!(
+            "{field} = {n} is invalid: must be an integer from 1 to {MAX_THREADS}"
+        )))
+    }
+}
+
 /// The rayon pool a solve runs in: `threads` threads; for `None`, the current pool when called
 /// from one of its threads (a sweep's worker), else a pool of the global pool's size (all cores,
 /// or `RAYON_NUM_THREADS`). A solve runs *inside* its pool so that its parallel FFTs split
@@ -48,11 +65,7 @@ pub fn thread_pool(
         None if rayon::current_thread_index().is_some() => return Ok(None),
         None => rayon::current_num_threads(),
     };
-    if !(1..=MAX_THREADS).contains(&n) {
-        return Err(Error::Threads(format!(
-            "{field} = {n} is invalid: must be an integer from 1 to {MAX_THREADS}"
-        )));
-    }
+    check_threads(field, n)?;
     rayon::ThreadPoolBuilder::new()
         .num_threads(n)
         .build()
@@ -93,6 +106,14 @@ impl RunOutcome {
         self.wall_time + self.coarse_wall_time.unwrap_or_default()
     }
 
+    /// Replaces the kept fields with `snapshots` (on the full grid, in step order), in the path
+    /// and in the result: for observers that select fields by rules of their own (xtask's
+    /// figures), run with `output.snapshots = "none"`.
+    pub fn replace_snapshots(&mut self, snapshots: Vec<StepFields>) {
+        self.path.snapshots = snapshots;
+        self.result.snapshots = crate::summary::snapshots(&self.path);
+    }
+
     /// Writes the result file atomically (temporary file + rename); refuses an output whose
     /// parent directory is missing or that names a directory.
     pub fn write(&self, out: &Path) -> Result<(), Error> {
@@ -102,16 +123,18 @@ impl RunOutcome {
     }
 }
 
-/// Runs an already parsed scene in memory: validation, the solve (progress and cancellation
-/// through `observer`), the summary, and with [`RunOptions::richardson`] the coarse run.
-/// Writes no file.
-pub fn run(
+/// The one run engine: runs `problem` (validated from `scene`, which the provenance records) in
+/// the pool of `options.threads`, timed, with progress and cancellation through `observer`;
+/// with [`RunOptions::richardson`] also the coarse (2Δx) problem of
+/// [`crate::coarse::coarse_problem`], validated before the fine solve. Assembles the result;
+/// writes no file.
+pub fn execute(
     scene: &Scene,
+    problem: Problem,
     options: &RunOptions,
     observer: &mut dyn Observer,
 ) -> Result<RunOutcome, Error> {
-    let problem = Problem::from_scene(scene)?;
-    // The coarse scene is validated before the (long) fine solve.
+    // The coarse scene and the thread count are checked before the (long) fine solve.
     let coarse = if options.richardson {
         Some(coarse_problem(scene, &problem)?)
     } else {
@@ -130,7 +153,7 @@ pub fn run(
         .clone()
         .unwrap_or_else(provenance::command_line);
     let prov = provenance::provenance(scene, &problem, command_line);
-    let mut result = result_file(&problem, &path, prov);
+    let mut result = assemble_result(&problem, &path, prov);
     let mut coarse_wall_time = None;
     if let Some(coarse) = coarse {
         let started = Instant::now();
@@ -164,6 +187,15 @@ pub fn run(
         coarse_wall_time,
         result,
     })
+}
+
+/// Runs an already parsed scene in memory: [`Problem::from_scene`], then [`execute`].
+pub fn run(
+    scene: &Scene,
+    options: &RunOptions,
+    observer: &mut dyn Observer,
+) -> Result<RunOutcome, Error> {
+    execute(scene, Problem::from_scene(scene)?, options, observer)
 }
 
 /// Loads the scene file `scene_path` with `overrides` (`--set` assignments) and runs it in
@@ -266,335 +298,6 @@ impl Observer for OnFullGrid<'_> {
         self.inner.cancelled()
     }
 }
-
-/// The `/summary` of a run: pull-off force (the minimum force), F_JKR and the ratio (NaN for
-/// bodies other than spheres, or γ = 0), Johnson's α or α*, and extras (`d_jkr`, `f_kendall`,
-/// `sigma_c`, `kappa`, `first_touch`, `non_converged_steps`).
-pub fn summary(problem: &Problem, path: &PathResult) -> tack_io::Summary {
-    let pull_off = path.pull_off_force();
-    let pull_off = if pull_off.is_finite() {
-        pull_off
-    } else {
-        f64::NAN
-    };
-    let r = &problem.references;
-    let f_jkr = r.f_jkr.unwrap_or(f64::NAN);
-    let ratio = if f_jkr != 0.0 {
-        pull_off / f_jkr
-    } else {
-        f64::NAN
-    };
-    let mut extra = std::collections::BTreeMap::new();
-    if let Some(d) = r.d_jkr {
-        extra.insert("d_jkr".to_owned(), d);
-    }
-    if let Some(f) = r.f_kendall {
-        extra.insert("f_kendall".to_owned(), f);
-    }
-    if let Some(p) = r.p_star {
-        extra.insert("p_star".to_owned(), p);
-    }
-    // Full-contact steps of a periodic grid record a bound (the least admissible mean
-    // pressure, about −σ_c), not a state's pressure: they are left out, as in the pull-off.
-    let min_mean_pressure = path
-        .records
-        .iter()
-        .filter(|r| !r.full_contact)
-        .map(|r| r.mean_pressure)
-        .fold(f64::INFINITY, f64::min);
-    if min_mean_pressure.is_finite() {
-        extra.insert("min_mean_pressure".to_owned(), min_mean_pressure);
-    }
-    let sigma_c = (problem.e_star * problem.gamma / (problem.kappa * problem.grid.dx())).sqrt();
-    extra.insert("sigma_c".to_owned(), sigma_c);
-    extra.insert("kappa".to_owned(), problem.kappa);
-    extra.insert("first_touch".to_owned(), problem.first_touch);
-    let bad = path.records.iter().filter(|r| !r.converged).count();
-    extra.insert("non_converged_steps".to_owned(), bad as f64);
-    let edge = path.records.iter().filter(|r| r.edge_contact).count();
-    extra.insert("edge_contact_steps".to_owned(), edge as f64);
-    if let Some(w) = &problem.window {
-        extra.insert("crop_rows".to_owned(), w.shape().0 as f64);
-        extra.insert("crop_cols".to_owned(), w.shape().1 as f64);
-    }
-    let status = if path.completed {
-        tack_io::Summary::COMPLETE
-    } else {
-        tack_io::Summary::STOPPED_AT_MAX_STEPS
-    };
-    tack_io::Summary {
-        pull_off_force: pull_off,
-        f_jkr,
-        pull_off_ratio: ratio,
-        johnson_alpha: r.johnson_alpha,
-        alpha_star: r.alpha_star,
-        extra,
-        status: Some(status.to_owned()),
-        warnings: warnings(problem, path),
-    }
-}
-
-/// Least number of bonded elements at the pull-off step below which the pull-off is flagged
-/// as carried by too few elements to mean anything (a disc of radius 2.5 elements).
-pub const MIN_PULL_OFF_ELEMENTS: usize = 20;
-
-/// The warnings of a run: the problem's own (under-resolved, reference not applicable), then
-/// what the path shows (stopped at `max_steps`, steps that did not converge, contact at the
-/// edge of a free grid, a pull-off not resolved by the path or carried by a handful of
-/// elements).
-pub fn warnings(problem: &Problem, path: &PathResult) -> Vec<String> {
-    let mut out = problem.warnings.clone();
-    let records = &path.records;
-    if !path.completed {
-        out.push(format!(
-            "incomplete: the path stopped at protocol.max_steps = {} before contact was lost; \
-             the pull-off may lie beyond the last step (raise protocol.max_steps)",
-            problem.path.max_steps
-        ));
-    }
-    let bad = records.iter().filter(|r| !r.converged).count();
-    if bad > 0 {
-        out.push(format!(
-            "{bad} of {} steps did not converge (solver caps): their forces are not solutions",
-            records.len()
-        ));
-    }
-    let edge = records.iter().filter(|r| r.edge_contact).count();
-    if edge > 0 {
-        out.push(format!(
-            "contact reached the edge of the free grid in {edge} steps: the domain cuts it \
-             off (enlarge grid.n or grid.length)"
-        ));
-    }
-    if problem.gamma > 0.0 && path.completed {
-        let tensile = records
-            .iter()
-            .zip(&path.phases)
-            .filter(|(r, phase)| {
-                **phase == Phase::Unload && r.force < 0.0 && r.n_bonded > 0 && !r.full_contact
-            })
-            .count();
-        if tensile < MIN_TENSILE_STEPS {
-            out.push(format!(
-                "pull-off not resolved by the path: {tensile} retraction steps with contact \
-                 have a tensile force (at least {MIN_TENSILE_STEPS} bracket the pull-off), so the \
-                 retraction stepped over the tensile part; lower protocol.unload_step (or \
-                 protocol.coarse_unload_step)"
-            ));
-        } else if let Some(i) = path.pull_off_step() {
-            let n = records[i].n_bonded;
-            if n < MIN_PULL_OFF_ELEMENTS {
-                out.push(format!(
-                    "the pull-off is carried by {n} bonded elements (fewer than \
-                     {MIN_PULL_OFF_ELEMENTS}): the mesh does not resolve it (refine grid.dx)"
-                ));
-            }
-        }
-    }
-    out
-}
-
-/// Least number of retraction steps with contact and a tensile force for the path to bracket
-/// the pull-off (the least force) with steps on both sides.
-pub const MIN_TENSILE_STEPS: usize = 3;
-
-/// Names of every scalar [`summary`] can record: the [`tack_io::Summary`] fields, then its
-/// `extra` keys. A run need not have all of them (`d_jkr` only for spheres, `crop_rows` only
-/// when cropped, ...). Parameter sweeps collect quantities by these names.
-pub const SUMMARY_QUANTITIES: [&str; 20] = [
-    "pull_off_force",
-    "f_jkr",
-    "pull_off_ratio",
-    "johnson_alpha",
-    "alpha_star",
-    "d_jkr",
-    "f_kendall",
-    "p_star",
-    "min_mean_pressure",
-    "sigma_c",
-    "kappa",
-    "first_touch",
-    "non_converged_steps",
-    "edge_contact_steps",
-    "crop_rows",
-    "crop_cols",
-    "pull_off_force_coarse",
-    "pull_off_force_richardson",
-    "pull_off_ratio_richardson",
-    "pull_off_error_estimate",
-];
-
-/// The summary quantity `name` (a field of [`tack_io::Summary`] or a key of its `extra`), NaN
-/// when the summary does not have it.
-pub fn summary_quantity(summary: &tack_io::Summary, name: &str) -> f64 {
-    match name {
-        "pull_off_force" => summary.pull_off_force,
-        "f_jkr" => summary.f_jkr,
-        "pull_off_ratio" => summary.pull_off_ratio,
-        "johnson_alpha" => summary.johnson_alpha.unwrap_or(f64::NAN),
-        "alpha_star" => summary.alpha_star.unwrap_or(f64::NAN),
-        other => summary.extra.get(other).copied().unwrap_or(f64::NAN),
-    }
-}
-
-/// The curve of a path, one entry per step.
-pub fn curve(path: &PathResult) -> tack_io::Curve {
-    let r = &path.records;
-    tack_io::Curve {
-        approach: r.iter().map(|s| s.approach).collect(),
-        force: r.iter().map(|s| s.force).collect(),
-        area: r.iter().map(|s| s.area).collect(),
-        n_bonded: r.iter().map(|s| s.n_bonded as u64).collect(),
-        n_clusters: r.iter().map(|s| s.n_clusters as u64).collect(),
-        iterations: r.iter().map(|s| s.cg_iterations as u64).collect(),
-        active_set_iterations: r.iter().map(|s| s.active_set_iterations as u64).collect(),
-        converged: r.iter().map(|s| s.converged).collect(),
-        mean_pressure: Some(r.iter().map(|s| s.mean_pressure).collect()),
-        full_contact: Some(r.iter().map(|s| s.full_contact).collect()),
-    }
-}
-
-/// Everything the result file holds.
-pub fn result_file(
-    problem: &Problem,
-    path: &PathResult,
-    provenance: tack_io::Provenance,
-) -> tack_io::RunResult {
-    tack_io::RunResult {
-        provenance,
-        curve: curve(path),
-        surface: problem
-            .store_surface
-            .then(|| (problem.surface.heights().clone(), problem.grid.dx())),
-        snapshots: path
-            .snapshots
-            .iter()
-            .map(|s| tack_io::Snapshot {
-                step: s.step,
-                approach: path.records[s.step].approach,
-                pressure: s.pressure.clone(),
-                bonded: s.bonded.clone(),
-            })
-            .collect(),
-        summary: summary(problem, path),
-    }
-}
-
-/// A surface-only result file: provenance, the heights and an empty curve (`tack surface`).
-pub fn surface_file(problem: &Problem, provenance: tack_io::Provenance) -> tack_io::RunResult {
-    tack_io::RunResult {
-        provenance,
-        curve: tack_io::Curve {
-            mean_pressure: None,
-            full_contact: None,
-            ..tack_io::Curve::default()
-        },
-        surface: Some((problem.surface.heights().clone(), problem.grid.dx())),
-        snapshots: Vec::new(),
-        summary: tack_io::Summary {
-            pull_off_force: f64::NAN,
-            f_jkr: problem.references.f_jkr.unwrap_or(f64::NAN),
-            pull_off_ratio: f64::NAN,
-            johnson_alpha: problem.references.johnson_alpha,
-            alpha_star: problem.references.alpha_star,
-            extra: Default::default(),
-            status: None,
-            warnings: problem.warnings.clone(),
-        },
-    }
-}
-
-/// The scene's problem on a grid of twice the element size over (at least) the same domain,
-/// for the Richardson extrapolation of `tack run --richardson`: the Pohrt–Popov criterion
-/// converges at first order in Δx, so `2·F(Δx) − F(2Δx)` cancels the leading error (smooth
-/// sphere: +6.9% at a_c/Δx = 20 becomes −0.3%).
-///
-/// The body must be the same on both grids. Shapes are analytic. Random roughness is one
-/// continuous surface per band (`tack_geometry::rough_surface`), so it needs a band the coarse
-/// grid holds, `roughness.q1 ≤ π/(2Δx)` given explicitly (the default `q1 = π/Δx` follows the
-/// grid), and even grid sides (the period is kept). A height map (`roughness.kind = "file"`)
-/// must be band-limited to `π/(2Δx)` and is read at the coarse centres
-/// (`tack_geometry::coarsen_band_limited`). Periodic grids need even sides.
-pub fn coarse_problem(scene: &Scene, problem: &Problem) -> Result<Problem, SceneError> {
-    let refuse = |reason: String| SceneError::Inconsistent(format!("--richardson {reason}"));
-    let grid = problem.grid;
-    let (nx, ny) = grid.shape();
-    let odd = |n: usize| n % 2 == 1 && n > 1;
-    let q_coarse = std::f64::consts::PI / (2.0 * grid.dx());
-    let mut file = scene.file.clone();
-    let mut coarse_map = None;
-    match &scene.file.roughness {
-        Some(Roughness::Random { q1, .. }) => {
-            let Some(q1) = *q1 else {
-                return Err(refuse(format!(
-                    "with roughness.kind = \"random\" needs a band the coarse (2Δx) grid holds: \
-                     set roughness.q1 ≤ π/(2Δx) = {} (by default q1 = π/Δx follows the grid, \
-                     so each grid would sample another surface)",
-                    crate::scene::num(q_coarse)
-                )));
-            };
-            if q1 > q_coarse * (1.0 + 1e-9) {
-                return Err(refuse(format!(
-                    "with roughness.kind = \"random\": roughness.q1 = {} is above π/(2Δx) = {}, \
-                     the Nyquist wave of the coarse (2Δx) grid; allowed: q0 < q1 ≤ {}",
-                    crate::scene::num(q1),
-                    crate::scene::num(q_coarse),
-                    crate::scene::num(q_coarse)
-                )));
-            }
-            if odd(nx) || odd(ny) {
-                return Err(refuse(format!(
-                    "with roughness.kind = \"random\" needs even grid sides (the coarse grid \
-                     keeps the period of the surface); the grid is {nx} × {ny}"
-                )));
-            }
-        }
-        Some(Roughness::File { path, dataset }) => {
-            let fine = crate::problem::read_map(
-                &scene.base_dir.join(path),
-                path,
-                dataset.as_deref(),
-                &grid,
-            )?;
-            let map =
-                tack_geometry::coarsen_band_limited(&fine, tack_geometry::BAND_LIMIT_TOLERANCE)
-                    .map_err(|e| refuse(format!("roughness.path = `{}`: {e}", path.display())))?;
-            file.roughness = None;
-            // The fine map's range, so both runs crop by the same rule.
-            let (lo, hi) = fine
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &h| {
-                    (lo.min(h), hi.max(h))
-                });
-            coarse_map = Some((map, (hi - lo).max(0.0)));
-        }
-        _ => {}
-    }
-    let periodic = grid.boundary() == tack_geometry::Boundary::Periodic;
-    // A periodic strip may be one element wide along y only (as before); nx = 1 is refused.
-    if periodic && (nx % 2 == 1 || odd(ny)) {
-        return Err(refuse(
-            "on a periodic grid needs even grid sides (the coarse grid keeps the period)".into(),
-        ));
-    }
-    let half = |n: usize| if n == 1 { 1 } else { n.div_ceil(2) };
-    (file.grid.n, file.grid.length) = (None, None);
-    file.grid.nx = Some(half(nx));
-    file.grid.ny = Some(half(ny));
-    file.grid.dx = Some(2.0 * grid.dx());
-    let text = toml::to_string(&file).map_err(|e| refuse(e.to_string()))?;
-    let coarse = Scene {
-        file,
-        text: format!("# tack run --richardson: the coarse (2Δx) scene\n{text}"),
-        base_dir: scene.base_dir.clone(),
-        origin: scene.origin.clone(),
-    };
-    match &coarse_map {
-        Some((map, range)) => Problem::build(&coarse, Some((map, *range))),
-        None => Problem::from_scene(&coarse),
-    }
-}
-
 /// Fails early (before a long solve) when the output cannot be written: missing parent
 /// directory, or an existing path that is not a regular file (a directory, a FIFO, a device).
 pub fn check_output_path(out: &Path) -> Result<(), Error> {
@@ -620,10 +323,10 @@ pub fn check_output_path(out: &Path) -> Result<(), Error> {
         None => Ok(()),
     }
 }
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::summary::{SUMMARY_QUANTITIES, summary, summary_quantity};
 
     fn scene(text: &str) -> Scene {
         Scene::parse(text, Path::new("."), &[]).unwrap()
@@ -706,6 +409,91 @@ unload_step = 0.002
                 .any(|w| w.contains("protocol.max_steps = 30")),
             "{s:?}"
         );
+    }
+
+    #[test]
+    fn an_indentation_without_adhesion_says_nothing_of_a_pull_off() {
+        // The smooth sphere pressed in once, γ = 0: one step, complete, no warnings.
+        let no_path = JKR_EXAMPLE.split("[protocol]").next().unwrap();
+        let text = format!("{no_path}[protocol]\nindent = 0.2\n");
+        let scene = Scene::parse(&text, ".", &["material.gamma=0".to_owned()]).unwrap();
+        let outcome = run(&scene, &RunOptions::default(), &mut ()).unwrap();
+        let s = &outcome.result.summary;
+        assert_eq!(outcome.path.records.len(), 1);
+        assert!(outcome.path.completed);
+        assert!(s.is_complete(), "{s:?}");
+        assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+        assert!(s.pull_off_force.is_nan() && s.pull_off_ratio.is_nan());
+        // Hertz: F = (4/3) E* R^(1/2) d^(3/2) = 1.1 for R = 8, d = 0.2, within the mesh error.
+        let force = outcome.result.curve.force[0];
+        let hertz = 4.0 / 3.0 * 8.0_f64.sqrt() * 0.2_f64.powf(1.5);
+        assert!((force / hertz - 1.0).abs() < 0.05, "{force} vs {hertz}");
+        // A path stopped by max_steps without adhesion: incomplete, and no pull-off talk.
+        let stopped = Scene::parse(
+            JKR_EXAMPLE,
+            ".",
+            &[
+                "material.gamma=0".to_owned(),
+                "protocol.max_steps=3".to_owned(),
+            ],
+        )
+        .unwrap();
+        let outcome = run(&stopped, &RunOptions::default(), &mut ()).unwrap();
+        let w = &outcome.result.summary.warnings;
+        assert!(
+            w.iter().any(|w| w.contains("protocol.max_steps = 3")),
+            "{w:?}"
+        );
+        assert!(w.iter().all(|w| !w.contains("pull-off")), "{w:?}");
+    }
+
+    #[test]
+    fn periodic_full_contact_is_flagged_in_the_summary() {
+        // A 2D waviness pressed beyond its full-contact approach, without adhesion.
+        let text = r#"
+version = 1
+[material]
+e_star = 1.0
+gamma = 0.0
+[geometry]
+shape = "none"
+[roughness]
+kind = "waviness2d"
+h = 0.01
+lambda = 1.0
+[grid]
+n = 16
+length = 1.0
+boundary = "periodic"
+[protocol]
+max_approach = 0.03
+load_step = 0.015
+retract_to = 0.0
+"#;
+        let scene = Scene::parse(text, ".", &[]).unwrap();
+        let outcome = run(&scene, &RunOptions::default(), &mut ()).unwrap();
+        let s = &outcome.result.summary;
+        let full = outcome
+            .path
+            .records
+            .iter()
+            .filter(|r| r.full_contact)
+            .count();
+        assert!(full > 0, "the test wants full contact");
+        assert_eq!(s.extra["full_contact_steps"], full as f64);
+        assert!(
+            s.warnings
+                .iter()
+                .any(|w| w.starts_with(&format!("full contact in {full} of"))),
+            "{:?}",
+            s.warnings
+        );
+        // Partial contact: no such warning.
+        let partial = Scene::parse(text, ".", &["protocol.max_approach=0.005".to_owned()]).unwrap();
+        let outcome = run(&partial, &RunOptions::default(), &mut ()).unwrap();
+        let s = &outcome.result.summary;
+        assert_eq!(s.extra["full_contact_steps"], 0.0);
+        assert!(s.warnings.iter().all(|w| !w.contains("full contact")));
     }
 
     #[test]

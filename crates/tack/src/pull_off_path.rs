@@ -1,0 +1,218 @@
+//! The default pull-off path: the rule that sets the load depth and the retraction steps of a
+//! pull-off from the body's radius, used by scenes without `protocol.max_approach` and by
+//! [`crate::heights::pull_off`] (Python's `tack.pull_off`), and the least-squares paraboloid that
+//! finds the radius of a body given only as heights.
+//!
+//! **The rule.** With d_s = (Rγ²/E*²)^(1/3), the JKR approach scale of a sphere of radius R,
+//! the path loads in one step to [`LOAD_DEPTH`]·d_s beyond the top of the roughness (the
+//! paper's rough-sphere runs: on a smooth sphere this bonds a disc of about 1.6 a_c, deep enough
+//! for the JKR pull-off), then retracts by [`COARSE_UNLOAD_STEP`]·d_s while the force is
+//! compressive and by [`UNLOAD_STEP`]·d_s through the tensile part, until nothing is bonded.
+
+use ndarray::Array2;
+use tack_geometry::Grid;
+
+/// Default load depth of the default pull-off path, in units of d_s = (Rγ²/E*²)^(1/3): the path loads in one
+/// step to this many d_s below the top of the roughness (the paper's rough-sphere runs; on a
+/// smooth sphere it bonds a disc of about 1.6 a_c).
+pub const LOAD_DEPTH: f64 = 3.0;
+
+/// Default coarse retraction step of the default pull-off path (while the force is compressive), in d_s.
+pub const COARSE_UNLOAD_STEP: f64 = 0.2;
+
+/// Default retraction step of the default pull-off path through the tensile part, in d_s (the quick mode of
+/// `cargo xtask reproduce`; the full mode uses 0.01).
+pub const UNLOAD_STEP: f64 = 0.02;
+
+/// Coarse retraction step over the fine one when no radius sets the scale.
+pub const COARSE_PER_UNLOAD_STEP: f64 = 10.0;
+
+/// The numbers of the default pull-off path of a body of radius `radius`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PullOffPath {
+    /// The JKR approach scale d_s = (Rγ²/E*²)^(1/3).
+    pub d_s: f64,
+    /// Deepest approach: `top +` [`LOAD_DEPTH`]`·d_s`.
+    pub max_approach: f64,
+    /// Retraction step while the force is compressive: [`COARSE_UNLOAD_STEP`]`·d_s`.
+    pub coarse_unload_step: f64,
+    /// Retraction step through the tensile part: [`UNLOAD_STEP`]`·d_s`.
+    pub unload_step: f64,
+}
+
+/// The default pull-off path of a sphere-like body of radius `radius` (E* `e_star`, γ `gamma`)
+/// whose roughness reaches up to approach `top` (the vertex height plus the greatest height of
+/// the roughness above the smooth shape; 0 for a smooth sphere at the origin).
+///
+/// ```
+/// // E* = 1, γ = 0.125, R = 8: d_s = (8 · 0.125²)^(1/3) = 0.5.
+/// let p = tack::pull_off_path::default_pull_off_path(1.0, 0.125, 8.0, 0.0);
+/// assert!((p.d_s - 0.5).abs() < 1e-12);
+/// assert!((p.max_approach - 1.5).abs() < 1e-12);
+/// assert!((p.unload_step - 0.01).abs() < 1e-12);
+/// ```
+pub fn default_pull_off_path(e_star: f64, gamma: f64, radius: f64, top: f64) -> PullOffPath {
+    let d_s = tack_analytics::jkr_approach_scale(e_star, gamma, radius);
+    PullOffPath {
+        d_s,
+        max_approach: top + LOAD_DEPTH * d_s,
+        coarse_unload_step: COARSE_UNLOAD_STEP * d_s,
+        unload_step: UNLOAD_STEP * d_s,
+    }
+}
+
+/// A least-squares paraboloid `h ≈ apex + ((x − x0)² + (y − y0)²)/(2R)` through a height array
+/// (tilt and offset included through the vertex), and the residual, the body's roughness.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Paraboloid {
+    /// Radius of curvature `R` (negative for a body curved towards the half-space).
+    pub radius: f64,
+    /// Vertex `(x0, y0)` in tack's coordinates.
+    pub vertex: (f64, f64),
+    /// Height of the vertex.
+    pub apex: f64,
+    /// Least residual `h − paraboloid` over the array.
+    pub residual_min: f64,
+    /// Greatest residual `h − paraboloid` over the array: the top of the roughness above the
+    /// smooth shape.
+    pub residual_max: f64,
+}
+
+impl Paraboloid {
+    /// Range (max − min) of the residual: the roughness range of the crop rule.
+    pub fn residual_range(&self) -> f64 {
+        self.residual_max - self.residual_min
+    }
+
+    /// Whether the paraboloid describes the body as a sphere with roughness: `R > 0`, and its
+    /// rise over the largest disc inside the grid, `(min(Lx, Ly)/2)²/(2R)`, is at least half
+    /// the residual range (a flat rough surface fits a paraboloid too, with a rise far below
+    /// its roughness).
+    pub fn is_sphere_like(&self, grid: &Grid) -> bool {
+        let half = 0.5 * grid.lx().min(grid.ly());
+        self.radius.is_finite()
+            && self.radius > 0.0
+            && half * half / (2.0 * self.radius) >= 0.5 * self.residual_range()
+    }
+}
+
+/// Fits a [`Paraboloid`] to `heights` on elements of size `dx` by least squares; with `radius`
+/// given only the vertex and apex are fitted. `None` when the array has fewer than 3 elements
+/// along an axis, or the fit is singular or flat (no curvature).
+pub fn fit_paraboloid(heights: &Array2<f64>, dx: f64, radius: Option<f64>) -> Option<Paraboloid> {
+    let (nx, ny) = heights.dim();
+    if nx < 3 || ny < 3 || !(dx.is_finite() && dx > 0.0) {
+        return None;
+    }
+    // Coordinates scaled to about [−1, 1] keep the normal equations well conditioned.
+    let scale = 0.5 * dx * nx.max(ny) as f64;
+    let uv = |i: usize, j: usize| {
+        (
+            (i as f64 - (nx / 2) as f64) * dx / scale,
+            (j as f64 - (ny / 2) as f64) * dx / scale,
+        )
+    };
+    // h ≈ c0 + c1 u + c2 v + c3 (u² + v²); with a given radius c3 = scale²/(2R) is fixed.
+    let fixed_c3 = match radius {
+        Some(r) if r.is_finite() && r != 0.0 => Some(scale * scale / (2.0 * r)),
+        Some(_) => return None,
+        None => None,
+    };
+    let m = if fixed_c3.is_some() { 3 } else { 4 };
+    let mut ata = [[0.0_f64; 4]; 4];
+    let mut atb = [0.0_f64; 4];
+    for ((i, j), &h) in heights.indexed_iter() {
+        let (u, v) = uv(i, j);
+        let r2 = u * u + v * v;
+        let row = [1.0, u, v, r2];
+        let target = h - fixed_c3.map_or(0.0, |c3| c3 * r2);
+        for a in 0..m {
+            atb[a] += row[a] * target;
+            for b in 0..m {
+                ata[a][b] += row[a] * row[b];
+            }
+        }
+    }
+    let c = solve_small(ata, atb, m)?;
+    let c3 = fixed_c3.unwrap_or(c[3]);
+    if c3 == 0.0 || !c3.is_finite() {
+        return None;
+    }
+    let (u0, v0) = (-c[1] / (2.0 * c3), -c[2] / (2.0 * c3));
+    let apex = c[0] - (c[1] * c[1] + c[2] * c[2]) / (4.0 * c3);
+    let (residual_min, residual_max) = min_max(heights.indexed_iter().map(|((i, j), &h)| {
+        let (u, v) = uv(i, j);
+        h - (c[0] + c[1] * u + c[2] * v + c3 * (u * u + v * v))
+    }));
+    Some(Paraboloid {
+        radius: radius.unwrap_or(scale * scale / (2.0 * c3)),
+        vertex: (u0 * scale, v0 * scale),
+        apex,
+        residual_min,
+        residual_max,
+    })
+}
+
+/// Solves the leading `m × m` block of `a x = b` by Gaussian elimination with partial pivoting;
+/// `None` when singular.
+fn solve_small(mut a: [[f64; 4]; 4], mut b: [f64; 4], m: usize) -> Option<[f64; 4]> {
+    let norm = a.iter().flatten().fold(0.0_f64, |s, v| s.max(v.abs()));
+    for col in 0..m {
+        let pivot = (col..m).max_by(|&p, &q| a[p][col].abs().total_cmp(&a[q][col].abs()))?;
+        if a[pivot][col].is_nan() || a[pivot][col].abs() <= 1e-12 * norm {
+            return None;
+        }
+        a.swap(col, pivot);
+        b.swap(col, pivot);
+        for row in col + 1..m {
+            let f = a[row][col] / a[col][col];
+            let pivot_row = a[col];
+            for (value, p) in a[row][col..m].iter_mut().zip(&pivot_row[col..m]) {
+                *value -= f * p;
+            }
+            b[row] -= f * b[col];
+        }
+    }
+    let mut x = [0.0; 4];
+    for row in (0..m).rev() {
+        let s: f64 = (row + 1..m).map(|k| a[row][k] * x[k]).sum();
+        x[row] = (b[row] - s) / a[row][row];
+    }
+    Some(x)
+}
+
+fn min_max(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+        (lo.min(v), hi.max(v))
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tack_geometry::{Boundary, RoughSpec, rough_surface};
+
+    #[test]
+    fn the_fit_recovers_an_offset_paraboloid() {
+        let (nx, ny, dx) = (40, 30, 0.1);
+        let grid = Grid::new(nx, ny, dx, Boundary::Free).unwrap();
+        let h = Array2::from_shape_fn((nx, ny), |(i, j)| {
+            let (x, y) = (grid.x(i) - 0.7, grid.y(j) + 0.4);
+            3.0 + (x * x + y * y) / (2.0 * 5.0)
+        });
+        for radius in [None, Some(5.0)] {
+            let f = fit_paraboloid(&h, dx, radius).unwrap();
+            assert!((f.radius - 5.0).abs() < 1e-9, "{f:?}");
+            assert!((f.vertex.0 - 0.7).abs() < 1e-9 && (f.vertex.1 + 0.4).abs() < 1e-9);
+            assert!((f.apex - 3.0).abs() < 1e-9);
+            assert!(f.residual_range() < 1e-9);
+            assert!(f.is_sphere_like(&grid));
+        }
+        // A strip has no paraboloid; a flat rough surface is not sphere-like.
+        assert!(fit_paraboloid(&Array2::zeros((64, 1)), dx, None).is_none());
+        let grid = Grid::square(64, dx, Boundary::Free).unwrap();
+        let rough = rough_surface(grid, &RoughSpec::paper_defaults(grid, 0.01, 0.5, 3)).unwrap();
+        let f = fit_paraboloid(rough.heights(), dx, None);
+        assert!(f.is_none_or(|f| !f.is_sphere_like(&grid)), "{f:?}");
+    }
+}

@@ -1,0 +1,275 @@
+//! What a run's result holds besides the raw path: the `/summary` (pull-off force against the
+//! closed forms, the run's warnings, status), the curve's columns, and the assembly of the whole
+//! [`tack_io::RunResult`] that [`crate::engine`] hands back.
+
+use tack_solver::{PathResult, Phase};
+
+use crate::problem::Problem;
+
+/// The `/summary` of a run: pull-off force (the minimum force), F_JKR and the ratio (NaN for
+/// bodies other than spheres, or γ = 0), Johnson's α or α*, and extras (`d_jkr`, `f_kendall`,
+/// `sigma_c`, `kappa`, `first_touch`, `non_converged_steps`).
+pub fn summary(problem: &Problem, path: &PathResult) -> tack_io::Summary {
+    let pull_off = path.pull_off_force();
+    // An indentation is one state, not a pull-off.
+    let pull_off = if pull_off.is_finite() && !problem.path.is_indentation() {
+        pull_off
+    } else {
+        f64::NAN
+    };
+    let r = &problem.references;
+    let f_jkr = r.f_jkr.unwrap_or(f64::NAN);
+    let ratio = if f_jkr != 0.0 {
+        pull_off / f_jkr
+    } else {
+        f64::NAN
+    };
+    let mut extra = std::collections::BTreeMap::new();
+    if let Some(d) = r.d_jkr {
+        extra.insert("d_jkr".to_owned(), d);
+    }
+    if let Some(f) = r.f_kendall {
+        extra.insert("f_kendall".to_owned(), f);
+    }
+    if let Some(p) = r.p_star {
+        extra.insert("p_star".to_owned(), p);
+    }
+    // Full-contact steps of a periodic grid record a bound (the least admissible mean
+    // pressure, about −σ_c), not a state's pressure: they are left out, as in the pull-off.
+    let min_mean_pressure = path
+        .records
+        .iter()
+        .filter(|r| !r.full_contact)
+        .map(|r| r.mean_pressure)
+        .fold(f64::INFINITY, f64::min);
+    if min_mean_pressure.is_finite() {
+        extra.insert("min_mean_pressure".to_owned(), min_mean_pressure);
+    }
+    let sigma_c = (problem.e_star * problem.gamma / (problem.kappa * problem.grid.dx())).sqrt();
+    extra.insert("sigma_c".to_owned(), sigma_c);
+    extra.insert("kappa".to_owned(), problem.kappa);
+    extra.insert("first_touch".to_owned(), problem.first_touch);
+    let bad = path.records.iter().filter(|r| !r.converged).count();
+    extra.insert("non_converged_steps".to_owned(), bad as f64);
+    let edge = path.records.iter().filter(|r| r.edge_contact).count();
+    extra.insert("edge_contact_steps".to_owned(), edge as f64);
+    let full = path.records.iter().filter(|r| r.full_contact).count();
+    extra.insert("full_contact_steps".to_owned(), full as f64);
+    if let Some(w) = &problem.window {
+        extra.insert("crop_rows".to_owned(), w.shape().0 as f64);
+        extra.insert("crop_cols".to_owned(), w.shape().1 as f64);
+    }
+    let status = if path.completed {
+        tack_io::Summary::COMPLETE
+    } else {
+        tack_io::Summary::STOPPED_AT_MAX_STEPS
+    };
+    tack_io::Summary {
+        pull_off_force: pull_off,
+        f_jkr,
+        pull_off_ratio: ratio,
+        johnson_alpha: r.johnson_alpha,
+        alpha_star: r.alpha_star,
+        extra,
+        status: Some(status.to_owned()),
+        warnings: warnings(problem, path),
+    }
+}
+
+/// Least number of bonded elements at the pull-off step below which the pull-off is flagged
+/// as carried by too few elements to mean anything (a disc of radius 2.5 elements).
+pub const MIN_PULL_OFF_ELEMENTS: usize = 20;
+
+/// The warnings of a run: the problem's own (under-resolved, reference not applicable), then
+/// what the path shows (stopped at `max_steps`, steps that did not converge, contact at the
+/// edge of a free grid, a pull-off not resolved by the path or carried by a handful of
+/// elements).
+pub fn warnings(problem: &Problem, path: &PathResult) -> Vec<String> {
+    let mut out = problem.warnings.clone();
+    let records = &path.records;
+    let adhesive = problem.gamma > 0.0;
+    if !path.completed {
+        let beyond = if adhesive {
+            "; the pull-off may lie beyond the last step"
+        } else {
+            ""
+        };
+        out.push(format!(
+            "incomplete: the path stopped at protocol.max_steps = {} before contact was \
+             lost{beyond} (raise protocol.max_steps)",
+            problem.path.max_steps
+        ));
+    }
+    let full = records.iter().filter(|r| r.full_contact).count();
+    if full > 0 {
+        let what = if adhesive {
+            "their force is not fixed by the approach (the record holds the least admissible \
+             mean pressure, about −σ_c, a property of the mesh) and the pull-off leaves them out"
+        } else {
+            "the gap is closed everywhere, so the mean pressure no longer follows from the \
+             approach"
+        };
+        out.push(format!(
+            "full contact in {full} of {} steps (periodic grid: every element in contact): \
+             {what}; the approach of a periodic grid is measured from the mean plane of the \
+             deformed surface",
+            records.len()
+        ));
+    }
+    let bad = records.iter().filter(|r| !r.converged).count();
+    if bad > 0 {
+        out.push(format!(
+            "{bad} of {} steps did not converge (solver caps): their forces are not solutions",
+            records.len()
+        ));
+    }
+    let edge = records.iter().filter(|r| r.edge_contact).count();
+    if edge > 0 {
+        out.push(format!(
+            "contact reached the edge of the free grid in {edge} steps: the domain cuts it \
+             off (enlarge grid.n or grid.length)"
+        ));
+    }
+    if adhesive && path.completed && !problem.path.is_indentation() {
+        let tensile = records
+            .iter()
+            .zip(&path.phases)
+            .filter(|(r, phase)| {
+                **phase == Phase::Unload && r.force < 0.0 && r.n_bonded > 0 && !r.full_contact
+            })
+            .count();
+        if tensile < MIN_TENSILE_STEPS {
+            out.push(format!(
+                "pull-off not resolved by the path: {tensile} retraction steps with contact \
+                 have a tensile force (at least {MIN_TENSILE_STEPS} bracket the pull-off), so the \
+                 retraction stepped over the tensile part; lower protocol.unload_step (or \
+                 protocol.coarse_unload_step)"
+            ));
+        } else if let Some(i) = path.pull_off_step() {
+            let n = records[i].n_bonded;
+            if n < MIN_PULL_OFF_ELEMENTS {
+                out.push(format!(
+                    "the pull-off is carried by {n} bonded elements (fewer than \
+                     {MIN_PULL_OFF_ELEMENTS}): the mesh does not resolve it (refine grid.dx)"
+                ));
+            }
+        }
+    }
+    out
+}
+
+/// Least number of retraction steps with contact and a tensile force for the path to bracket
+/// the pull-off (the least force) with steps on both sides.
+pub const MIN_TENSILE_STEPS: usize = 3;
+
+/// Names of every scalar [`summary`] can record: the [`tack_io::Summary`] fields, then its
+/// `extra` keys. A run need not have all of them (`d_jkr` only for spheres, `crop_rows` only
+/// when cropped, ...). Parameter sweeps collect quantities by these names.
+pub const SUMMARY_QUANTITIES: [&str; 21] = [
+    "pull_off_force",
+    "f_jkr",
+    "pull_off_ratio",
+    "johnson_alpha",
+    "alpha_star",
+    "d_jkr",
+    "f_kendall",
+    "p_star",
+    "min_mean_pressure",
+    "sigma_c",
+    "kappa",
+    "first_touch",
+    "non_converged_steps",
+    "edge_contact_steps",
+    "full_contact_steps",
+    "crop_rows",
+    "crop_cols",
+    "pull_off_force_coarse",
+    "pull_off_force_richardson",
+    "pull_off_ratio_richardson",
+    "pull_off_error_estimate",
+];
+
+/// The summary quantity `name` (a field of [`tack_io::Summary`] or a key of its `extra`), NaN
+/// when the summary does not have it.
+pub fn summary_quantity(summary: &tack_io::Summary, name: &str) -> f64 {
+    match name {
+        "pull_off_force" => summary.pull_off_force,
+        "f_jkr" => summary.f_jkr,
+        "pull_off_ratio" => summary.pull_off_ratio,
+        "johnson_alpha" => summary.johnson_alpha.unwrap_or(f64::NAN),
+        "alpha_star" => summary.alpha_star.unwrap_or(f64::NAN),
+        other => summary.extra.get(other).copied().unwrap_or(f64::NAN),
+    }
+}
+
+/// The curve of a path, one entry per step.
+pub fn curve(path: &PathResult) -> tack_io::Curve {
+    let r = &path.records;
+    tack_io::Curve {
+        approach: r.iter().map(|s| s.approach).collect(),
+        force: r.iter().map(|s| s.force).collect(),
+        area: r.iter().map(|s| s.area).collect(),
+        n_bonded: r.iter().map(|s| s.n_bonded as u64).collect(),
+        n_clusters: r.iter().map(|s| s.n_clusters as u64).collect(),
+        iterations: r.iter().map(|s| s.cg_iterations as u64).collect(),
+        active_set_iterations: r.iter().map(|s| s.active_set_iterations as u64).collect(),
+        converged: r.iter().map(|s| s.converged).collect(),
+        mean_pressure: Some(r.iter().map(|s| s.mean_pressure).collect()),
+        full_contact: Some(r.iter().map(|s| s.full_contact).collect()),
+    }
+}
+
+/// Everything the result file holds: provenance, curve, surface (when stored), snapshots
+/// (on the full grid) and summary. Writes nothing; [`crate::RunOutcome::write`] does.
+pub fn assemble_result(
+    problem: &Problem,
+    path: &PathResult,
+    provenance: tack_io::Provenance,
+) -> tack_io::RunResult {
+    tack_io::RunResult {
+        provenance,
+        curve: curve(path),
+        surface: problem
+            .store_surface
+            .then(|| (problem.surface.heights().clone(), problem.grid.dx())),
+        snapshots: snapshots(path),
+        summary: summary(problem, path),
+    }
+}
+
+/// The path's kept fields as the result file stores them, with each step's approach.
+pub fn snapshots(path: &PathResult) -> Vec<tack_io::Snapshot> {
+    path.snapshots
+        .iter()
+        .map(|s| tack_io::Snapshot {
+            step: s.step,
+            approach: path.records[s.step].approach,
+            pressure: s.pressure.clone(),
+            bonded: s.bonded.clone(),
+        })
+        .collect()
+}
+
+/// A surface-only result file: provenance, the heights and an empty curve (`tack surface`).
+pub fn surface_file(problem: &Problem, provenance: tack_io::Provenance) -> tack_io::RunResult {
+    tack_io::RunResult {
+        provenance,
+        curve: tack_io::Curve {
+            mean_pressure: None,
+            full_contact: None,
+            ..tack_io::Curve::default()
+        },
+        surface: Some((problem.surface.heights().clone(), problem.grid.dx())),
+        snapshots: Vec::new(),
+        summary: tack_io::Summary {
+            pull_off_force: f64::NAN,
+            f_jkr: problem.references.f_jkr.unwrap_or(f64::NAN),
+            pull_off_ratio: f64::NAN,
+            johnson_alpha: problem.references.johnson_alpha,
+            alpha_star: problem.references.alpha_star,
+            extra: Default::default(),
+            status: None,
+            warnings: problem.warnings.clone(),
+        },
+    }
+}
