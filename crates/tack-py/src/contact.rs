@@ -5,8 +5,19 @@ use pyo3::prelude::*;
 use tack::geometry::{Boundary, Grid, Surface};
 use tack::solver::{ContactSolver, ContactState, SolverOptions};
 
-use crate::errors::value_error;
+use crate::errors::{Names, value_error, value_error_named};
 use crate::guard::released;
+
+/// The fields of the messages of the grid, operator and solver and the arguments of
+/// `tack.contact` they stand for.
+const CONTACT_NAMES: Names = &[
+    ("material.e_star", "e_star"),
+    ("grid.nx", "heights.shape[0]"),
+    ("grid.ny", "heights.shape[1]"),
+    ("grid.dx", "dx"),
+    ("solver.tolerance", "tolerance"),
+    ("solver.max_iterations", "max_iterations"),
+];
 
 /// Equilibrium of non-adhesive contact at one prescribed approach.
 #[pyclass(module = "tack", name = "ContactResult", frozen)]
@@ -17,7 +28,8 @@ pub struct ContactResult {
     /// Gap `f − d + u` at every element (zero in contact), the shape of the heights.
     #[pyo3(get)]
     gap: Py<PyArray2<f64>>,
-    /// The prescribed approach `d` (positive = pressing).
+    /// The prescribed approach `d` (positive = pressing; periodic grids measure it from the
+    /// deformed mean plane, so contact is partial only for `min(heights) < d < mean(heights)`).
     #[pyo3(get)]
     approach: f64,
     /// Total force `Σ p Δx²` (positive = compressive).
@@ -32,7 +44,8 @@ pub struct ContactResult {
     /// Number of elements in contact.
     #[pyo3(get)]
     n_contact: usize,
-    /// Conjugate-gradient iterations used.
+    /// Conjugate-gradient iterations used (0 for states known in closed form: nothing touches,
+    /// or periodic full contact).
     #[pyo3(get)]
     iterations: usize,
     /// Final relative residual.
@@ -41,8 +54,11 @@ pub struct ContactResult {
     /// Whether the stopping rule was met within the iteration cap.
     #[pyo3(get)]
     converged: bool,
-    /// Periodic grids: every element in contact (the mean pressure is then the least that
-    /// keeps full contact admissible).
+    /// Periodic grids only (always False on free grids): `approach >= mean(heights)`, every
+    /// gap closed. The approach then no longer sets the load: the state is the one in which
+    /// contact has just become full, with the least mean pressure that keeps every element
+    /// compressive (its least element pressure is 0), the same for every approach beyond
+    /// `mean(heights)`, computed in closed form (`iterations = 0`).
     #[pyo3(get)]
     full_contact: bool,
 }
@@ -50,13 +66,15 @@ pub struct ContactResult {
 #[pymethods]
 impl ContactResult {
     fn __repr__(&self) -> String {
+        let flag = |b: bool| if b { "True" } else { "False" };
         format!(
             "<tack.ContactResult: approach = {:.6e}, force = {:.6e}, area = {:.6e}, converged = \
-             {}>",
+             {}, full_contact = {}>",
             self.approach,
             self.force,
             self.area,
-            if self.converged { "True" } else { "False" }
+            flag(self.converged),
+            flag(self.full_contact)
         )
     }
 }
@@ -94,9 +112,11 @@ pub fn contact(
     periodic: bool,
     tolerance: Option<f64>,
     max_iterations: Option<usize>,
-    threads: Option<usize>,
+    threads: Option<i64>,
 ) -> PyResult<Vec<ContactResult>> {
+    let threads = crate::run::check_threads(threads)?;
     let pool = tack::engine::thread_pool("threads", threads).map_err(value_error)?;
+    let named = |e: &dyn std::fmt::Display| value_error_named(e, CONTACT_NAMES);
     let heights = heights.as_array().to_owned();
     if let Some(((i, j), h)) = heights.indexed_iter().find(|(_, h)| !h.is_finite()) {
         return Err(value_error(format!(
@@ -115,10 +135,10 @@ pub fn contact(
     };
     let states = released(py, move || {
         let (nx, ny) = heights.dim();
-        let grid = Grid::new(nx, ny, dx, boundary).map_err(value_error)?;
-        let surface = Surface::new(grid, heights).map_err(value_error)?;
-        let op = tack::kernels::operator_for(grid, e_star).map_err(value_error)?;
-        let mut solver = ContactSolver::new(op, &surface, options).map_err(value_error)?;
+        let grid = Grid::new(nx, ny, dx, boundary).map_err(|e| named(&e))?;
+        let surface = Surface::new(grid, heights).map_err(|e| named(&e))?;
+        let op = tack::kernels::operator_for(grid, e_star).map_err(|e| named(&e))?;
+        let mut solver = ContactSolver::new(op, &surface, options).map_err(|e| named(&e))?;
         let mut states = Vec::with_capacity(approaches.len());
         for (k, &d) in approaches.iter().enumerate() {
             if k > 0 {
@@ -128,7 +148,7 @@ pub fn contact(
                 Some(pool) => pool.install(|| solver.solve(d)),
                 None => solver.solve(d),
             };
-            states.push(state.map_err(value_error)?);
+            states.push(state.map_err(|e| named(&e))?);
         }
         Ok::<_, PyErr>(states)
     })?;

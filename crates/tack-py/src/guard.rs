@@ -21,7 +21,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use tack::solver::{Observer, Phase, StepRecord};
 
-use crate::errors::{InternalError, to_py};
+use crate::errors::{InternalError, Names, to_py_named};
 
 /// Longest time between two checks for signals (and progress reports) during a run.
 pub const CHECK_INTERVAL: Duration = Duration::from_millis(100);
@@ -111,8 +111,14 @@ impl Observer for PyObserver {
 /// Runs `work` with the GIL released and a [`PyObserver`] for `progress`, on a worker thread
 /// while this thread checks for signals every [`CHECK_INTERVAL`]; a run stopped by the
 /// observer raises what stopped it (`KeyboardInterrupt`, the callback's exception), a tack
-/// error its Python exception, a panic `InternalError`.
-pub fn detached<T, F>(py: Python<'_>, progress: Option<Py<PyAny>>, work: F) -> PyResult<T>
+/// error its Python exception (the fields of `names` renamed to Python arguments), a panic
+/// `InternalError`.
+pub fn detached<T, F>(
+    py: Python<'_>,
+    progress: Option<Py<PyAny>>,
+    names: Names,
+    work: F,
+) -> PyResult<T>
 where
     T: Send,
     F: FnOnce(&mut PyObserver) -> Result<T, tack::Error> + Send,
@@ -153,7 +159,7 @@ where
             .error
             .take()
             .unwrap_or_else(|| PyKeyboardInterrupt::new_err(e.to_string()))),
-        Ok(Err(e)) => Err(to_py(&e)),
+        Ok(Err(e)) => Err(to_py_named(&e, names)),
         Ok(Ok(value)) => {
             observer.finish(py)?;
             Ok(value)

@@ -4,9 +4,10 @@
 use std::path::PathBuf;
 
 use numpy::{IntoPyArray, PyArray1};
+use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
-use pyo3::types::PyDict;
+use pyo3::types::{PyBytes, PyDict, PyString};
 
 use crate::errors::to_py;
 use crate::guard::released;
@@ -203,9 +204,10 @@ impl Result {
         &self.inner.provenance.scene
     }
 
-    /// Writes the HDF5 result file atomically (temporary file + rename); the parent directory
-    /// must exist.
-    fn write(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+    /// Writes the HDF5 result file atomically (temporary file + rename); `path` is a `str` or
+    /// `os.PathLike`, and its parent directory must exist.
+    fn write(&self, py: Python<'_>, path: &Bound<'_, PyAny>) -> PyResult<()> {
+        let path = path_argument("path", path)?;
         released(py, || {
             tack::engine::check_output_path(&path).map_err(|e| to_py(&e))?;
             tack::io::write_result(&path, &self.inner).map_err(|e| to_py(&e.into()))
@@ -228,6 +230,25 @@ impl Result {
             s.pull_off_ratio
         )
     }
+}
+
+/// A path argument: a `str` or an `os.PathLike` (whose path may be `bytes`, decoded as
+/// `os.fsdecode` does); anything else is a `TypeError` naming `name`.
+fn path_argument(name: &str, value: &Bound<'_, PyAny>) -> PyResult<PathBuf> {
+    let py = value.py();
+    let os = py.import("os")?;
+    if value.is_instance_of::<PyString>() || value.is_instance(&os.getattr("PathLike")?)? {
+        return os.call_method1("fsdecode", (value,))?.extract();
+    }
+    let type_name = value.get_type().name()?;
+    let hint = if value.is_instance_of::<PyBytes>() {
+        " (decode it with os.fsdecode)"
+    } else {
+        ""
+    };
+    Err(PyTypeError::new_err(format!(
+        "{name}: expected a path (str or os.PathLike), got {type_name}{hint}"
+    )))
 }
 
 /// Reads a result file written by `tack run`, `Result.write` or `tack surface`.

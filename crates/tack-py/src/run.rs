@@ -8,22 +8,42 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use tack::{RunOptions, Scene};
 
-use crate::errors::{to_py, value_error};
+use crate::errors::{Names, to_py, value_error, value_error_named};
 use crate::guard::detached;
 use crate::result::Result;
 
 /// Largest accepted `threads`.
 pub const MAX_THREADS: usize = tack::MAX_THREADS;
 
-/// Checks `threads` (1..=[`MAX_THREADS`]) before anything runs: the threads one solve splits
-/// its FFTs across (bit-identical results on any count).
-fn check_threads(threads: Option<i64>) -> PyResult<()> {
-    match threads {
-        Some(n) if !(1..=MAX_THREADS as i64).contains(&n) => Err(value_error(format!(
-            "threads = {n} is invalid: must be an integer in 1..={MAX_THREADS}"
-        ))),
-        _ => Ok(()),
-    }
+/// The scene fields of the messages of `tack::heights::pull_off` and the arguments of
+/// `tack.pull_off` they stand for (the scene is written by the library from the arguments).
+const PULL_OFF_NAMES: Names = &[
+    ("material.e_star", "e_star"),
+    ("material.gamma", "gamma"),
+    ("grid.nx × grid.ny", "heights.shape"),
+    ("grid.nx/grid.ny", "heights.shape"),
+    ("grid.nx", "heights.shape[0]"),
+    ("grid.ny", "heights.shape[1]"),
+    ("grid.dx", "dx"),
+    ("protocol.max_approach", "max_approach"),
+    ("protocol.coarse_unload_step", "coarse_unload_step"),
+    ("protocol.unload_step", "unload_step"),
+    ("solver.kappa", "kappa"),
+    ("output.snapshots", "snapshots"),
+    (
+        "the non-adhesive tack_solver::ContactSolver",
+        "tack.contact",
+    ),
+    ("tack_solver::ContactSolver", "tack.contact"),
+];
+
+/// Checks `threads` (1..=[`MAX_THREADS`]) before anything runs, the same way for every
+/// function that takes it: the threads one solve splits its FFTs across (bit-identical results
+/// on any count).
+pub fn check_threads(threads: Option<i64>) -> PyResult<Option<usize>> {
+    threads
+        .map(|n| tack::check_threads("threads", n.into()).map_err(|e| value_error(e.to_string())))
+        .transpose()
 }
 
 /// A Python value as a TOML value, for `overrides`; errors name `overrides['key']`.
@@ -67,7 +87,8 @@ fn toml_value(key: &str, value: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
         }
         return Ok(toml::Value::Table(table));
     }
-    // numpy scalars and other numbers: booleans, integers (__index__), then floats.
+    // numpy scalars and other numbers: booleans, integers (__index__), then real numbers
+    // (`numbers.Real`: not complex numbers, whose conversion to float drops the imaginary part).
     let type_name = value.get_type().name()?.to_string();
     if type_name.starts_with("bool") {
         if let Ok(b) = value.extract::<bool>() {
@@ -79,7 +100,10 @@ fn toml_value(key: &str, value: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
             return Ok(toml::Value::Integer(i));
         }
     }
-    if let Ok(f) = value.extract::<f64>() {
+    let real = value.py().import("numbers")?.getattr("Real")?;
+    if value.is_instance(&real)?
+        && let Ok(f) = value.extract::<f64>()
+    {
         return Ok(toml::Value::Float(f));
     }
     Err(bad(format!(
@@ -119,7 +143,7 @@ pub fn run_scene(
     threads: Option<i64>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Result> {
-    check_threads(threads)?;
+    let threads = check_threads(threads)?;
     let overrides = assignments(overrides.as_ref())?;
     let scene = match (path, text) {
         (Some(path), None) => Scene::load(&path, &overrides),
@@ -134,9 +158,9 @@ pub fn run_scene(
     let options = RunOptions {
         command_line: Some(command_line(py)),
         richardson,
-        threads: threads.map(|n| n as usize),
+        threads,
     };
-    let outcome = detached(py, progress, |observer| {
+    let outcome = detached(py, progress, &[], |observer| {
         tack::run(&scene, &options, observer)
     })?;
     let wall_time = outcome.total_wall_time().as_secs_f64();
@@ -182,13 +206,13 @@ pub fn pull_off(
     threads: Option<i64>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Result> {
-    check_threads(threads)?;
+    let threads = check_threads(threads)?;
     let snapshots = match snapshots {
         None => tack::scene::Snapshots::PullOff,
         Some(value) => {
             let value = toml_value("snapshots", &value)?;
             tack::scene::Snapshots::try_from(value)
-                .map_err(|e| value_error(e.replacen("output.snapshots", "snapshots", 1)))?
+                .map_err(|e| value_error_named(e, PULL_OFF_NAMES))?
         }
     };
     let spec = tack::heights::PullOffSpec {
@@ -211,9 +235,9 @@ pub fn pull_off(
     let options = RunOptions {
         command_line: Some(command_line(py)),
         richardson: false,
-        threads: threads.map(|n| n as usize),
+        threads,
     };
-    let outcome = detached(py, progress, |observer| {
+    let outcome = detached(py, progress, PULL_OFF_NAMES, |observer| {
         tack::heights::pull_off(&heights, &spec, &options, observer)
     })?;
     let wall_time = outcome.total_wall_time().as_secs_f64();

@@ -5,11 +5,30 @@ use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::prelude::*;
 use tack::geometry::{Boundary, Grid, RoughSpec, Sphere, Surface, rough_surface};
 
-use crate::errors::value_error;
+use crate::errors::{Names, value_error_named};
 use crate::guard::released;
 
+/// The fields of the messages of the grid, the shapes and the roughness generator and the
+/// arguments of `tack.surface` they stand for.
+const SURFACE_NAMES: Names = &[
+    ("grid.nx", "shape[0]"),
+    ("grid.ny", "shape[1]"),
+    ("grid.dx", "dx"),
+    ("geometry.radius", "radius"),
+    ("roughness.hurst", "hurst"),
+    ("roughness.h", "rms"),
+    ("roughness.q0/q1", "q0/q1"),
+    ("roughness.q0", "q0"),
+    ("roughness.q1", "q1"),
+];
+
+/// A `TackError` with the message of `e`, fields renamed to the arguments.
+fn named(e: impl std::fmt::Display) -> PyErr {
+    value_error_named(e, SURFACE_NAMES)
+}
+
 fn grid(nx: usize, ny: usize, dx: f64) -> PyResult<Grid> {
-    Grid::new(nx, ny, dx, Boundary::Free).map_err(value_error)
+    Grid::new(nx, ny, dx, Boundary::Free).map_err(named)
 }
 
 /// Seeded random roughness (`tack::geometry::rough_surface`): zero mean, rms `rms`, power law
@@ -38,7 +57,7 @@ fn rough(
     let heights = released(py, || {
         rough_surface(grid, &spec)
             .map(Surface::into_heights)
-            .map_err(value_error)
+            .map_err(named)
     })?;
     Ok(heights.into_pyarray(py))
 }
@@ -54,7 +73,7 @@ fn sphere(
     radius: f64,
 ) -> PyResult<Bound<'_, PyArray2<f64>>> {
     let grid = grid(nx, ny, dx)?;
-    let shape = Sphere::new(radius).map_err(value_error)?;
+    let shape = Sphere::new(radius).map_err(named)?;
     Ok(Surface::from_shape(grid, &shape)
         .into_heights()
         .into_pyarray(py))

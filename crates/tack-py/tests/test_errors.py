@@ -56,9 +56,10 @@ def test_pull_off_errors_name_the_field():
     heights = tack.surface.sphere(32, dx=0.45, radius=8.0)
     with pytest.raises(tack.TackError, match="gamma = 0 is invalid"):
         tack.pull_off(heights, dx=0.45, e_star=1.0, gamma=0.0)
-    with pytest.raises(ValueError, match="material.e_star = -1"):
+    # The Python arguments are named, not the scene fields the library writes from them.
+    with pytest.raises(ValueError, match="^e_star = -1 is invalid"):
         tack.pull_off(heights, dx=0.45, e_star=-1.0, gamma=0.1)
-    with pytest.raises(ValueError, match="grid.dx = 0"):
+    with pytest.raises(ValueError, match="^dx = 0 is invalid"):
         tack.pull_off(heights, dx=0.0, e_star=1.0, gamma=0.1)
     bad = heights.copy()
     bad[3, 4] = np.nan

@@ -40,13 +40,14 @@ pub const MAX_THREADS: usize = 1024;
 
 /// The one thread-count check (runs, sweeps, the CLI, Python): `n` in `1..=MAX_THREADS`, else
 /// an error naming `field`, the value and the range.
-pub fn check_threads(field: &str, n: usize) -> Result<usize, Error> {
-    if (1..=MAX_THREADS).contains(&n) {
-        Ok(n)
-    } else {
-        Err(Error::Threads(format!(
-            "{field} = {n} is invalid: must be an integer from 1 to {MAX_THREADS}"
-        )))
+pub fn check_threads(field: &str, n: i128) -> Result<usize, Error> {
+    match usize::try_from(n) {
+        Ok(n) if (1..=MAX_THREADS).contains(&n) => Ok(n),
+        _ => {
+            Err(Error::Threads(format!(
+                "{field} = {n} is invalid: must be an integer from 1 to {MAX_THREADS}"
+            )))
+        }
     }
 }
 
@@ -65,7 +66,7 @@ pub fn thread_pool(
         None if rayon::current_thread_index().is_some() => return Ok(None),
         None => rayon::current_num_threads(),
     };
-    check_threads(field, n)?;
+    check_threads(field, n as i128)?;
     rayon::ThreadPoolBuilder::new()
         .num_threads(n)
         .build()

@@ -18,15 +18,17 @@ Conventions (as in the Rust crates): arrays are ``(nx, ny)``; element ``(i, j)``
 from the half-space); the approach is positive when pressing; pressure and force are positive
 when compressive, so the pull-off force is negative. Units are any consistent set.
 
-Errors in the input raise :class:`TackError` (a ``ValueError``) or a subclass, with a message
-that names the field, the value and the allowed range. Ctrl-C stops a running solve within
-about 0.1 s with ``KeyboardInterrupt``.
+An argument of the wrong type raises ``TypeError`` naming the argument and the type it
+expects (numbers are ``int``, ``float`` or numpy integer/float scalars; ``str``, ``bytes``,
+``None``, ``bool`` and complex numbers are not). A bad value raises :class:`TackError` (a
+``ValueError``) or a subclass, with a message that names the argument (for scenes, the scene's
+field), the value and the allowed range. Ctrl-C stops a running solve within about 0.1 s with
+``KeyboardInterrupt``.
 """
 
 from __future__ import annotations
 
 import math
-import numbers
 import os
 import sys
 import warnings
@@ -34,7 +36,7 @@ from typing import Any, Callable, Dict, Mapping, Optional, Sequence, Union, over
 
 import numpy as np
 
-from . import _tack
+from . import _check, _tack
 from ._tack import (
     ContactResult,
     InternalError,
@@ -53,6 +55,7 @@ MAX_THREADS: int = _tack.MAX_THREADS
 
 __all__ = [
     "ContactResult",
+    "FullContactWarning",
     "InternalError",
     "MAX_THREADS",
     "Result",
@@ -95,43 +98,38 @@ class _StderrProgress:
 
 
 def _progress(progress: Progress) -> Optional[Callable[[Dict[str, Any]], Any]]:
-    if progress is None or progress is False:
+    if progress is None or (_check.is_bool(progress) and not progress):
         return None
-    if progress is True:
+    if _check.is_bool(progress):
         return _StderrProgress()
     if callable(progress):
         return progress
-    raise TypeError("progress: expected True/False or a callable taking one dict")
+    raise TypeError(
+        "progress: expected True/False or a callable taking one dict, got "
+        f"{_check.describe(progress)}"
+    )
 
 
 def _threads(threads: Optional[int]) -> Optional[int]:
-    if threads is None:
-        return None
-    if isinstance(threads, bool) or not isinstance(threads, numbers.Integral):
-        raise TypeError(f"threads: expected an int, got {type(threads).__name__}")
-    return int(threads)
-
-
-def _heights(heights: Any) -> np.ndarray:
-    array = np.ascontiguousarray(heights, dtype=np.float64)
-    if array.ndim != 2:
-        raise TackError(
-            f"heights of shape {array.shape} is invalid: must be a 2-D array (nx, ny)"
-        )
-    return array
+    return _check.threads(threads, MAX_THREADS)
 
 
 def _snapshots(snapshots: Union[str, int, Sequence[int]]) -> Any:
+    what = "'pull_off', 'all', 'none', an int k ≥ 1 (every k-th step) or a list of step indices"
     if isinstance(snapshots, str):
+        if snapshots not in ("pull_off", "all", "none"):
+            raise _check.invalid("snapshots", repr(snapshots), what)
         return snapshots
-    if isinstance(snapshots, numbers.Integral) and not isinstance(snapshots, bool):
+    if _check.is_integer(snapshots):
+        if int(snapshots) < 1:
+            raise _check.invalid("snapshots", int(snapshots), what)
         return {"every": int(snapshots)}
     if isinstance(snapshots, (list, tuple, np.ndarray)):
-        return {"steps": [int(s) for s in snapshots]}
-    raise TypeError(
-        "snapshots: expected 'pull_off', 'all', 'none', an int k (every k-th step) or a list "
-        "of step indices"
-    )
+        steps = []
+        for k, step in enumerate(snapshots):
+            steps.append(_check.count(f"snapshots[{k}]", step, low=0))
+        return {"steps": steps}
+    raise TypeError(f"snapshots: expected {what}, got {_check.describe(snapshots)}")
 
 
 def _closing(callback: Optional[Callable[[Dict[str, Any]], Any]]) -> None:
@@ -171,11 +169,15 @@ def run(
             roughness needs an explicit ``roughness.q1 <= pi/(2 dx)``.
 
     Raises:
-        SceneError: the scene is unreadable or invalid (the message names the field).
+        TypeError: an argument of the wrong type (``scene`` not a str or os.PathLike,
+            ``overrides`` not a dict or with a value that has no TOML form, ``threads`` not an
+            int, ``richardson`` not a bool, ``progress`` neither a bool nor a callable).
+        SceneError: the scene is unreadable or invalid (the message names the scene's field).
+        TackError: ``threads`` outside 1..``MAX_THREADS``.
         KeyboardInterrupt: Ctrl-C during the run.
     """
     if isinstance(scene, os.PathLike):
-        where: Dict[str, Any] = {"path": os.fspath(scene)}
+        where: Dict[str, Any] = {"path": _check.path("scene", scene)}
     elif isinstance(scene, str):
         if "\n" in scene:
             where = {"text": scene, "base_dir": os.getcwd()}
@@ -183,17 +185,23 @@ def run(
             where = {"path": scene}
     else:
         raise TypeError(
-            f"scene: expected a path or TOML text, got {type(scene).__name__}"
+            "scene: expected a path (str or os.PathLike) or TOML text (str), got "
+            f"{_check.describe(scene)}"
         )
     if overrides is not None and not isinstance(overrides, Mapping):
-        raise TypeError("overrides: expected a dict of dotted keys to values")
+        raise TypeError(
+            "overrides: expected a dict of dotted keys to values, got "
+            f"{_check.describe(overrides)}"
+        )
+    n_threads = _threads(threads)
+    fine_and_coarse = _check.flag("richardson", richardson)
     callback = _progress(progress)
     try:
         return _tack.run_scene(
             **where,
             overrides=dict(overrides) if overrides is not None else None,
-            richardson=bool(richardson),
-            threads=_threads(threads),
+            richardson=fine_and_coarse,
+            threads=n_threads,
             progress=callback,
         )
     finally:
@@ -205,8 +213,9 @@ def read(path: PathLike) -> Result:
 
     Raises:
         ResultFileError: the file is missing, not HDF5, or not a tack result.
+        TypeError: ``path`` is not a ``str`` or ``os.PathLike``.
     """
-    return _tack.read(os.fspath(path))
+    return _tack.read(_check.path("path", path))
 
 
 def pull_off(
@@ -233,15 +242,19 @@ def pull_off(
             (higher = farther from the half-space), element ``(i, j)`` centred at
             ``((i - nx//2)*dx, (j - ny//2)*dx)``; e.g. ``tack.surface.sphere(...) +
             tack.surface.random(...)``.
-        dx: element size.
-        e_star: effective modulus E*.
-        gamma: work of adhesion (> 0).
+        dx: element size (> 0).
+        e_star: effective modulus E* (> 0).
+        gamma: work of adhesion (> 0; without adhesion use :func:`contact`).
         periodic: the array is one period of a periodic body (default: free, non-periodic).
+            On a periodic grid the approach is measured from the deformed mean plane (see
+            :func:`contact`), and steps in full contact (approach >= mean of the heights) are
+            flagged in ``curve["full_contact"]`` and left out of the pull-off force.
         radius: radius R of the sphere the body approximates; default: fitted by least squares
             (a paraboloid with free vertex), accepted when its rise over the grid is at least
             half the roughness range.
-        max_approach, unload_step, coarse_unload_step: the path, instead of the default rule.
-        kappa: the Pohrt-Popov constant (default 0.473201, curved crack fronts).
+        max_approach, unload_step, coarse_unload_step: the path, instead of the default rule
+            (``max_approach`` finite, the steps > 0).
+        kappa: the Pohrt-Popov constant (> 0; default 0.473201, curved crack fronts).
         snapshots: which steps keep pressure and bonded fields: ``"pull_off"`` (the pull-off
             step and the last contact), ``"all"``, ``"none"``, every k-th step (an int) or a
             list of step indices.
@@ -257,29 +270,41 @@ def pull_off(
     ``pull_off_ratio`` refer to the sphere of radius R; ``provenance["scene"]`` records the
     rule's numbers, and the heights are stored in ``result.surface``.
 
+    Raises:
+        TypeError: an argument of the wrong type (a str, bytes, None, bool or complex number
+            where a number is expected; an array of strings, objects, booleans or complex
+            numbers); the message names the argument.
+        TackError: a bad value (a ``ValueError``; the message names the argument, the value and
+            the allowed range), or a path that cannot work (e.g. an array too small for the
+            contact at ``max_approach``).
+        KeyboardInterrupt: Ctrl-C during the run.
+
     Warns:
         RuntimeWarning: contact reached the edge of a free array, or steps did not converge.
     """
-    array = _heights(heights)
+    array = _check.heights(heights)
+    args = dict(
+        dx=_check.positive("dx", dx),
+        e_star=_check.positive("e_star", e_star),
+        gamma=_check.positive(
+            "gamma",
+            gamma,
+            " (a pull-off needs adhesion; for contact without it use tack.contact)",
+        ),
+        periodic=_check.flag("periodic", periodic),
+        radius=_check.optional(_check.positive, "radius", radius),
+        max_approach=_check.optional(_check.finite, "max_approach", max_approach),
+        unload_step=_check.optional(_check.positive, "unload_step", unload_step),
+        coarse_unload_step=_check.optional(
+            _check.positive, "coarse_unload_step", coarse_unload_step
+        ),
+        kappa=_check.optional(_check.positive, "kappa", kappa),
+        snapshots=_snapshots(snapshots),
+        threads=_threads(threads),
+    )
     callback = _progress(progress)
     try:
-        result = _tack.pull_off(
-            array,
-            dx=float(dx),
-            e_star=float(e_star),
-            gamma=float(gamma),
-            periodic=bool(periodic),
-            radius=None if radius is None else float(radius),
-            max_approach=None if max_approach is None else float(max_approach),
-            unload_step=None if unload_step is None else float(unload_step),
-            coarse_unload_step=(
-                None if coarse_unload_step is None else float(coarse_unload_step)
-            ),
-            kappa=None if kappa is None else float(kappa),
-            snapshots=_snapshots(snapshots),
-            threads=_threads(threads),
-            progress=callback,
-        )
+        result = _tack.pull_off(array, **args, progress=callback)
     finally:
         _closing(callback)
     summary = result.summary
@@ -341,36 +366,88 @@ def contact(
 
     Args:
         heights: 2-D array ``(nx, ny)`` of the rigid body's heights (the gap at zero approach).
-        dx: element size.
-        e_star: effective modulus E*.
-        approach: the prescribed approach d (positive = pressing), or a sequence of them
-            (solved in turn, each warm-started from the previous; Ctrl-C is checked between
-            them).
-        periodic: the array is one period of a periodic body (the approach is then measured
-            from the deformed mean plane).
-        tolerance, max_iterations: the conjugate-gradient stopping rule (defaults 1e-10, 5000).
-        threads: threads of the solve (default: every core); the result is the same bits on
-            any count.
+        dx: element size (> 0).
+        e_star: effective modulus E* (> 0).
+        approach: the prescribed approach d (positive = pressing; see *Periodic grids*), or
+            a sequence of them (solved in turn, each warm-started from the previous; Ctrl-C is
+            checked between them).
+        periodic: the array is one period of a periodic body (default: free, non-periodic).
+        tolerance, max_iterations: the conjugate-gradient stopping rule (``0 < tolerance <
+            1``, default 1e-10; ``max_iterations >= 1``, default 5000).
+        threads: threads of the solve, 1..``MAX_THREADS`` (default: every core); the result is
+            the same bits on any count.
 
     Returns:
         A :class:`ContactResult` (``pressure`` and ``gap`` arrays of the heights' shape,
-        ``force``, ``area``, ``converged``, ``iterations``, ...), or a list of them when
-        ``approach`` is a sequence.
+        ``force``, ``mean_pressure``, ``area``, ``converged``, ``iterations``,
+        ``full_contact``, ...), or a list of them when ``approach`` is a sequence.
+
+    Periodic grids: the periodic half-space has no rigid-body mode, so the approach is measured
+    from the mean plane of the *deformed* surface, not from the first touch: the mean gap is
+    ``mean(heights) - approach``. Contact is partial only for ``min(heights) < approach <
+    mean(heights)``, so for zero-mean heights (``tack.surface.random``) the approaches of
+    partial contact are *negative*. At ``approach >= mean(heights)`` every gap is closed (full
+    contact) and the approach no longer sets the load: the pressure is then fixed only up to
+    its mean, and the result (``full_contact = True``) is the state in which contact has just
+    become full, the least mean pressure that keeps every element compressive (its least
+    element pressure is 0), the same for every approach beyond ``mean(heights)``. It is
+    computed in closed form (``iterations = 0``, ``converged = True``). Free grids are
+    measured from the undeformed body (contact starts at ``approach = min(heights)``) and are
+    never flagged as full contact.
+
+    Raises:
+        TypeError: an argument of the wrong type (a str, bytes, None, bool or complex number
+            where a number is expected; an array of strings, objects, booleans or complex
+            numbers); the message names the argument.
+        TackError: a bad value (a ``ValueError``; the message names the argument, the value and
+            the allowed range).
+
+    Warns:
+        FullContactWarning: a periodic contact is full at some of the approaches (the message
+            gives the range of approaches of partial contact).
     """
-    array = _heights(heights)
-    scalar = np.ndim(approach) == 0
-    if scalar:
-        approaches = [float(approach)]  # type: ignore[arg-type]
-    else:
-        approaches = [float(d) for d in approach]  # type: ignore[union-attr]
-    states = _tack.contact(
-        array,
-        dx=float(dx),
-        e_star=float(e_star),
-        approaches=approaches,
-        periodic=bool(periodic),
-        tolerance=None if tolerance is None else float(tolerance),
-        max_iterations=None if max_iterations is None else int(max_iterations),
+    array = _check.heights(heights)
+    approaches, scalar = _check.approaches(approach)
+    args = dict(
+        dx=_check.positive("dx", dx),
+        e_star=_check.positive("e_star", e_star),
+        periodic=_check.flag("periodic", periodic),
+        tolerance=_check.optional(_check.fraction, "tolerance", tolerance),
+        max_iterations=_check.optional(_check.count, "max_iterations", max_iterations),
         threads=_threads(threads),
     )
+    states = _tack.contact(array, approaches=approaches, **args)
+    _warn_full_contact(states, array)
     return states[0] if scalar else states
+
+
+class FullContactWarning(UserWarning):
+    """:func:`contact` reached full contact on a periodic grid: every gap is closed, and the
+    result is the state in which contact has just become full (the least mean pressure that
+    keeps every element compressive), whatever the approach beyond ``mean(heights)``."""
+
+
+def _warn_full_contact(states: "list[ContactResult]", heights: np.ndarray) -> None:
+    full = [k for k, s in enumerate(states) if s.full_contact]
+    if not full:
+        return
+    if len(states) == 1:
+        where = f"approach = {states[0].approach:.6g}"
+    else:
+        listed = ", ".join(f"approach[{k}] = {states[k].approach:.6g}" for k in full[:3])
+        more = ", ..." if len(full) > 3 else ""
+        where = f"{len(full)} of {len(states)} approaches ({listed}{more})"
+    first = states[full[0]]
+    warnings.warn(
+        f"tack.contact: full contact at {where}. On a periodic grid the approach is measured "
+        "from the deformed mean plane: contact is partial only for min(heights) = "
+        f"{float(heights.min()):.6g} < approach < mean(heights) = {float(heights.mean()):.6g} "
+        "(negative approaches for zero-mean heights such as tack.surface.random), and full "
+        "for approach >= mean(heights). In full contact every gap is closed and the approach "
+        "no longer sets the load: the result is the state in which contact has just become "
+        "full (the least mean pressure that keeps every element compressive, mean_pressure = "
+        f"{first.mean_pressure:.6g}), the same for every approach >= mean(heights), computed "
+        "in closed form (iterations = 0). Check result.full_contact.",
+        FullContactWarning,
+        stacklevel=3,
+    )

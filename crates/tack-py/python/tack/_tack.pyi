@@ -55,7 +55,8 @@ class Result:
     @property
     def scene(self) -> str: ...
     def write(self, path: Union[str, os.PathLike[str]]) -> None:
-        """Writes the HDF5 result file atomically."""
+        """Writes the HDF5 result file atomically (``path``: str or os.PathLike, else
+        TypeError)."""
     def __len__(self) -> int: ...
 
 class ContactResult:
@@ -82,7 +83,10 @@ class ContactResult:
     @property
     def converged(self) -> bool: ...
     @property
-    def full_contact(self) -> bool: ...
+    def full_contact(self) -> bool:
+        """Periodic grids only: approach >= mean(heights), every gap closed; the state in which
+        contact has just become full (least mean pressure keeping every element compressive),
+        the same for every approach beyond the mean, computed in closed form."""
 
 def run_scene(
     *,

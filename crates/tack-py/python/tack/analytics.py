@@ -1,9 +1,18 @@
 """Closed forms of tack (the ``tack::analytics`` crate), numbered as in Li, Pohrt & Popov (2019).
 
 Every function takes floats and returns a float; give numpy arrays (or anything array-like)
-for any argument and it is applied elementwise (numpy broadcasting), returning an array.
-Signs follow tack: approach positive = pressing, force positive = compressive, so pull-off
-forces and approaches are negative. ``docs/theory.md`` derives each formula.
+for any argument and it is applied elementwise (numpy broadcasting), returning an array (an
+empty array gives an empty array). Signs follow tack: approach positive = pressing, force
+positive = compressive, so pull-off forces and approaches are negative. ``docs/theory.md``
+derives each formula.
+
+Arguments are checked before any formula runs: a wrong type (``str``, ``bytes``, ``None``,
+``bool``, complex numbers, arrays of those or of objects) raises ``TypeError`` naming the
+argument; a value outside the formula's domain raises :class:`tack.TackError` (a
+``ValueError``) naming the argument (``radius[2] = -1 is invalid: must be a finite number >
+0``): ``e_star``, ``radius``, ``wavelength``, ``dx``, ``kappa``, ``q0``, ``q1`` finite and > 0;
+``gamma``, ``h``, ``a``, ``alpha``, ``alpha_star`` finite and >= 0 (``alpha_star`` > 0 in
+:func:`rms_height_from_alpha_star`); ``hurst`` in (0, 1); ``d`` finite; and ``q1 > q0``.
 """
 
 from __future__ import annotations
@@ -12,7 +21,7 @@ from typing import Any, Callable, Union
 
 import numpy as np
 
-from . import _tack
+from . import _check, _tack
 
 __all__ = [
     "alpha_star",
@@ -39,10 +48,43 @@ __all__ = [
 ArrayLike = Union[float, "np.ndarray[Any, Any]", Any]
 
 
+#: The arguments of each closed form, in order (the names in messages).
+_ARGS = {
+    "hertz_force": ("e_star", "radius", "d"),
+    "hertz_contact_radius": ("radius", "d"),
+    "hertz_max_pressure": ("e_star", "radius", "d"),
+    "jkr_pull_off_force": ("gamma", "radius"),
+    "jkr_pull_off_approach": ("e_star", "gamma", "radius"),
+    "jkr_pull_off_radius": ("e_star", "gamma", "radius"),
+    "jkr_approach_scale": ("e_star", "gamma", "radius"),
+    "jkr_force_from_radius": ("e_star", "gamma", "radius", "a"),
+    "jkr_approach_from_radius": ("e_star", "gamma", "radius", "a"),
+    "jkr_force_from_approach": ("e_star", "gamma", "radius", "d"),
+    "kendall_pull_off": ("e_star", "gamma", "a"),
+    "johnson_alpha": ("e_star", "gamma", "h", "wavelength"),
+    "westergaard_p_star": ("e_star", "h", "wavelength"),
+    "johnson_2d_p_star": ("e_star", "h", "wavelength"),
+    "lambda_fit": ("alpha",),
+    "alpha_star": ("e_star", "gamma", "h", "hurst", "q0", "q1"),
+    "rms_height_from_alpha_star": ("e_star", "gamma", "alpha_star", "hurst", "q0", "q1"),
+    "lambda_star": ("alpha_star",),
+    "critical_stress": ("e_star", "gamma", "dx", "kappa"),
+}
+
+
 def _apply(f: Callable[..., float], *args: Any) -> Any:
-    if all(np.ndim(a) == 0 for a in args):
-        return f(*(float(a) for a in args))
-    return np.vectorize(f, otypes=[float])(*args)
+    """``f`` of the arguments (named as ``f``'s Python signature), checked by
+    ``_check.closed_form_args``; elementwise over arrays."""
+    name = f.__name__
+    names = _ARGS[name]
+    values, scalar = _check.closed_form_args(name, names, args)
+    if name == "rms_height_from_alpha_star":
+        _check.above(names, values, "alpha_star", 0.0)
+    if "q0" in names:
+        _check.above(names, values, "q1", "q0")
+    if scalar:
+        return f(*values)
+    return np.vectorize(f, otypes=[float])(*values)
 
 
 def hertz_force(e_star: ArrayLike, radius: ArrayLike, d: ArrayLike) -> Any:

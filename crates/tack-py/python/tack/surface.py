@@ -3,16 +3,18 @@
 Arrays are ``(nx, ny)``; element ``(i, j)`` is centred at ``((i - nx//2)*dx, (j - ny//2)*dx)``,
 so the origin (a sphere's apex) is an element centre. Heights add: ``sphere(...) +
 random(...)`` is a rough sphere, ready for :func:`tack.pull_off`.
+
+``shape`` is ``n`` or ``(nx, ny)`` (ints in 1..65536), ``dx`` a number > 0; a wrong type
+raises ``TypeError`` and a bad value :class:`tack.TackError`, each naming the argument.
 """
 
 from __future__ import annotations
 
-import numbers
 from typing import Optional, Tuple, Union
 
 import numpy as np
 
-from . import _tack
+from . import _check, _tack
 from . import analytics
 
 __all__ = ["band", "coordinates", "random", "sphere"]
@@ -21,14 +23,7 @@ Shape = Union[int, Tuple[int, int]]
 
 
 def _shape(shape: Shape) -> Tuple[int, int]:
-    if isinstance(shape, numbers.Integral) and not isinstance(shape, bool):
-        n = int(shape)
-        return n, n
-    try:
-        nx, ny = shape  # type: ignore[misc]
-    except (TypeError, ValueError):
-        raise TypeError(f"shape: expected n or (nx, ny), got {shape!r}") from None
-    return int(nx), int(ny)
+    return _check.shape(shape)
 
 
 def random(
@@ -52,56 +47,64 @@ def random(
     same as a scene's ``roughness.kind = "random"``). The array is one period of a periodic
     pattern.
 
-    Give either ``rms``, or ``alpha_star`` with ``e_star`` and ``gamma``: the rms height that
-    gives that adhesion parameter on this band (Eq. 11 inverted).
+    Give either ``rms`` (>= 0), or ``alpha_star`` (> 0) with ``e_star`` and ``gamma`` (> 0):
+    the rms height that gives that adhesion parameter on this band (Eq. 11 inverted);
+    ``e_star`` and ``gamma`` without ``alpha_star`` are refused. ``hurst`` is in (0, 1),
+    ``seed`` an int in 0..2**64 - 1, ``q0 < q1`` positive and on the grid's band.
+
+    Raises:
+        TypeError: an argument of the wrong type (the message names it).
+        TackError: a bad value (a ``ValueError``; the message names the argument).
     """
     nx, ny = _shape(shape)
-    band_q0, band_q1 = band((nx, ny), dx=dx)
-    q0_ = band_q0 if q0 is None else float(q0)
-    q1_ = band_q1 if q1 is None else float(q1)
+    dx_ = _check.positive("dx", dx)
+    hurst_ = _check.real("hurst", hurst)
+    if not 0.0 < hurst_ < 1.0:
+        raise _check.invalid("hurst", hurst_, "a number in the open interval (0, 1)")
+    seed_ = _check.count("seed", seed, low=0, high=2**64 - 1)
+    band_q0, band_q1 = band((nx, ny), dx=dx_)
+    q0_ = band_q0 if q0 is None else _check.positive("q0", q0)
+    q1_ = band_q1 if q1 is None else _check.positive("q1", q1)
     if (rms is None) == (alpha_star is None):
         raise _tack.TackError(
             "random: give exactly one of rms (the rms height) and alpha_star (with e_star and "
             "gamma)"
         )
     if alpha_star is not None:
+        alpha = _check.positive("alpha_star", alpha_star)
         if e_star is None or gamma is None:
             raise _tack.TackError("random: alpha_star needs e_star and gamma")
-        if not float(alpha_star) > 0.0:
+        e_star_ = _check.positive("e_star", e_star)
+        gamma_ = _check.positive("gamma", gamma)
+        if not q1_ > q0_:
+            raise _check.invalid("q1", q1_, f"> q0 = {_check.num(q0_)}")
+        rms_ = analytics.rms_height_from_alpha_star(e_star_, gamma_, alpha, hurst_, q0_, q1_)
+    else:
+        if e_star is not None or gamma is not None:
             raise _tack.TackError(
-                f"alpha_star = {alpha_star} is invalid: must be a finite number > 0"
+                "random: e_star and gamma are only used with alpha_star; with rms give neither"
             )
-        rms = analytics.rms_height_from_alpha_star(
-            e_star, gamma, alpha_star, hurst, q0_, q1_
-        )
-    return _tack.rough(
-        nx,
-        ny,
-        dx=float(dx),
-        rms=float(rms),  # type: ignore[arg-type]
-        hurst=float(hurst),
-        seed=int(seed),
-        q0=q0_,
-        q1=q1_,
-    )
+        rms_ = _check.non_negative("rms", rms)
+    return _tack.rough(nx, ny, dx=dx_, rms=rms_, hurst=hurst_, seed=seed_, q0=q0_, q1=q1_)
 
 
 def sphere(shape: Shape, *, dx: float, radius: float) -> np.ndarray:
     """The sphere (paraboloid) ``(x^2 + y^2) / (2R)`` at the element centres, apex 0 at the
     origin."""
     nx, ny = _shape(shape)
-    return _tack.sphere(nx, ny, dx=float(dx), radius=float(radius))
+    dx_ = _check.positive("dx", dx)
+    return _tack.sphere(nx, ny, dx=dx_, radius=_check.positive("radius", radius))
 
 
 def coordinates(shape: Shape, *, dx: float) -> Tuple[np.ndarray, np.ndarray]:
     """Element-centre coordinates ``(x, y)`` (1-D arrays of length nx and ny):
     ``x[i] = (i - nx//2)*dx``; ``np.meshgrid(x, y, indexing="ij")`` gives 2-D fields."""
     nx, ny = _shape(shape)
-    return _tack.coordinates(nx, ny, dx=float(dx))
+    return _tack.coordinates(nx, ny, dx=_check.positive("dx", dx))
 
 
 def band(shape: Shape, *, dx: float) -> Tuple[float, float]:
     """The paper's roughness band on the grid, ``(q0, q1) = (2 pi/L, pi/dx)``, L the longer
     side."""
     nx, ny = _shape(shape)
-    return _tack.band(nx, ny, dx=float(dx))
+    return _tack.band(nx, ny, dx=_check.positive("dx", dx))
