@@ -192,6 +192,9 @@ fn execute(command: Command) -> anyhow::Result<()> {
                         num(c)
                     ))
             );
+            if let Some(rule) = &p.path_rule {
+                println!("  {rule}");
+            }
             let steps = p.path.step_bound();
             let bound = if steps < p.path.max_steps {
                 format!("{steps} steps: the path's own count")

@@ -75,6 +75,9 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
             num(p.path.max_approach),
         ));
     }
+    if let Some(rule) = &p.path_rule {
+        lines.push(format!("            {rule}"));
+    }
     let full = path.records.iter().filter(|r| r.full_contact).count();
     if full > 0 {
         lines.push(format!(

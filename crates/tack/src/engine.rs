@@ -43,11 +43,9 @@ pub const MAX_THREADS: usize = 1024;
 pub fn check_threads(field: &str, n: i128) -> Result<usize, Error> {
     match usize::try_from(n) {
         Ok(n) if (1..=MAX_THREADS).contains(&n) => Ok(n),
-        _ => {
-            Err(Error::Threads(format!(
-                "{field} = {n} is invalid: must be an integer from 1 to {MAX_THREADS}"
-            )))
-        }
+        _ => Err(Error::Threads(format!(
+            "{field} = {n} is invalid: must be an integer from 1 to {MAX_THREADS}"
+        ))),
     }
 }
 

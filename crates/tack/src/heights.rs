@@ -37,7 +37,8 @@ use crate::engine::{RunOptions, RunOutcome};
 pub use crate::problem::HeightBody;
 use crate::problem::{Problem, SPHERE_FIT_MARGIN};
 pub use crate::pull_off_path::{
-    COARSE_PER_UNLOAD_STEP, COARSE_UNLOAD_STEP, LOAD_DEPTH, Paraboloid, UNLOAD_STEP, fit_paraboloid,
+    COARSE_PER_UNLOAD_STEP, COARSE_UNLOAD_STEP, LOAD_DEPTH, Paraboloid, UNLOAD_STEP,
+    UNLOAD_STEP_PER_ELEMENT, fit_paraboloid,
 };
 use crate::scene::{
     BoundaryKind, Geometry, GridSpec, Material, OutputSpec, Protocol, SCENE_VERSION, Scene,
@@ -77,7 +78,8 @@ pub fn run(
 /// path loads in one step to `max_approach = apex + top of the roughness +` [`LOAD_DEPTH`]`·d_s`
 /// (the paper's rough-sphere runs: on a smooth sphere this bonds a disc of about 1.6 a_c, deep
 /// enough for the JKR pull-off), then retracts by [`COARSE_UNLOAD_STEP`]`·d_s` while the force
-/// is compressive and by [`UNLOAD_STEP`]`·d_s` through the tensile part, until no element is
+/// is compressive and by `min(`[`UNLOAD_STEP`]`, `[`UNLOAD_STEP_PER_ELEMENT`]`·Δx/a_c)·d_s` through
+/// the tensile part (a_c the JKR pull-off radius of R), until no element is
 /// bonded. The summary gets the JKR references of `R`. On a free grid the Hertz contact radius
 /// `sqrt(R·d)` at that depth (from the first touch) plus 30% must fit inside the array around
 /// the vertex. Each of `max_approach`, `unload_step`, `coarse_unload_step` can be given
@@ -97,7 +99,7 @@ pub struct PullOffSpec {
     pub radius: Option<f64>,
     /// Deepest approach; `None`: the default rule.
     pub max_approach: Option<f64>,
-    /// Retraction step through the tensile part; `None`: [`UNLOAD_STEP`]·d_s.
+    /// Retraction step through the tensile part; `None`: the rule's (see above).
     pub unload_step: Option<f64>,
     /// Retraction step while the force is compressive; `None`: [`COARSE_UNLOAD_STEP`]·d_s.
     pub coarse_unload_step: Option<f64>,
@@ -199,6 +201,7 @@ pub fn pull_off_scene(
             spec.gamma,
             r,
             f.apex + f.residual_max,
+            spec.dx,
         )),
         _ => None,
     };
@@ -289,7 +292,8 @@ pub fn pull_off_scene(
         (Some(r), Some(d_s)) => format!(
             "# sphere radius R = {r:e} ({how}), d_s = (R gamma^2/E*^2)^(1/3) = {d_s:e}; default \
              path: one load step to apex + top of the roughness + {LOAD_DEPTH} d_s, retraction by \
-             {COARSE_UNLOAD_STEP} d_s while compressive, then by {UNLOAD_STEP} d_s\n"
+             {COARSE_UNLOAD_STEP} d_s while compressive, then by min({UNLOAD_STEP}, \
+             {UNLOAD_STEP_PER_ELEMENT} dx/a_c) d_s = {unload_step:e}\n"
         ),
         _ => "# no sphere radius: the path was given\n".to_owned(),
     };

@@ -96,6 +96,39 @@ pub struct Problem {
     /// The body includes heights given as an array in memory ([`crate::heights`]): defined per
     /// element, so a Richardson coarse grid cannot carry it.
     pub heights_in_memory: bool,
+    /// Where the path came from when `[protocol]` left it to the default pull-off rule
+    /// ([`crate::pull_off_path`]); `None` when the scene gave it.
+    pub path_rule: Option<PathRule>,
+}
+
+/// The default pull-off path a scene without `protocol.max_approach` got, and the radius it
+/// was derived from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PathRule {
+    /// The sphere's radius R.
+    pub radius: f64,
+    /// Whether R was fitted (a least-squares paraboloid through the heights) rather than given.
+    pub fitted: bool,
+    /// The rule's numbers.
+    pub path: crate::pull_off_path::PullOffPath,
+}
+
+impl std::fmt::Display for PathRule {
+    /// One line: `default pull-off path of R = 1 (given): d_s = …, load to …, retract by …`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let p = &self.path;
+        write!(
+            f,
+            "default pull-off path of R = {} ({}), d_s = {}: one load step to d = {}, retraction \
+             by {} while compressive, then by {}",
+            num(self.radius),
+            if self.fitted { "fitted" } else { "given" },
+            num(p.d_s),
+            num(p.max_approach),
+            num(p.coarse_unload_step),
+            num(p.unload_step)
+        )
+    }
 }
 
 /// Least pull-off contact radius over element size, a_c/Δx (JKR radius for spheres, the punch
@@ -263,7 +296,7 @@ impl Problem {
             Geometry::Sphere { radius } => Some(radius),
             _ => body_radius,
         };
-        let path = approach_path(
+        let (path, path_rule) = approach_path(
             &f.protocol,
             &PathBody {
                 grid: &grid,
@@ -275,6 +308,17 @@ impl Problem {
             },
         )?;
         path.validate()?;
+        // A radius fitted for the default path gives the references too (as for heights).
+        if let Some(rule) = path_rule.filter(|r| r.fitted && gamma > 0.0)
+            && references.f_jkr.is_none()
+        {
+            references.f_jkr = Some(tack_analytics::jkr_pull_off_force(gamma, rule.radius));
+            references.d_jkr = Some(tack_analytics::jkr_pull_off_approach(
+                e_star,
+                gamma,
+                rule.radius,
+            ));
+        }
         check_fits(&f.grid, &grid, &f.geometry, &path, first_touch)?;
         check_memory(scene, &grid, Some(path.step_bound()))?;
 
@@ -351,6 +395,7 @@ impl Problem {
             references,
             warnings,
             heights_in_memory: body.is_some(),
+            path_rule,
         })
     }
 
@@ -434,7 +479,10 @@ struct PathBody<'a> {
 /// The approach path of `[protocol]`: an indentation (`indent`), the given load–unload path
 /// (`max_approach` with `load_step`), or the default pull-off path of a sphere-like body
 /// ([`crate::pull_off_path`]) when neither is given.
-fn approach_path(p: &Protocol, body: &PathBody<'_>) -> Result<ApproachPath, SceneError> {
+fn approach_path(
+    p: &Protocol,
+    body: &PathBody<'_>,
+) -> Result<(ApproachPath, Option<PathRule>), SceneError> {
     let first_touch = body.surface.min();
     let max_steps = p.max_steps.unwrap_or(DEFAULT_MAX_STEPS);
     let finite = |field: &str, v: f64| {
@@ -479,7 +527,7 @@ fn approach_path(p: &Protocol, body: &PathBody<'_>) -> Result<ApproachPath, Scen
         }
         let mut path = ApproachPath::indentation(d)?;
         path.max_steps = max_steps;
-        return Ok(path);
+        return Ok((path, None));
     }
     let (max_approach, load_step, unload_step, coarse_unload_step) =
         match (p.max_approach, p.load_step) {
@@ -530,23 +578,32 @@ fn approach_path(p: &Protocol, body: &PathBody<'_>) -> Result<ApproachPath, Scen
                             .into(),
                     ));
                 }
-                let unload = p.unload_step.unwrap_or(rule.unload_step);
-                let coarse = p.coarse_unload_step.unwrap_or(rule.coarse_unload_step);
-                let load = (rule.max_approach - first_touch).max(unload);
+                let unload = p.unload_step.unwrap_or(rule.path.unload_step);
+                let coarse = p.coarse_unload_step.unwrap_or(rule.path.coarse_unload_step);
+                let max_approach = rule.path.max_approach;
+                let load = (max_approach - first_touch).max(unload);
                 // One load step straight to the deepest approach.
                 let path = ApproachPath {
-                    start: rule.max_approach,
-                    max_approach: rule.max_approach,
+                    start: max_approach,
+                    max_approach,
                     load_step: load,
                     unload_step: unload,
                     coarse_unload_step: Some(coarse),
                     retract_to: None,
                     max_steps,
                 };
-                return Ok(path);
+                let rule = PathRule {
+                    path: crate::pull_off_path::PullOffPath {
+                        unload_step: unload,
+                        coarse_unload_step: coarse,
+                        ..rule.path
+                    },
+                    ..rule
+                };
+                return Ok((path, Some(rule)));
             }
         };
-    Ok(ApproachPath {
+    let path = ApproachPath {
         start: p
             .start
             .unwrap_or((first_touch + load_step).min(max_approach)),
@@ -556,14 +613,15 @@ fn approach_path(p: &Protocol, body: &PathBody<'_>) -> Result<ApproachPath, Scen
         coarse_unload_step,
         retract_to: p.retract_to,
         max_steps,
-    })
+    };
+    Ok((path, None))
 }
 
 /// The default pull-off path when `[protocol]` leaves out `max_approach` and `load_step`: the
 /// rule of [`crate::pull_off_path`] for a sphere (`geometry.radius`, or a body in memory with a
 /// radius) or a body whose least-squares paraboloid is sphere-like; refused, naming what is
 /// missing, without adhesion or without a radius.
-fn default_path(body: &PathBody<'_>) -> Result<crate::pull_off_path::PullOffPath, SceneError> {
+fn default_path(body: &PathBody<'_>) -> Result<PathRule, SceneError> {
     if body.gamma <= 0.0 {
         return Err(SceneError::Inconsistent(format!(
             "protocol.max_approach is required: without adhesion (material.gamma = {}) there \
@@ -573,13 +631,13 @@ fn default_path(body: &PathBody<'_>) -> Result<crate::pull_off_path::PullOffPath
             num(body.gamma)
         )));
     }
-    let (radius, top) = match body.sphere_radius {
-        Some(r) => (r, body.top_of_roughness),
+    let (radius, top, fitted) = match body.sphere_radius {
+        Some(r) => (r, body.top_of_roughness, false),
         None => {
             let fit =
                 crate::pull_off_path::fit_paraboloid(body.surface.heights(), body.grid.dx(), None);
             match fit {
-                Some(f) if f.is_sphere_like(body.grid) => (f.radius, f.apex + f.residual_max),
+                Some(f) if f.is_sphere_like(body.grid) => (f.radius, f.apex + f.residual_max, true),
                 _ => {
                     return Err(SceneError::Inconsistent(
                         "protocol.max_approach is required: the default pull-off path needs a \
@@ -593,12 +651,17 @@ fn default_path(body: &PathBody<'_>) -> Result<crate::pull_off_path::PullOffPath
             }
         }
     };
-    Ok(crate::pull_off_path::default_pull_off_path(
-        body.e_star,
-        body.gamma,
+    Ok(PathRule {
         radius,
-        top,
-    ))
+        fitted,
+        path: crate::pull_off_path::default_pull_off_path(
+            body.e_star,
+            body.gamma,
+            radius,
+            top,
+            body.grid.dx(),
+        ),
+    })
 }
 
 /// Refuses a scene whose run cannot fit the machine's memory (see [`crate::memory`]). With
@@ -1205,7 +1268,7 @@ load_step = 0.05
     #[test]
     fn a_scene_without_a_protocol_gets_the_pull_off_rule_of_its_sphere() {
         let p = build(no_protocol(), &[]).unwrap();
-        let rule = crate::pull_off_path::default_pull_off_path(1.0, 0.1, 1.0, 0.0);
+        let rule = crate::pull_off_path::default_pull_off_path(1.0, 0.1, 1.0, 0.0, 0.05);
         assert_eq!(p.path.max_approach, rule.max_approach);
         // One load step straight to the deepest approach, then the rule's retraction.
         assert_eq!(p.path.start, rule.max_approach);
