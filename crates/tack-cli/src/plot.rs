@@ -7,9 +7,9 @@
 //! available; PNG needs the `png` cargo feature (text is drawn with a TrueType font found on the
 //! system, see [`FONT_PATHS`]).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use anyhow::{Context, anyhow, bail};
+use anyhow::{anyhow, bail};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use tack_io::RunResult;
@@ -114,38 +114,7 @@ pub fn plot_file(input: &Path, output: &Path) -> anyhow::Result<()> {
             input.display()
         );
     }
-    let tmp = temporary(output)?;
-    let outcome = render(&result, &tmp, format).and_then(|()| {
-        std::fs::rename(&tmp, output)
-            .with_context(|| format!("{}: renaming `{}` onto it", output.display(), tmp.display()))
-    });
-    if outcome.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    outcome
-}
-
-fn temporary(output: &Path) -> anyhow::Result<PathBuf> {
-    let name = output
-        .file_name()
-        .ok_or_else(|| anyhow!("{}: not a file name", output.display()))?;
-    let parent = match output.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    if !parent.is_dir() {
-        bail!(
-            "{}: parent directory `{}` does not exist",
-            output.display(),
-            parent.display()
-        );
-    }
-    // Keep the extension last: the bitmap backend picks the encoder from it.
-    Ok(parent.join(format!(
-        ".tmp-{}-{}",
-        std::process::id(),
-        name.to_string_lossy()
-    )))
+    tack_io::write_atomically(output, |tmp| render(&result, tmp, format))
 }
 
 fn figure_size(result: &RunResult) -> (u32, u32) {

@@ -105,4 +105,4 @@ pub use sweep::{
     POINT_FAILED, POINT_INCOMPLETE, POINT_MISSING, POINT_OK, ParameterColumn, SweepTable,
     read_sweep_table, write_sweep_table,
 };
-pub use write::{not_a_regular_file, write_result};
+pub use write::{not_a_regular_file, write_atomically, write_result, write_text_atomically};

@@ -26,19 +26,24 @@ pub fn write_result(path: &Path, result: &RunResult) -> Result<(), IoError> {
     write_atomically(path, |tmp| write_file(tmp, path, result))
 }
 
-/// Runs `write` on a temporary path beside `path` (`.<name>.tmp-<pid>-<n>`) and renames the
-/// temporary onto `path` when `write` succeeds; on any error the temporary is removed and an
-/// existing file at `path` is left untouched.
-pub(crate) fn write_atomically(
+/// The one atomic file write of tack (result files, sweep tables, figures, the xtask's JSON):
+/// runs `write` on a temporary path beside `path` (`.<name>.tmp-<pid>-<n>.<extension>`: the
+/// extension last, for writers that pick a format from it) and renames the temporary onto
+/// `path` when `write` succeeds; on any error the temporary is removed and an existing file at
+/// `path` is left untouched. Refuses a missing parent directory and an existing `path` that is
+/// not a regular file ([`not_a_regular_file`]).
+pub fn write_atomically<E: From<IoError>>(
     path: &Path,
-    write: impl FnOnce(&Path) -> Result<(), IoError>,
-) -> Result<(), IoError> {
+    write: impl FnOnce(&Path) -> Result<(), E>,
+) -> Result<(), E> {
     let tmp = temporary_path(path)?;
     let outcome = write(&tmp).and_then(|()| {
-        fs::rename(&tmp, path).map_err(|cause| IoError::Fs {
-            path: path.to_owned(),
-            what: format!("renaming the temporary `{}` onto it", tmp.display()),
-            cause,
+        fs::rename(&tmp, path).map_err(|cause| {
+            E::from(IoError::Fs {
+                path: path.to_owned(),
+                what: format!("renaming the temporary `{}` onto it", tmp.display()),
+                cause,
+            })
         })
     });
     if outcome.is_err() {
@@ -71,7 +76,25 @@ fn temporary_path(path: &Path) -> Result<PathBuf, IoError> {
     }
     let n = TEMPORARIES.fetch_add(1, Ordering::Relaxed);
     let pid = std::process::id();
-    Ok(parent.join(format!(".{}.tmp-{pid}-{n}", name.to_string_lossy())))
+    let extension = path
+        .extension()
+        .map_or_else(String::new, |e| format!(".{}", e.to_string_lossy()));
+    Ok(parent.join(format!(
+        ".{}.tmp-{pid}-{n}{extension}",
+        name.to_string_lossy()
+    )))
+}
+
+/// Writes `text` to `path` atomically ([`write_atomically`]): `path` holds either its old
+/// content or the whole text.
+pub fn write_text_atomically(path: &Path, text: &str) -> Result<(), IoError> {
+    write_atomically(path, |tmp| {
+        fs::write(tmp, text).map_err(|cause| IoError::Fs {
+            path: path.to_owned(),
+            what: format!("writing the temporary `{}`", tmp.display()),
+            cause,
+        })
+    })
 }
 
 /// What an existing `path` is when it is not a regular file (following symbolic links): `is a
