@@ -68,7 +68,7 @@ pub struct AdhesiveOptions {
     /// a cascade, and adhesion holds a wrongly attached element. On free grids it updates the
     /// gap only inside its sub-grid, so only elements there may attach. When a round changes
     /// nothing, the same set is solved to `cg.tolerance` and judged everywhere without margin,
-    /// so every step ends on a tight solve that meets the exact criterion. Default `1e-3`
+    /// so every step ends on an exact solve that meets the exact criterion. Default `1e-3`
     /// (docs/theory.md §3.4 has the measurements).
     pub round_tolerance: Option<f64>,
     /// Non-adhesive cold starts (`γ = 0`, nothing in contact yet) begin from the solution on
@@ -86,7 +86,7 @@ const LOOSE_REFERENCE_TOLERANCE: f64 = 1e-3;
 
 /// Relative tension margin `m` of an inexact round: it detaches `p < −σ_c (1 + m)` only. With
 /// `round_tolerance = 1e-3`, `m = 0.001` let a Kendall punch at a/Δx = 20 pull off 0.6% early
-/// (a rim element within the loose solve's error of σ_c started the cascade); `0.003` gives the
+/// (a rim element within the inexact solve's error of σ_c started the cascade); `0.003` gives the
 /// exact algorithm's pull-off at a/Δx = 5…40 (`tests/adhesion.rs`).
 pub const LOOSE_DETACH_MARGIN: f64 = 0.003;
 
@@ -212,16 +212,16 @@ impl AdhesiveSolver {
             cg_total += self.start_from_coarse(d)?;
         }
         let sigma_c = self.sigma_c;
-        // Inexact rounds until one finds nothing clear, then a tight round on the same set.
-        let mut loose = self
+        // Inexact rounds until one finds nothing clear, then an exact round on the same set.
+        let mut inexact_tolerance = self
             .options
             .round_tolerance
             .filter(|&t| t > self.options.cg.tolerance);
-        let mut loose_visited = HashSet::new();
-        let mut tight = loose.is_none();
+        let mut inexact_visited = HashSet::new();
+        let mut exact = inexact_tolerance.is_none();
         // The inexact rounds' tolerance: it tightens 100× whenever a round finds nothing clear
         // and returns to `round_tolerance` when a round changes the set.
-        let mut level = loose.unwrap_or(0.0);
+        let mut level = inexact_tolerance.unwrap_or(0.0);
         // Whether the last round changed the set (a set is revisited only after a change).
         let mut just_changed = true;
         let mut detach_below;
@@ -253,11 +253,11 @@ impl AdhesiveSolver {
                 continue;
             }
             let fingerprint = hash_mask(&self.bonded);
-            if !tight && just_changed && !loose_visited.insert(fingerprint) {
-                // Inexact rounds came back to a set: finish the step with tight rounds only.
-                (loose, tight) = (None, true);
+            if !exact && just_changed && !inexact_visited.insert(fingerprint) {
+                // Inexact rounds came back to a set: finish the step with exact rounds only.
+                (inexact_tolerance, exact) = (None, true);
             }
-            let cycle = tight && !visited.insert(fingerprint);
+            let cycle = exact && !visited.insert(fingerprint);
             let mut attach_below = 0.0;
             detach_below = -sigma_c;
             // Where the gap is up to date after this round (`None`: everywhere).
@@ -265,9 +265,9 @@ impl AdhesiveSolver {
             if n_bonded == 0 {
                 self.base.pressure.fill(0.0);
                 self.base.work.disp.fill(0.0);
-            } else if !tight {
+            } else if !exact {
                 // An inexact round: the gap is only brought up to date inside the sub-grid
-                // window, so only elements there may attach; the tight round checks them all.
+                // window, so only elements there may attach; the exact round checks them all.
                 // Margins scale with the round's tolerance; without adhesion the equilibrium is
                 // unique (a convex problem), so no decision needs one.
                 let (c, w) = self.solve_bonded(d, level, false);
@@ -315,13 +315,13 @@ impl AdhesiveSolver {
                 });
             just_changed = changed;
             if changed {
-                tight = loose.is_none();
-                level = loose.unwrap_or(0.0);
-            } else if tight {
+                exact = inexact_tolerance.is_none();
+                level = inexact_tolerance.unwrap_or(0.0);
+            } else if exact {
                 break;
             } else {
                 level /= LOOSE_TIGHTENING;
-                tight = level <= self.options.cg.tolerance;
+                exact = level <= self.options.cg.tolerance;
             }
         }
         if stale {
@@ -731,7 +731,7 @@ mod tests {
     #[test]
     fn inexact_rounds_end_on_an_exact_state_with_fewer_iterations() {
         // Load to d = 6 and retract past pull-off on the a_c/Δx = 15 sphere, with and without
-        // inexact rounds. Every step ends on a tight solve judged without margin, so each state
+        // inexact rounds. Every step ends on an exact solve judged without margin, so each state
         // meets the criterion exactly.
         let path = |s: &mut AdhesiveSolver| -> (Vec<Array2<bool>>, Vec<f64>, usize) {
             let mut sets = Vec::new();
@@ -757,7 +757,7 @@ mod tests {
         // Inexact rounds take other (equally admissible) routes through the sets: an inexact
         // round attaches only clear penetrations inside its sub-grid where the exact algorithm
         // attaches every penetration of each intermediate solution, adhesion holds what was
-        // attached, and near a cascade a tension within the loose solve's error of σ_c may be
+        // attached, and near a cascade a tension within the inexact solve's error of σ_c may be
         // judged the other way. Measured here: loading forces within 3.1e-4 F_max; the loaded
         // contact holds 1861 elements against the exact loop's 1869, and the retraction keeps
         // those 8 apart up to the pull-off (forces within 2.5e-3 F_max); the pull-off force
