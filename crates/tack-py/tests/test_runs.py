@@ -53,6 +53,32 @@ def test_contact_gives_the_same_bits_on_any_thread_count():
         tack.contact(heights, dx=dx, e_star=1.0, approach=1e-3, periodic=True, threads=0)
 
 
+def test_pull_off_gives_the_same_bits_on_any_thread_count():
+    # The height-array pull-off runs through the library's run engine, which installs the pool
+    # of `threads` (it used to ignore it); 192² periodic: its FFTs split into lanes.
+    n = 192
+    dx = 1.0 / n
+    x = (np.arange(n) - n // 2) * dx
+    heights = 0.01 * (1 - np.cos(2 * np.pi * x)[:, None] * np.cos(2 * np.pi * x)[None, :])
+    runs = [
+        tack.pull_off(
+            heights,
+            dx=dx,
+            e_star=1.0,
+            gamma=1e-4,
+            periodic=True,
+            max_approach=0.009,
+            unload_step=0.001,
+            coarse_unload_step=0.001,
+            threads=t,
+        )
+        for t in (1, 2)
+    ]
+    assert len(runs[0]) == len(runs[1]) > 3
+    assert np.array_equal(runs[0].curve["force"], runs[1].curve["force"])
+    assert runs[0].pull_off_force == runs[1].pull_off_force < 0
+
+
 def test_the_jkr_example_ratio(repo):
     result = tack.run(repo / "data/examples/smooth_jkr_sphere.toml")
     assert round(result.pull_off_ratio, 4) == 1.1343
