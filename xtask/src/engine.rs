@@ -2,7 +2,7 @@
 //! builds a [`Problem`], solves its load–unload path with `tack::run::solve` (on the crop window,
 //! coarse retraction included) keeping only the fields a figure asks for (on the full grid),
 //! and runs batches in parallel (rayon) with a progress line per finished run. Figures 5–8 run
-//! through `tack::sweep` instead (`crate::sweeps`).
+//! through `tack_sweep` instead (`crate::sweeps`).
 //!
 //! Determinism: every run is sequential; a batch is collected in input order, so the results
 //! are bit-identical for any thread count.

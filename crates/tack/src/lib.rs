@@ -42,8 +42,10 @@
 //!   [`solver::Observer`], the summary and the Richardson coarse run;
 //! - [`heights`]: runs on a body given as a height array in memory, with a default pull-off
 //!   path (what the Python package's `tack.pull_off` calls);
-//! - [`provenance`]: git revision, timestamps, command line;
-//! - [`sweep`]: parameter sweeps (sharded, parallel, resumable), [`merge`] into one table.
+//! - [`provenance`]: git revision, timestamps, command line.
+//!
+//! Parameter sweeps (sharded, parallel, resumable) and their merge into one table are the
+//! `tack-sweep` crate's, built on this one.
 //!
 //! The numerical crates are re-exported ([`geometry`], [`kernels`], [`solver`], [`analytics`],
 //! [`io`]) with [`ndarray`], so a program depending on `tack` alone reaches every type its API
@@ -52,18 +54,21 @@
 pub mod error;
 pub mod heights;
 pub mod memory;
-pub mod merge;
 pub mod overrides;
 pub mod problem;
 pub mod provenance;
 pub mod run;
 pub mod scene;
-pub mod sweep;
 
 pub use error::Error;
+pub use overrides::set_value;
 pub use problem::Problem;
-pub use run::{RunOptions, RunOutcome, run, run_file, run_to_file};
-pub use scene::{Scene, SceneError, SceneFile};
+pub use provenance::{GIT_REVISION, VERSION, command_line, now_rfc3339};
+pub use run::{
+    MAX_THREADS, RunOptions, RunOutcome, SUMMARY_QUANTITIES, run, run_file, run_to_file,
+    summary_quantity,
+};
+pub use scene::{SCENE_VERSION, Scene, SceneError, SceneFile};
 
 pub use ndarray;
 pub use tack_analytics as analytics;

@@ -3,7 +3,7 @@
 //! and the summary quantities to collect; running the points of a sweep, or of one shard of it,
 //! in parallel into a directory of result files that a rerun resumes.
 //!
-//! `docs/sweeps.md` documents the file format and the output directory; [`crate::merge`]
+//! `docs/sweeps.md` documents the file format and the output directory; [`crate::merge()`]
 //! gathers the directory into one table.
 //!
 //! # Order of the points
@@ -28,9 +28,7 @@ use rayon::prelude::*;
 use serde::Deserialize;
 use thiserror::Error;
 
-use crate::overrides::set_value;
-use crate::run::{self, RunOptions, SUMMARY_QUANTITIES};
-use crate::scene::{Scene, SceneError};
+use tack::{RunOptions, SUMMARY_QUANTITIES, Scene, SceneError, set_value};
 
 /// The only sweep-file version this build reads.
 pub const SWEEP_VERSION: i64 = 1;
@@ -236,7 +234,7 @@ impl Sweep {
                 let mut inline = inline.clone();
                 inline
                     .entry("version")
-                    .or_insert(toml::Value::Integer(crate::scene::SCENE_VERSION));
+                    .or_insert(toml::Value::Integer(tack::SCENE_VERSION));
                 let text = toml::to_string(&inline)
                     .map_err(|e| invalid(format!("[scene] cannot be serialised: {e}")))?;
                 (text, None, dir.to_owned())
@@ -737,7 +735,7 @@ impl FromStr for Shard {
 }
 
 /// The most worker threads a sweep accepts (the same bound as a run's).
-pub use crate::run::MAX_THREADS;
+pub use tack::MAX_THREADS;
 
 /// How [`run_sweep`] runs.
 #[derive(Debug, Clone, Default)]
@@ -1015,7 +1013,7 @@ fn run_point(sweep: &Sweep, dir: &Path, index: usize, command_line: &str) -> Poi
         let _ = std::fs::remove_file(&err);
         return PointOutcome::AlreadyComplete;
     }
-    let outcome = catch_unwind(AssertUnwindSafe(|| -> Result<(), crate::Error> {
+    let outcome = catch_unwind(AssertUnwindSafe(|| -> Result<(), tack::Error> {
         let scene = Scene::parse(&text, &sweep.base_dir, &[])?;
         let options = RunOptions {
             command_line: Some(format!("{command_line} [point {index}]")),
@@ -1023,7 +1021,7 @@ fn run_point(sweep: &Sweep, dir: &Path, index: usize, command_line: &str) -> Poi
             // Points run concurrently on the sweep's pool; each solve's FFT lanes share it.
             threads: None,
         };
-        run::run_to_file(&scene, &h5, &options, &mut ())?;
+        tack::run_to_file(&scene, &h5, &options, &mut ())?;
         Ok(())
     }));
     match outcome {
@@ -1095,7 +1093,7 @@ pub fn run_sweep(
     let command_line = options
         .command_line
         .clone()
-        .unwrap_or_else(crate::provenance::command_line);
+        .unwrap_or_else(tack::command_line);
     observer.on_start(points.len());
     let already = AtomicUsize::new(0);
     let ran = AtomicUsize::new(0);
@@ -1341,13 +1339,15 @@ load_step = 0.15
             let scene = s.point_scene(i).unwrap().file;
             let (g, row, load) = (i / 6, i / 2 % 3, i % 2);
             assert_eq!(scene.material.gamma, [0.1, 0.2][g], "point {i}");
+            // The parsed geometry, as the scene file would write it (`shape`, `radius`).
+            let geometry = toml::Value::try_from(scene.geometry).unwrap();
+            assert_eq!(geometry.get("shape"), Some(&toml::Value::from("sphere")));
             assert_eq!(
-                scene.geometry,
-                crate::scene::Geometry::Sphere {
-                    radius: [7.0, 8.0, 9.0][row]
-                },
+                geometry.get("radius"),
+                Some(&toml::Value::from([7.0, 8.0, 9.0][row])),
                 "point {i}"
             );
+            assert_eq!(geometry.as_table().map(|t| t.len()), Some(2), "point {i}");
             assert_eq!(
                 scene.protocol.max_approach,
                 [2.5, 3.0, 3.5][row],
