@@ -2,7 +2,7 @@
 //! library's run engine (`tack::run`), with a [`Keeper`] observer for the fields a figure asks
 //! for beyond the pull-off and last contact (on the full grid), and batches in parallel (rayon)
 //! with a progress line per finished run. Figures 5–8 run
-//! through `tack::sweep` instead (`crate::sweeps`).
+//! through `tack_sweep` instead (`crate::sweeps`).
 //!
 //! Determinism: every run is sequential; a batch is collected in input order, so the results
 //! are bit-identical for any thread count.

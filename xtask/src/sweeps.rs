@@ -1,6 +1,6 @@
 //! Figures run as tack sweeps (Figures 5 and 7, which Figures 6 and 8 read): the figure's point
 //! scenes become one sweep file (the base scene inline, one zipped `[vary]` entry of the fields
-//! that differ between points, one row per point), run by `tack::sweep::run_sweep` into
+//! that differ between points, one row per point), run by `tack_sweep::run_sweep` into
 //! `OUT/figN/sweep-<mode>/` (one HDF5 result per point, resumable), then read back with
 //! `tack_io::read_result`.
 //!
@@ -15,7 +15,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
 use tack::SceneSchema;
-use tack::sweep::{SWEEP_COPY, Sweep, SweepOptions, point_path, run_sweep, verify_point};
+use tack_sweep::{SWEEP_COPY, Sweep, SweepOptions, point_path, run_sweep, verify_point};
 
 /// The sections of a scene in the order docs/scenes.md documents them.
 const SECTIONS: [&str; 7] = [
@@ -231,7 +231,7 @@ impl FigureSweep {
     /// The directory must be new or hold this very sweep: a `sweep.toml` that differs (the
     /// spec's parameters changed, or another mode's or figure's sweep) stops with an error
     /// rather than mixing results. Within the sweep, a point is only skipped when its result
-    /// file records exactly the point's scene (`tack::sweep::verify_point`).
+    /// file records exactly the point's scene (`tack_sweep::verify_point`).
     ///
     /// A point whose scene is refused or whose run fails does not stop the figure: its slot is
     /// `None` and it is listed in [`SweepRuns::failed`] (its error is in `points/<i>.err`), so
@@ -364,7 +364,7 @@ impl PointRun {
 /// Prints each failed point as it happens (the figure's summary names it again).
 struct PrintFailures;
 
-impl tack::sweep::SweepObserver for PrintFailures {
+impl tack_sweep::SweepObserver for PrintFailures {
     fn on_point(&self, index: usize, label: &str, failure: Option<&str>) {
         if let Some(message) = failure {
             eprintln!("  point {index} ({label}) failed: {message}");

@@ -1,5 +1,6 @@
 //! The `tack` command line's own parts: progress bars, the printed report and plots. Scenes,
-//! runs, result files and sweeps live in the [`tack`] library; this crate only shows them.
+//! runs and result files live in the [`tack`] library, sweeps in [`tack_sweep`]; this crate only
+//! shows them.
 //!
 //! - [`progress`]: spinners and bars on stderr, as solver and sweep observers;
 //! - [`report`]: the one-screen account of a run, number formatting;

@@ -12,14 +12,13 @@ use anyhow::Context;
 use clap::{Parser, Subcommand};
 use tack::RunOptions;
 use tack::engine;
-use tack::merge::{self, MergeOptions};
 use tack::problem::Problem;
 use tack::provenance;
 use tack::scene::Scene;
-use tack::sweep::{self, Shard, Sweep, SweepOptions};
 use tack_cli::plot;
 use tack_cli::progress::{Progress, SweepProgress};
 use tack_cli::report::{self, num};
+use tack_sweep::{MergeOptions, Shard, Sweep, SweepOptions};
 
 /// Adhesive strength of rough elastic contacts (Li, Pohrt & Popov 2019), by FFT-accelerated BEM.
 ///
@@ -219,7 +218,8 @@ fn execute(command: Command) -> anyhow::Result<()> {
                 shard: shard.unwrap_or_default(),
                 command_line: None,
             };
-            let report = sweep::run_sweep(&loaded, &output, &options, &SweepProgress::new(quiet))?;
+            let report =
+                tack_sweep::run_sweep(&loaded, &output, &options, &SweepProgress::new(quiet))?;
             println!("{report}");
             if !report.failed.is_empty() {
                 anyhow::bail!(
@@ -240,7 +240,7 @@ fn execute(command: Command) -> anyhow::Result<()> {
                 allow_missing,
                 command_line: None,
             };
-            let report = merge::merge(&dir, &output, &options)?;
+            let report = tack_sweep::merge(&dir, &output, &options)?;
             eprint!("{}", report.issues());
             if report.written {
                 println!("{report}; wrote {}", output.display());

@@ -6,7 +6,7 @@ use std::time::Duration;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use tack::solver::{Observer, Phase, StepRecord};
-use tack::sweep::SweepObserver;
+use tack_sweep::SweepObserver;
 
 use crate::report::num;
 

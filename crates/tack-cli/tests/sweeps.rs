@@ -511,7 +511,7 @@ fn example_sweeps_are_valid_at_every_point_and_the_jkr_example_runs() {
     assert!(sweeps.len() >= 2, "{sweeps:?}");
     for path in &sweeps {
         let sweep =
-            tack::sweep::Sweep::load(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            tack_sweep::Sweep::load(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         for i in 0..sweep.len() {
             let scene = sweep.point_scene(i).expect("point scene");
             if let Err(e) = tack::Problem::from_scene(&scene) {

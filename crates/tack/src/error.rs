@@ -1,4 +1,4 @@
-//! The facade's error: one enum over what a scene, a run, a result file or a sweep can raise.
+//! The facade's error: one enum over what a scene, a run or a result file can raise.
 
 use std::fmt;
 use std::path::PathBuf;
@@ -18,9 +18,6 @@ pub enum Error {
     /// A result file could not be written or read.
     #[error(transparent)]
     Io(#[from] tack_io::IoError),
-    /// A sweep file, its directory or its run failed.
-    #[error(transparent)]
-    Sweep(#[from] crate::sweep::SweepError),
     /// A thread count is out of range or its pool could not be built.
     #[error("{0}")]
     Threads(String),

@@ -47,7 +47,8 @@
 //!   path (what the Python package's `tack.pull_off` calls);
 //! - [`provenance`]: git revision, timestamps, command line; [`memory`]: the memory bound.
 //!
-//! Parameter sweeps live in the `tack-sweep` crate, built on this one.
+//! Parameter sweeps (sharded, parallel, resumable) and their merge into one table are the
+//! `tack-sweep` crate's, built on this one.
 //!
 //! The numerical crates are re-exported ([`geometry`], [`kernels`], [`solver`], [`analytics`],
 //! [`io`]) with [`ndarray`], so a program depending on `tack` alone reaches every type its API
@@ -58,14 +59,12 @@ pub mod engine;
 pub mod error;
 pub mod heights;
 pub mod memory;
-pub mod merge;
 pub mod overrides;
 pub mod problem;
 pub mod provenance;
 pub mod pull_off_path;
 pub mod scene;
 pub mod summary;
-pub mod sweep;
 
 /// The former home of the run engine and the result assembly, kept for programs written
 /// against it.
@@ -94,7 +93,9 @@ pub use engine::{
     MAX_THREADS, RunOptions, RunOutcome, check_threads, execute, run, run_file, run_to_file,
 };
 pub use error::{Error, SceneError};
+pub use overrides::set_value;
 pub use problem::Problem;
+pub use provenance::{GIT_REVISION, VERSION, command_line, now_rfc3339};
 #[allow(deprecated)]
 pub use scene::SceneFile;
 pub use scene::{SCENE_VERSION, Scene, SceneSchema};

@@ -3,7 +3,7 @@
 //! and the summary quantities to collect; running the points of a sweep, or of one shard of it,
 //! in parallel into a directory of result files that a rerun resumes.
 //!
-//! `docs/sweeps.md` documents the file format and the output directory; [`crate::merge`]
+//! `docs/sweeps.md` documents the file format and the output directory; [`crate::merge()`]
 //! gathers the directory into one table.
 //!
 //! # Order of the points
@@ -21,17 +21,14 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
 use std::sync::Mutex;
-use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
 use serde::Deserialize;
 use thiserror::Error;
 
-use crate::engine::{self as run, RunOptions};
-use crate::overrides::set_value;
-use crate::scene::{Scene, SceneError};
-use crate::summary::SUMMARY_QUANTITIES;
+use tack::{RunOptions, SUMMARY_QUANTITIES, Scene, SceneError, set_value};
 
 /// The only sweep-file version this build reads.
 pub const SWEEP_VERSION: i64 = 1;
@@ -99,8 +96,9 @@ pub enum SweepError {
     /// A result or sweep table could not be written or read.
     #[error(transparent)]
     Io(#[from] tack_io::IoError),
-    /// The thread pool could not be built.
-    #[error("--threads: {0}")]
+    /// The thread count is out of range (the message names `--threads`) or the pool could not
+    /// be built.
+    #[error("{0}")]
     Threads(String),
 }
 
@@ -237,7 +235,7 @@ impl Sweep {
                 let mut inline = inline.clone();
                 inline
                     .entry("version")
-                    .or_insert(toml::Value::Integer(crate::scene::SCENE_VERSION));
+                    .or_insert(toml::Value::Integer(tack::SCENE_VERSION));
                 let text = toml::to_string(&inline)
                     .map_err(|e| invalid(format!("[scene] cannot be serialised: {e}")))?;
                 (text, None, dir.to_owned())
@@ -738,7 +736,7 @@ impl FromStr for Shard {
 }
 
 /// The most worker threads a sweep accepts (the same bound as a run's).
-pub use crate::engine::MAX_THREADS;
+pub use tack::MAX_THREADS;
 
 /// How [`run_sweep`] runs.
 #[derive(Debug, Clone, Default)]
@@ -938,36 +936,10 @@ pub fn prepare_dir(sweep: &Sweep, dir: &Path) -> Result<(), SweepError> {
     })
 }
 
-/// Distinguishes temporaries of concurrent writes from one process.
-static TEMPORARIES: AtomicU64 = AtomicU64::new(0);
-
-/// Writes `text` to `path` through a temporary file beside it (`.<name>.tmp-<pid>-<n>`) and a
-/// rename, so `path` holds either nothing or the whole text.
+/// Writes `text` to `path` atomically (`tack_io::write_text_atomically`, the one atomic write):
+/// `path` holds either its old content or the whole text.
 pub fn write_text_atomically(path: &Path, text: &str) -> Result<(), SweepError> {
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let n = TEMPORARIES.fetch_add(1, Ordering::Relaxed);
-    let tmp = parent_dir(path).join(format!(".{name}.tmp-{}-{n}", std::process::id()));
-    let outcome = std::fs::write(&tmp, text)
-        .map_err(|cause| (format!("writing the temporary `{}`", tmp.display()), cause))
-        .and_then(|()| {
-            std::fs::rename(&tmp, path).map_err(|cause| {
-                (
-                    format!("renaming the temporary `{}` onto it", tmp.display()),
-                    cause,
-                )
-            })
-        });
-    outcome.map_err(|(what, cause)| {
-        let _ = std::fs::remove_file(&tmp);
-        SweepError::Fs {
-            path: path.to_owned(),
-            what,
-            cause,
-        }
-    })
+    Ok(tack_io::write_text_atomically(path, text)?)
 }
 
 /// Removes temporaries left in `dir/points` by a killed run for the given points
@@ -1016,7 +988,7 @@ fn run_point(sweep: &Sweep, dir: &Path, index: usize, command_line: &str) -> Poi
         let _ = std::fs::remove_file(&err);
         return PointOutcome::AlreadyComplete;
     }
-    let outcome = catch_unwind(AssertUnwindSafe(|| -> Result<(), crate::Error> {
+    let outcome = catch_unwind(AssertUnwindSafe(|| -> Result<(), tack::Error> {
         let scene = Scene::parse(&text, &sweep.base_dir, &[])?;
         let options = RunOptions {
             command_line: Some(format!("{command_line} [point {index}]")),
@@ -1024,7 +996,7 @@ fn run_point(sweep: &Sweep, dir: &Path, index: usize, command_line: &str) -> Poi
             // Points run concurrently on the sweep's pool; each solve's FFT lanes share it.
             threads: None,
         };
-        run::run_to_file(&scene, &h5, &options, &mut ())?;
+        tack::run_to_file(&scene, &h5, &options, &mut ())?;
         Ok(())
     }));
     match outcome {
@@ -1078,11 +1050,8 @@ pub fn run_sweep(
     // The thread count is checked before the directory is touched.
     let mut builder = rayon::ThreadPoolBuilder::new();
     if let Some(n) = options.threads {
-        if !(1..=MAX_THREADS).contains(&n) {
-            return Err(SweepError::Threads(format!(
-                "{n} is invalid: must be an integer from 1 to {MAX_THREADS}"
-            )));
-        }
+        let n = tack::check_threads("--threads", n as i128)
+            .map_err(|e| SweepError::Threads(format!("--threads: {e}")))?;
         builder = builder.num_threads(n);
     }
     prepare_dir(sweep, dir)?;
@@ -1092,11 +1061,11 @@ pub fn run_sweep(
     remove_stale_temporaries(dir, &points, total);
     let pool = builder
         .build()
-        .map_err(|e| SweepError::Threads(e.to_string()))?;
+        .map_err(|e| SweepError::Threads(format!("--threads: {e}")))?;
     let command_line = options
         .command_line
         .clone()
-        .unwrap_or_else(crate::provenance::command_line);
+        .unwrap_or_else(tack::command_line);
     observer.on_start(points.len());
     let already = AtomicUsize::new(0);
     let ran = AtomicUsize::new(0);
@@ -1342,13 +1311,15 @@ load_step = 0.15
             let scene = s.point_scene(i).unwrap().file;
             let (g, row, load) = (i / 6, i / 2 % 3, i % 2);
             assert_eq!(scene.material.gamma, [0.1, 0.2][g], "point {i}");
+            // The parsed geometry, as the scene file would write it (`shape`, `radius`).
+            let geometry = toml::Value::try_from(scene.geometry).unwrap();
+            assert_eq!(geometry.get("shape"), Some(&toml::Value::from("sphere")));
             assert_eq!(
-                scene.geometry,
-                crate::scene::Geometry::Sphere {
-                    radius: [7.0, 8.0, 9.0][row]
-                },
+                geometry.get("radius"),
+                Some(&toml::Value::from([7.0, 8.0, 9.0][row])),
                 "point {i}"
             );
+            assert_eq!(geometry.as_table().map(|t| t.len()), Some(2), "point {i}");
             assert_eq!(
                 scene.protocol.max_approach,
                 Some([2.5, 3.0, 3.5][row]),

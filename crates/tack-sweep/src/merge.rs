@@ -6,12 +6,11 @@
 use std::fmt;
 use std::path::Path;
 
+use tack::summary_quantity;
 use tack_io::{
     POINT_FAILED, POINT_INCOMPLETE, POINT_MISSING, POINT_OK, ParameterColumn, SweepTable,
 };
 
-use crate::provenance;
-use crate::summary::summary_quantity;
 use crate::sweep::{Axis, Sweep, SweepError, point_path, verify_point};
 
 /// How [`merge`] behaves.
@@ -214,15 +213,15 @@ pub fn merge(dir: &Path, out: &Path, options: &MergeOptions) -> Result<MergeRepo
     let command_line = options
         .command_line
         .clone()
-        .unwrap_or_else(provenance::command_line);
+        .unwrap_or_else(tack::command_line);
     let table = SweepTable {
         sweep: sweep.text.clone(),
         provenance: tack_io::Provenance {
-            tack_version: provenance::VERSION.to_owned(),
-            git_revision: provenance::GIT_REVISION.to_owned(),
+            tack_version: tack::VERSION.to_owned(),
+            git_revision: tack::GIT_REVISION.to_owned(),
             command_line,
             scene: sweep.base_text.clone(),
-            created: provenance::now_rfc3339(),
+            created: tack::now_rfc3339(),
             seed: None,
         },
         index: (0..total as u64).collect(),
