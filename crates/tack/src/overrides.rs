@@ -5,7 +5,7 @@
 //! `inf`) and falls back to a plain string, so `geometry.shape=sphere` works without quotes.
 //! Keys the schema does not know are then rejected by the schema (unknown field).
 
-use crate::scene::SceneError;
+use crate::error::SceneError;
 
 /// Applies every override in order to `table`.
 pub fn apply_overrides(table: &mut toml::Table, overrides: &[String]) -> Result<(), SceneError> {
