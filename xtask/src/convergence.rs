@@ -3,8 +3,9 @@
 //!
 //! Every body is one continuous surface sampled at each resolution (analytic shapes, and random
 //! roughness on a fixed band, `tack_geometry::rough_surface`), so the levels differ only in Δx.
-//! The path is `tack::heights::pull_off`'s (one load step, retraction in 0.01 d_s steps through
-//! the tensile part) with the same deepest approach at every level. Writes
+//! The path is `tack::heights::pull_off`'s (one load step, retraction through the tensile part in
+//! steps of the figures' full mode, [`FULL_UNLOAD_STEP`] = 0.01 d_s) with the same deepest
+//! approach at every level. Writes
 //! `results/convergence.json`.
 
 use std::f64::consts::{PI, TAU};
@@ -13,6 +14,9 @@ use anyhow::{Result, ensure};
 use ndarray::Array2;
 use tack::geometry::{Boundary, Grid, RoughSpec, Sphere, Surface, Waviness2d, rough_surface};
 use tack::heights::{LOAD_DEPTH, PullOffSpec, pull_off};
+use tack::solver::{observed_order, richardson_first_order};
+
+use crate::figures::FULL_UNLOAD_STEP;
 
 /// Material and sphere: E* = R = 1, γ such that a_c = 0.080 R (the paper's rough spheres).
 const GAMMA: f64 = 1.44868e-4;
@@ -80,7 +84,7 @@ struct Level {
 
 /// Runs `body` at every `n` of `levels` (ascending), the same deepest approach for all.
 fn study(body: Body, levels: &[usize]) -> Result<Vec<Level>> {
-    let d_s = (GAMMA * GAMMA).cbrt();
+    let d_s = tack::analytics::jkr_approach_scale(1.0, GAMMA, 1.0);
     let finest = body.heights(*levels.last().expect("levels"))?;
     let top = finest.iter().copied().fold(f64::INFINITY, f64::min);
     let mut out = Vec::new();
@@ -89,7 +93,7 @@ fn study(body: Body, levels: &[usize]) -> Result<Vec<Level>> {
         let spec = PullOffSpec {
             radius: Some(1.0),
             max_approach: Some(top + LOAD_DEPTH * d_s),
-            unload_step: Some(0.01 * d_s),
+            unload_step: Some(FULL_UNLOAD_STEP * d_s),
             ..PullOffSpec::new(1.0 / n as f64, 1.0, GAMMA)
         };
         let outcome = pull_off(&heights, &spec, &tack::RunOptions::default(), &mut ())?;
@@ -106,11 +110,6 @@ fn study(body: Body, levels: &[usize]) -> Result<Vec<Level>> {
         });
     }
     Ok(out)
-}
-
-/// Observed order from three consecutive levels: log2(|F₁ − F₂| / |F₂ − F₃|).
-fn order(f1: f64, f2: f64, f3: f64) -> f64 {
-    ((f1 - f2).abs() / (f2 - f3).abs()).log2()
 }
 
 /// `cargo xtask convergence [N...]`: the table for levels N (default 64 128 256 512 1024).
@@ -164,13 +163,13 @@ pub fn run(args: &[String]) -> Result<()> {
         );
         for (k, r) in rows.iter().enumerate() {
             let coarse = (k > 0).then(|| rows[k - 1].ratio);
-            let richardson = coarse.map_or(f64::NAN, |c| 2.0 * r.ratio - c);
+            let richardson = coarse.map_or(f64::NAN, |c| richardson_first_order(r.ratio, c));
             let change = coarse.map_or(f64::NAN, |c| (r.ratio - c).abs());
             let estimate = coarse.map_or(f64::NAN, |c| {
                 tack::solver::pull_off_error_estimate(r.ratio, c, Some(1.0 / (a_c * r.n as f64)))
             });
             let p = if k > 1 {
-                order(rows[k - 2].ratio, rows[k - 1].ratio, r.ratio)
+                observed_order(rows[k - 2].ratio, rows[k - 1].ratio, r.ratio)
             } else {
                 f64::NAN
             };

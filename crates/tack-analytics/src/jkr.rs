@@ -131,6 +131,47 @@ pub fn jkr_force_from_approach(e_star: f64, gamma: f64, radius: f64, d: f64) -> 
         .map(|a| jkr_force_from_radius(e_star, gamma, radius, a))
 }
 
+/// Most points [`jkr_curve_normalised`] returns: a guard for a huge, infinite or NaN `x_max`
+/// (with the step 0.005 the cap is reached near d/|d_JKR| ≈ 850).
+pub const JKR_CURVE_MAX_POINTS: usize = 5000;
+
+/// The smooth sphere's JKR force–approach curve in the normalised units of plots, as points
+/// (d/|d_JKR|, F/|F_JKR|) (Eqs. 7, 8) on the stable branch under approach control
+/// (Johnson, Kendall & Roberts 1971; `docs/theory.md` §5.2). The same for every E*, γ, R.
+///
+/// The points are the parametric curve (d̂(â), F̂(â)) divided by |d̂_JKR| and |F̂_JKR| at
+/// â = â_j, â_j + `a_hat_step`, â_j + 2·`a_hat_step`, … (the step accumulated by addition), from
+/// the jump-off â_j = (π/8)^(1/3), at (−3^(2/3), −5/9), up to and including the first point with
+/// d/|d_JKR| ≥ `x_max`, and at most [`JKR_CURVE_MAX_POINTS`] points (a NaN `x_max` gives the
+/// jump-off point alone). The curve passes through the force-controlled pull-off (−1, −1), its
+/// minimum, and approaches the Hertz curve F/|F_JKR| = x^(3/2)/(3√3) at large x = d/|d_JKR|.
+///
+/// # Panics
+///
+/// If `a_hat_step` is not a finite number > 0.
+///
+/// ```
+/// let curve = tack_analytics::jkr_curve_normalised(3.0, 0.005);
+/// let lowest = curve.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
+/// assert!((lowest + 1.0).abs() < 1e-4); // the pull-off F = F_JKR
+/// assert!(curve.last().unwrap().0 >= 3.0);
+/// ```
+pub fn jkr_curve_normalised(x_max: f64, a_hat_step: f64) -> Vec<(f64, f64)> {
+    assert!(
+        a_hat_step.is_finite() && a_hat_step > 0.0,
+        "jkr_curve_normalised: a_hat_step must be a finite number > 0, got {a_hat_step}"
+    );
+    let f_scale = jkr_pull_off_force(1.0, 1.0).abs();
+    let d_scale = jkr_pull_off_approach(1.0, 1.0, 1.0).abs();
+    let mut a = jump_off_radius_hat();
+    let mut points: Vec<(f64, f64)> = Vec::new();
+    while points.last().is_none_or(|&(x, _)| x < x_max) && points.len() < JKR_CURVE_MAX_POINTS {
+        points.push((jkr_approach_hat(a) / d_scale, jkr_force_hat(a) / f_scale));
+        a += a_hat_step;
+    }
+    points
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -253,5 +294,60 @@ mod tests {
         let f = jkr_force_from_approach(E, G, R, d).unwrap();
         assert!(f.is_finite());
         assert_close(f, hertz_force(E, R, d), 1e-9);
+    }
+    /// The normalised curve: starts at the jump-off (−3^(2/3), −5/9), its lowest point is the
+    /// force-controlled pull-off (−1, −1) to the step's resolution (F is stationary there, so
+    /// the force misses it by O(step²), the approach by O(step)), d increases along it, it
+    /// stops at the first point past `x_max`, and far out it is the Hertz curve.
+    #[test]
+    fn normalised_curve_known_points() {
+        let c = jkr_curve_normalised(5.0, 0.005);
+        assert_close(c[0].0, -(3.0f64.powf(2.0 / 3.0)), 1e-12);
+        assert_close(c[0].1, -5.0 / 9.0, 1e-12);
+        // Independent of the material: the jump-off of any E*, γ, R in the same units.
+        let j = jkr_jump_off(E, G, R);
+        assert_close(
+            c[0].0,
+            j.approach / jkr_pull_off_approach(E, G, R).abs(),
+            1e-12,
+        );
+        assert_close(c[0].1, j.force / jkr_pull_off_force(G, R).abs(), 1e-12);
+        let lowest = c
+            .iter()
+            .copied()
+            .min_by(|p, q| p.1.total_cmp(&q.1))
+            .unwrap();
+        assert!((lowest.1 + 1.0).abs() < 1e-4, "F/|F_JKR| = {}", lowest.1);
+        assert!(lowest.1 + 1.0 > -1e-12, "below the pull-off: {}", lowest.1);
+        assert!((lowest.0 + 1.0).abs() < 0.02, "d/|d_JKR| = {}", lowest.0);
+        assert!(c.windows(2).all(|w| w[1].0 > w[0].0), "d not increasing");
+        let n = c.len();
+        assert!(c[n - 1].0 >= 5.0 && c[n - 2].0 < 5.0);
+        // Hertz at the same approach: (4/3) d̂^(3/2) over 3π/2. The adhesive terms cancel to
+        // leading order (see vanishing_adhesion_recovers_hertz): a relative gap of O(d̂^(-3/2)).
+        let far = jkr_curve_normalised(500.0, 0.01);
+        let (x, y) = *far.last().unwrap();
+        assert!(x >= 500.0 && far.len() < JKR_CURVE_MAX_POINTS);
+        let hertz = hertz_force(E, R, x * jkr_pull_off_approach(E, G, R).abs())
+            / jkr_pull_off_force(G, R).abs();
+        assert!((y / hertz - 1.0).abs() < 1e-3, "{y} vs Hertz {hertz}");
+        assert_close(hertz, x.powf(1.5) / 27.0f64.sqrt(), 1e-9);
+    }
+
+    /// The point cap and the degenerate limits.
+    #[test]
+    fn normalised_curve_limits() {
+        assert_eq!(jkr_curve_normalised(f64::NAN, 0.01).len(), 1);
+        assert_eq!(jkr_curve_normalised(-10.0, 0.01).len(), 1);
+        assert_eq!(
+            jkr_curve_normalised(f64::INFINITY, 0.01).len(),
+            JKR_CURVE_MAX_POINTS
+        );
+    }
+
+    #[test]
+    #[should_panic(expected = "a_hat_step")]
+    fn normalised_curve_refuses_a_zero_step() {
+        let _ = jkr_curve_normalised(1.0, 0.0);
     }
 }

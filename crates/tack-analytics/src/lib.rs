@@ -46,10 +46,11 @@ pub use fits::{alpha_star, lambda_fit, lambda_star, rms_height_from_alpha_star};
 pub use gaussian_fit::{FitError, GaussianFit, fit_gaussian};
 pub use hertz::{hertz_contact_radius, hertz_force, hertz_max_pressure, hertz_pressure};
 pub use jkr::{
-    JkrPoint, jkr_approach_from_radius, jkr_approach_hat, jkr_approach_scale,
-    jkr_force_from_approach, jkr_force_from_radius, jkr_force_hat, jkr_force_scale, jkr_jump_off,
-    jkr_length_scale_radius, jkr_pull_off_approach, jkr_pull_off_force, jkr_pull_off_radius,
-    jkr_radius_from_approach, jkr_radius_hat_from_approach_hat,
+    JKR_CURVE_MAX_POINTS, JkrPoint, jkr_approach_from_radius, jkr_approach_hat, jkr_approach_scale,
+    jkr_curve_normalised, jkr_force_from_approach, jkr_force_from_radius, jkr_force_hat,
+    jkr_force_scale, jkr_jump_off, jkr_length_scale_radius, jkr_pull_off_approach,
+    jkr_pull_off_force, jkr_pull_off_radius, jkr_radius_from_approach,
+    jkr_radius_hat_from_approach_hat,
 };
 pub use johnson::{
     JOHNSON_1D_CRITICAL_ALPHA, JOHNSON_1D_CRITICAL_PSI, johnson_1d_critical_alpha,

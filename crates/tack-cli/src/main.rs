@@ -49,7 +49,9 @@ enum Command {
         set: Vec<String>,
         /// Also run on a grid of twice the element size and record the Richardson extrapolation
         /// 2·F(Δx) − F(2Δx) of the pull-off force (`/summary` `pull_off_force_richardson`);
-        /// for geometries that do not depend on the grid (not random roughness, not height maps).
+        /// the body must be the same on both grids: random roughness needs an explicit
+        /// `roughness.q1 ≤ π/(2Δx)`, a height map must be band-limited to π/(2Δx), and random
+        /// roughness and periodic grids need even sides (docs/theory.md §9).
         #[arg(long)]
         richardson: bool,
         /// Threads for the solve (1 to 1024; default: all cores). The result is bit-identical

@@ -386,23 +386,11 @@ fn tick_format(lo: f64, hi: f64) -> impl Fn(&f64) -> String {
 }
 
 /// The JKR force–approach curve in normalised units (F/|F_JKR|, d/|d_JKR|), from the jump-off
-/// point â³ = π/8 up to the deepest approach of the data.
+/// point â³ = π/8 up to the deepest approach of the data, in steps of 0.01 in â
+/// ([`tack::analytics::jkr_curve_normalised`]).
 fn jkr_curve(d: &[f64]) -> Vec<(f64, f64)> {
-    let f_scale = tack::analytics::jkr_pull_off_force(1.0, 1.0).abs();
-    let d_scale = tack::analytics::jkr_pull_off_approach(1.0, 1.0, 1.0).abs();
     let d_max = d.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    let a0 = (std::f64::consts::PI / 8.0).cbrt();
-    let mut points = Vec::new();
-    let mut a = a0;
-    while points.len() < 2000 {
-        let x = tack::analytics::jkr_approach_hat(a) / d_scale;
-        points.push((x, tack::analytics::jkr_force_hat(a) / f_scale));
-        if x > d_max {
-            break;
-        }
-        a += 0.01;
-    }
-    points
+    tack::analytics::jkr_curve_normalised(d_max, 0.01)
 }
 
 /// At most [`MAX_PANELS`] snapshots, evenly spread over the stored ones.

@@ -1,5 +1,6 @@
 //! Richardson extrapolation of mesh-dependent results: the Pohrt–Popov criterion converges at
-//! first order in Δx, so two resolutions cancel the leading error term.
+//! first order in Δx, so two resolutions cancel the leading error term. Also the observed order
+//! of convergence from three resolutions, and an error estimate for the pull-off force.
 
 /// `2·fine − coarse`: the first-order Richardson extrapolation of a quantity computed at
 /// element size Δx (`fine`) and 2Δx (`coarse`) on the same geometry.
@@ -11,6 +12,19 @@
 /// whose cut-off follows the grid, q1 = π/Δx).
 pub fn richardson_first_order(fine: f64, coarse: f64) -> f64 {
     2.0 * fine - coarse
+}
+
+/// Observed order of convergence p of a quantity computed at element sizes 4Δx (`coarse`),
+/// 2Δx (`medium`) and Δx (`fine`) on the same geometry (docs/theory.md §9):
+/// `p = log2(|coarse − medium| / |medium − fine|)`.
+///
+/// An error c·Δx^p makes the two differences c(2^p − 1)(2Δx)^p and c(2^p − 1)Δx^p, whose ratio
+/// is 2^p; [`richardson_first_order`] assumes p = 1. The absolute values ignore the sign of the
+/// error, so a sequence that alternates about its limit gives the order of its envelope. A
+/// negative p means the changes grow with refinement (not yet asymptotic, or not converging).
+/// Two equal levels give ±∞ (one difference zero) or NaN (both zero).
+pub fn observed_order(coarse: f64, medium: f64, fine: f64) -> f64 {
+    ((coarse - medium).abs() / (medium - fine).abs()).log2()
 }
 
 /// First-order error coefficient of the paper's criterion on the smooth sphere:
@@ -41,7 +55,7 @@ pub fn pull_off_error_estimate(fine: f64, coarse: f64, dx_over_a_c: Option<f64>)
 
 #[cfg(test)]
 mod tests {
-    use super::{pull_off_error_estimate, richardson_first_order};
+    use super::{observed_order, pull_off_error_estimate, richardson_first_order};
 
     #[test]
     fn the_error_estimate_covers_the_first_order_error_and_the_criterion_floor() {
@@ -81,5 +95,40 @@ mod tests {
         let q2 = |h: f64| exact + c * h + e * h * h;
         let r = richardson_first_order(q2(h), q2(2.0 * h));
         assert!((r - (exact - 2.0 * e * h * h)).abs() < 1e-12, "{r}");
+    }
+    /// q(Δx) = q* + c·Δx^p at Δx = 4h, 2h, h gives p back, for either sign of c, for an error
+    /// that alternates in sign, and (reversed) −p for a sequence that diverges at that rate.
+    #[test]
+    fn observed_order_recovers_a_known_order() {
+        let (exact, h) = (-1.75, 0.01);
+        for p in [0.5, 1.0, 2.0, 3.7] {
+            for c in [0.3, -2.0] {
+                let q = |dx: f64| exact + c * dx.powf(p);
+                let got = observed_order(q(4.0 * h), q(2.0 * h), q(h));
+                assert!((got - p).abs() < 1e-9, "p = {p}, c = {c}: {got}");
+                let back = observed_order(q(h), q(2.0 * h), q(4.0 * h));
+                assert!((back + p).abs() < 1e-9, "reversed, p = {p}: {back}");
+            }
+            // Alternating error c·(−1)^k·Δx^p over the levels k = 0, 1, 2: |differences| are
+            // (2^p + 1)(2h)^p·|c| and (2^p + 1)h^p·|c|, so the ratio is again 2^p.
+            let (c, dx) = (0.8, |k: i32| h * 2f64.powi(2 - k));
+            let q = |k: i32| exact + c * f64::from(1 - 2 * (k % 2)) * dx(k).powf(p);
+            let got = observed_order(q(0), q(1), q(2));
+            assert!((got - p).abs() < 1e-9, "alternating, p = {p}: {got}");
+        }
+        // A second-order term on top of a first-order one raises the observed order on coarse
+        // levels; it tends to 1 as Δx shrinks.
+        let q = |dx: f64| exact + dx + 50.0 * dx * dx;
+        let (big, small) = (
+            observed_order(q(0.04), q(0.02), q(0.01)),
+            observed_order(q(0.004), q(0.002), q(0.001)),
+        );
+        assert!(
+            big > small && small > 1.0 && (small - 1.0).abs() < 0.2,
+            "{big} {small}"
+        );
+        assert_eq!(observed_order(1.0, 2.0, 2.0), f64::INFINITY);
+        assert_eq!(observed_order(2.0, 2.0, 1.0), f64::NEG_INFINITY);
+        assert!(observed_order(2.0, 2.0, 2.0).is_nan());
     }
 }

@@ -1,7 +1,9 @@
 //! Contact solvers for an elastic half-space under approach (displacement) control.
 //!
-//! [`ContactSolver`] solves frictionless non-adhesive contact with a constrained conjugate
-//! gradient (Polonsky & Keer 1999, gap-controlled form). [`AdhesiveSolver`] adds JKR-limit
+//! [`ContactSolver`] solves frictionless non-adhesive contact, by default with the active-set
+//! engine of the adhesive solver at σ_c = 0 ([`ContactMethod::ActiveSet`]), or with the
+//! constrained conjugate gradient of Polonsky & Keer (1999, gap-controlled form;
+//! [`ContactMethod::PolonskyKeer`]). [`AdhesiveSolver`] adds JKR-limit
 //! adhesion through the Pohrt–Popov detachment criterion and walks load–unload
 //! [`ApproachPath`]s. Solvers own their operator and scratch and warm-start from the previous
 //! solve. They always terminate (iteration caps) and report whether they converged. Nothing in
@@ -101,7 +103,7 @@ pub use clusters::count_clusters;
 pub use contact::{ContactMethod, ContactSolver};
 pub use crop::{adhesive_reach, contact_window, touches_edge};
 pub use extrapolate::{
-    CRITERION_ERROR_COEFFICIENT, pull_off_error_estimate, richardson_first_order,
+    CRITERION_ERROR_COEFFICIENT, observed_order, pull_off_error_estimate, richardson_first_order,
 };
 pub use options::{SolverError, SolverOptions};
 pub use path::{

@@ -167,8 +167,9 @@ pub struct GridSpec {
     /// `"free"` (default) or `"periodic"`.
     #[serde(default)]
     pub boundary: BoundaryKind,
-    /// Crop the domain to where contact can occur (default true). Parsed and recorded; the
-    /// solver does not crop yet, so every run uses the full grid.
+    /// Crop the domain to where contact can occur (default true): a free grid is solved on the
+    /// window `tack_solver::contact_window` finds (same result as the full grid); periodic grids
+    /// are never cropped (docs/scenes.md, docs/theory.md §8.3).
     #[serde(default = "default_true")]
     pub crop: bool,
 }

@@ -21,11 +21,9 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use anyhow::{Context, Result};
-use serde::Deserialize;
+use tack::heights::{COARSE_UNLOAD_STEP, LOAD_DEPTH, UNLOAD_STEP};
 use tack::scene::{Geometry, SceneSchema};
-use tack_analytics::{
-    jkr_approach_hat, jkr_approach_scale, jkr_force_hat, jkr_pull_off_approach, jkr_pull_off_force,
-};
+use tack_analytics::jkr_approach_scale;
 
 use crate::engine::{RunOutput, write_run};
 use crate::plot::{Area, svg};
@@ -352,26 +350,44 @@ pub fn run(n: u8, ctx: &Ctx) -> Result<Summary> {
     }
 }
 
-/// The approach path of a sphere pull-off in JKR units, `path = {...}` in `[quick]`/`[full]` of
-/// the sphere figures (4–8).
-#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields)]
+/// Tensile retraction step of the full mode, in units of d_s = (Rγ²/E*²)^(1/3): half of tack's
+/// default [`UNLOAD_STEP`] (0.02 d_s, which the quick mode uses), i.e. 0.01 d_s, so that the
+/// paper-grade figures sample the pull-off twice as finely. `cargo xtask convergence` uses it too.
+pub const FULL_UNLOAD_STEP: f64 = 0.5 * UNLOAD_STEP;
+
+/// The approach path of a sphere pull-off in JKR units, for the sphere figures (4–8): tack's
+/// default pull-off rule ([`tack::heights::PullOffSpec`]), with [`FULL_UNLOAD_STEP`] through
+/// the tensile part in full mode.
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PullOff {
     /// Deepest approach below the highest point of the roughness (the `offset` of
     /// [`sphere_scene`]), in units of (Rγ²/E*²)^(1/3). With one load step (the figures'
     /// setting) every element with f ≤ d bonds, at least a disc of radius
-    /// sqrt(2·load_depth)·(R²γ/E*)^(1/3): load_depth = 3 gives about 1.6 a_c
+    /// sqrt(2·load_depth)·(R²γ/E*)^(1/3): [`LOAD_DEPTH`] = 3 gives about 1.6 a_c
     /// (docs/theory.md §3.5).
     pub load_depth: f64,
     /// Number of load steps from the first touch.
     pub load_steps: usize,
     /// Retraction step, in units of (Rγ²/E*²)^(1/3).
     pub unload_step: f64,
-    /// Retraction step while the force is still compressive (same units; default
+    /// Retraction step while the force is still compressive (same units; `None`:
     /// `unload_step`): the pull-off lies in the tensile part, which uses `unload_step`
     /// (`protocol.coarse_unload_step` of the scenes).
-    #[serde(default)]
     pub coarse_unload_step: Option<f64>,
+}
+
+impl PullOff {
+    /// The sphere figures' path in quick or full mode: one load step to [`LOAD_DEPTH`] below
+    /// the top of the roughness, retraction by [`COARSE_UNLOAD_STEP`] while the force is
+    /// compressive, then by [`UNLOAD_STEP`] (quick) or [`FULL_UNLOAD_STEP`] (full), in d_s.
+    pub fn for_mode(full: bool) -> Self {
+        Self {
+            load_depth: LOAD_DEPTH,
+            load_steps: 1,
+            unload_step: if full { FULL_UNLOAD_STEP } else { UNLOAD_STEP },
+            coarse_unload_step: Some(COARSE_UNLOAD_STEP),
+        }
+    }
 }
 
 /// A sphere run's scene: `file` with the path `path` down to `load_depth` below the mean
@@ -413,20 +429,10 @@ pub fn sphere_scene(
 }
 
 /// The smooth sphere's JKR force–approach curve normalised by |F_JKR| and |d_JKR| (Eq. 7, 8),
-/// from the jump-off point (â³ = π/8) up to `x_max`.
+/// from the jump-off point (â³ = π/8) up to `x_max`, in steps of 0.005 in â
+/// ([`tack_analytics::jkr_curve_normalised`]).
 pub fn jkr_curve(x_max: f64) -> Vec<(f64, f64)> {
-    let (f, d) = (
-        jkr_pull_off_force(1.0, 1.0).abs(),
-        jkr_pull_off_approach(1.0, 1.0, 1.0).abs(),
-    );
-    // In JKR units (E* = γ = R = 1) the jump-off radius is â itself.
-    let mut a = tack_analytics::jkr_jump_off(1.0, 1.0, 1.0).radius;
-    let mut pts = Vec::new();
-    while pts.last().is_none_or(|&(x, _)| x < x_max) && pts.len() < 5000 {
-        pts.push((jkr_approach_hat(a) / d, jkr_force_hat(a) / f));
-        a += 0.005;
-    }
-    pts
+    tack_analytics::jkr_curve_normalised(x_max, 0.005)
 }
 
 /// Crops maps to the common bounding box of their non-zero cells, grown by `pad` cells (maps of
@@ -452,4 +458,62 @@ pub fn crop_maps(maps: Vec<crate::plot::Map>, pad: usize) -> Vec<crate::plot::Ma
             m
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tack::geometry::{Boundary, Grid, Sphere, Surface};
+    use tack::heights::{PullOffSpec, pull_off_scene};
+
+    /// The quick mode's path is tack's default pull-off path (`tack::heights`): on a smooth
+    /// sphere, `sphere_scene` loads to the same depth and retracts by the same steps as
+    /// `pull_off_scene`; the full mode differs only in its tensile step, half as large.
+    #[test]
+    fn the_figure_path_is_tacks_pull_off_rule() {
+        let spec = crate::spec::FigureSpec::load(&crate::reproduce::default_specs(), 4, false)
+            .expect("fig4.toml");
+        let mut file = spec.scene().expect("fig4's scene");
+        file.roughness = None;
+        let Geometry::Sphere { radius } = file.geometry else {
+            panic!("fig4 is a sphere")
+        };
+        let (e, g) = (file.material.e_star, file.material.gamma);
+        let (n, dx) = (41, 0.01 * radius);
+        let protocol = |full: bool| {
+            sphere_scene(
+                file.clone(),
+                0.0,
+                0.0,
+                dx,
+                Some(n),
+                &PullOff::for_mode(full),
+            )
+            .expect("sphere scene")
+            .protocol
+        };
+        let (quick, full) = (protocol(false), protocol(true));
+        let grid = Grid::square(n, dx, Boundary::Free).expect("grid");
+        let heights =
+            Surface::from_shape(grid, &Sphere::new(radius).expect("sphere")).into_heights();
+        let plan = pull_off_scene(
+            &heights,
+            &PullOffSpec {
+                radius: Some(radius),
+                ..PullOffSpec::new(dx, e, g)
+            },
+        )
+        .expect("tack's pull-off scene");
+        let lib = &plan.scene.file.protocol;
+        assert_eq!(quick.unload_step, lib.unload_step);
+        assert_eq!(quick.coarse_unload_step, lib.coarse_unload_step);
+        // The library loads from the fitted apex (0 to rounding for this exact paraboloid).
+        let d_s = jkr_approach_scale(e, g, radius);
+        let (q, l) = (quick.max_approach.unwrap(), lib.max_approach.unwrap());
+        assert!((q - l).abs() < 1e-9 * d_s, "{q} vs {l}");
+        assert_eq!(full.max_approach, quick.max_approach);
+        assert_eq!(full.coarse_unload_step, quick.coarse_unload_step);
+        let (tensile_full, tensile_quick) = (full.unload_step.unwrap(), quick.unload_step.unwrap());
+        assert!((tensile_full / tensile_quick - 0.5).abs() < 1e-15);
+    }
 }

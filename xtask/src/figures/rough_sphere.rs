@@ -5,17 +5,16 @@
 
 use anyhow::{Result, bail};
 use serde::Deserialize;
+use tack::problem::rough_spec_for_alpha_star;
 use tack::scene::{Geometry, Roughness, SceneSchema, Snapshots};
-use tack_analytics::{
-    GaussianFit, fit_gaussian, jkr_pull_off_approach, lambda_star, rms_height_from_alpha_star,
-};
-use tack_geometry::{Boundary, Grid, RoughSpec, rough_surface};
+use tack_analytics::{GaussianFit, fit_gaussian, jkr_pull_off_approach, lambda_star};
+use tack_geometry::{Boundary, Grid, rough_surface};
 
 use super::{Ctx, PullOff, RunFiles, Summary, Table, crop_maps, sphere_scene, write_figure};
 use crate::plot::{Chart, Map, Series, Style, draw_chart, draw_maps};
 use crate::sweeps::{FigureSweep, PointRun, PointScene};
 
-/// Figure 7's sweep, `[quick]`/`[full]` of `fig7.toml`.
+/// Figure 7's sweep, `[quick]`/`[full]` of `fig7.toml`. The path is [`PullOff::for_mode`].
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct Fig7 {
@@ -23,14 +22,13 @@ struct Fig7 {
     grid_n: usize,
     /// Hurst exponents H.
     hurst: Vec<f64>,
-    /// Targets of the adhesion parameter α* (Eq. 11): h = sqrt(4γq1^(0.8H−1)/(πE*q0^(0.8H)))/α*.
+    /// Targets of the adhesion parameter α* (Eq. 11); each run's h is Eq. 11 inverted on the
+    /// grid's band (`tack::problem::rough_spec_for_alpha_star`, docs/theory.md §7.2).
     alpha_star: Vec<f64>,
     /// Seeds of the realizations.
     seeds: Vec<u64>,
     /// Gaussian fit (Eq. 12 form) to the mean points with α* ≤ this value.
     fit_below: f64,
-    /// The approach path.
-    path: PullOff,
 }
 
 /// Figure 6's selection, `[quick]`/`[full]` of `fig6.toml`.
@@ -84,12 +82,14 @@ impl Point {
     }
 }
 
-/// The scene of one (H, α*, seed) on Figure 7's L = R grid and its rms height h (from Eq. 11
-/// with the grid's q0 = 2π/L, q1 = π/Δx), loaded `path.load_depth` below the highest point of
-/// the roughness so that the first step bonds a compact disc.
+/// The scene of one (H, α*, seed) on Figure 7's L = R grid and its rms height h (Eq. 11 inverted
+/// with the grid's q0 = 2π/L, q1 = π/Δx: `tack::problem::rough_spec_for_alpha_star`), loaded
+/// `path.load_depth` below the highest point of the roughness so that the first step bonds a
+/// compact disc.
 fn rough_scene(
     base: &SceneSchema,
     p: &Fig7,
+    path: &PullOff,
     hurst: f64,
     a: f64,
     seed: u64,
@@ -99,9 +99,9 @@ fn rough_scene(
     };
     let (e, g) = (base.material.e_star, base.material.gamma);
     let grid = Grid::square(p.grid_n, radius / p.grid_n as f64, Boundary::Free)?;
-    let band = RoughSpec::paper_defaults(grid, 1.0, hurst, seed);
-    let h = rms_height_from_alpha_star(e, g, a, hurst, band.q0, band.q1);
-    let rough = rough_surface(grid, &RoughSpec { rms: h, ..band })?;
+    let spec = rough_spec_for_alpha_star(grid, e, g, a, hurst, seed)?;
+    let h = spec.rms;
+    let rough = rough_surface(grid, &spec)?;
     let (top, range) = (rough.max(), rough.max() - rough.min());
     let mut f = base.clone();
     f.roughness = Some(Roughness::Random {
@@ -112,7 +112,7 @@ fn rough_scene(
         seed,
     });
     Ok((
-        sphere_scene(f, top, range, grid.dx(), Some(p.grid_n), &p.path)?,
+        sphere_scene(f, top, range, grid.dx(), Some(p.grid_n), path)?,
         h,
     ))
 }
@@ -120,7 +120,8 @@ fn rough_scene(
 /// Figure 7's scene of one (H, α*, seed) in this mode (for Figure 3).
 pub fn scene_for(ctx: &Ctx, hurst: f64, a: f64, seed: u64) -> Result<SceneSchema> {
     let spec = ctx.spec(7)?;
-    Ok(rough_scene(&spec.scene()?, &spec.params()?, hurst, a, seed)?.0)
+    let path = PullOff::for_mode(spec.full);
+    Ok(rough_scene(&spec.scene()?, &spec.params()?, &path, hurst, a, seed)?.0)
 }
 
 /// Figure 7's sweep, run (or resumed) and read back: every (H, α*, seed) in the order H, α*,
@@ -131,12 +132,13 @@ fn points(ctx: &Ctx) -> Result<(Fig7, Vec<Point>, f64, Vec<String>)> {
     let spec = ctx.spec(7)?;
     let p: Fig7 = spec.params()?;
     let base = spec.scene()?;
+    let path = PullOff::for_mode(ctx.full);
     let (mut scenes, mut names, mut meta) = (Vec::new(), Vec::new(), Vec::new());
     for &hurst in &p.hurst {
         for &a in &p.alpha_star {
             let mut h = f64::NAN;
             for (k, &seed) in p.seeds.iter().enumerate() {
-                let (mut file, rms) = rough_scene(&base, &p, hurst, a, seed)?;
+                let (mut file, rms) = rough_scene(&base, &p, &path, hurst, a, seed)?;
                 h = rms;
                 if k == 0 {
                     file.output.snapshots = Snapshots::PullOff;
@@ -488,4 +490,47 @@ pub fn fig8(ctx: &Ctx) -> Result<Summary> {
         |root| draw_maps(root, &maps, 3),
     )?;
     Ok(summary)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tack_analytics::{alpha_star, rms_height_from_alpha_star};
+    use tack_geometry::RoughSpec;
+
+    /// Figure 7's roughness in both modes: every (H, α*) gets the rms height of Eq. 11 inverted
+    /// on the paper's band of its grid (q0 = 2π/L, q1 = π/Δx), bit for bit (the datasets depend
+    /// on it), which gives the α* back.
+    #[test]
+    fn fig7_roughness_is_eq11_inverted_on_the_paper_band() {
+        for full in [false, true] {
+            let spec = crate::spec::FigureSpec::load(&crate::reproduce::default_specs(), 7, full)
+                .expect("fig7.toml");
+            let p: Fig7 = spec.params().expect("fig7 parameters");
+            let base = spec.scene().expect("fig7's scene");
+            let Geometry::Sphere { radius } = base.geometry else {
+                panic!("fig7 is a sphere")
+            };
+            let (e, g) = (base.material.e_star, base.material.gamma);
+            let grid = Grid::square(p.grid_n, radius / p.grid_n as f64, Boundary::Free).unwrap();
+            let path = PullOff::for_mode(full);
+            let seed = p.seeds[0];
+            for &hurst in &p.hurst {
+                let band = RoughSpec::paper_defaults(grid, 0.0, hurst, seed);
+                for &a in &p.alpha_star {
+                    let (file, h) = rough_scene(&base, &p, &path, hurst, a, seed).unwrap();
+                    let expected = rms_height_from_alpha_star(e, g, a, hurst, band.q0, band.q1);
+                    assert_eq!(h.to_bits(), expected.to_bits(), "H = {hurst}, α* = {a}");
+                    let back = alpha_star(e, g, h, hurst, band.q0, band.q1);
+                    assert!((back / a - 1.0).abs() < 1e-12, "α* = {a}: {back}");
+                    match file.roughness {
+                        Some(Roughness::Random { h: hs, seed: s, .. }) => {
+                            assert_eq!((hs.to_bits(), s), (h.to_bits(), seed));
+                        }
+                        ref other => panic!("{other:?}"),
+                    }
+                }
+            }
+        }
+    }
 }

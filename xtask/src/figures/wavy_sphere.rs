@@ -22,7 +22,8 @@ use crate::plot::{Chart, Map, Series, Style, draw_chart, draw_maps};
 use crate::spec::scene;
 use crate::sweeps::{FigureSweep, PointScene};
 
-/// Figure 4's sweep, `[quick]`/`[full]` of `fig4.toml`; Figure 5 reuses its resolution and path.
+/// Figure 4's sweep, `[quick]`/`[full]` of `fig4.toml`; Figure 5 reuses its resolution. The path
+/// is [`PullOff::for_mode`].
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct Fig4 {
@@ -32,8 +33,6 @@ struct Fig4 {
     alphas: Vec<f64>,
     /// Indices into `alphas` of the rows of contact configurations (the paper's b, d, e, f).
     configurations: Vec<usize>,
-    /// The approach path.
-    path: PullOff,
 }
 
 /// Figure 5's sweep, `[quick]`/`[full]` of `fig5.toml`.
@@ -68,7 +67,7 @@ fn geometry(file: &SceneSchema) -> Result<(f64, f64)> {
 
 /// The scene of one α: `base` with h = sqrt(2λγ/(π²E*))/α, loaded `path.load_depth` below
 /// the top of the waviness (2h) so that the first step bonds a compact disc.
-fn wavy_scene(base: &SceneSchema, alpha: f64, p: &Fig4) -> Result<SceneSchema> {
+fn wavy_scene(base: &SceneSchema, alpha: f64, p: &Fig4, path: &PullOff) -> Result<SceneSchema> {
     let (lambda, _) = geometry(base)?;
     let (e, g) = (base.material.e_star, base.material.gamma);
     let h = waviness_amplitude_from_alpha(e, g, alpha, lambda);
@@ -80,24 +79,30 @@ fn wavy_scene(base: &SceneSchema, alpha: f64, p: &Fig4) -> Result<SceneSchema> {
         2.0 * h,
         lambda / p.elements_per_wavelength,
         None,
-        &p.path,
+        path,
     )
 }
 
 /// Figure 4's spec in this mode and the scene of Johnson parameter `alpha` (for Figure 3).
 pub fn scene_for(ctx: &Ctx, alpha: f64) -> Result<SceneSchema> {
     let spec = ctx.spec(4)?;
-    wavy_scene(&spec.scene()?, alpha, &spec.params()?)
+    wavy_scene(
+        &spec.scene()?,
+        alpha,
+        &spec.params()?,
+        &PullOff::for_mode(spec.full),
+    )
 }
 
 /// Figure 4's runs: one per α, keeping the pull-off, the last contact and the unload steps
 /// every 0.25 (Rγ²/E*²)^(1/3) for the contact configurations.
 fn runs(ctx: &Ctx, base: &SceneSchema, p: &Fig4) -> Result<Vec<Arc<RunOutput>>> {
+    let path = PullOff::for_mode(ctx.full);
     let specs = p
         .alphas
         .iter()
         .map(|&alpha| {
-            let file = wavy_scene(base, alpha, p)?;
+            let file = wavy_scene(base, alpha, p, &path)?;
             let ds = tack_analytics::jkr_approach_scale(
                 file.material.e_star,
                 file.material.gamma,
@@ -308,6 +313,7 @@ pub fn fig5(ctx: &Ctx) -> Result<Summary> {
     let spec4 = ctx.spec(4)?;
     let p4: Fig4 = spec4.params()?;
     let base4 = spec4.scene()?;
+    let path = PullOff::for_mode(spec4.full);
     let text = toml::to_string(&base4)?;
     let (mut points, mut files) = (Vec::new(), Vec::new());
     for combo in &p.combos {
@@ -315,7 +321,7 @@ pub fn fig5(ctx: &Ctx) -> Result<Summary> {
             .with_context(|| format!("fig5 combo `{}`", combo.label))?
             .file;
         for &alpha in &p.alphas {
-            let mut file = wavy_scene(&base, alpha, &p4)?;
+            let mut file = wavy_scene(&base, alpha, &p4, &path)?;
             file.output.surface = false;
             points.push(PointScene {
                 note: format!("{}, α = {alpha}", combo.label),
