@@ -98,11 +98,12 @@ fn runs_that_cannot_fit_and_meaningless_tolerances_are_refused_at_check() {
     for (sets, expected) in [
         (
             &["output.snapshots=\"all\"", "grid.n=2048"][..],
-            "for up to 100000 snapshots (output.snapshots = \"all\" over protocol.max_steps = 100000",
+            "for up to 100000 snapshots (output.snapshots = \"all\" over 100000 steps at most: \
+             protocol.max_steps = 100000",
         ),
         (
             &["protocol.max_steps=1000000000000000000"],
-            "for 1000000000000000000 step records (protocol.max_steps)",
+            "for 1000000000000000000 step records; lower protocol.max_steps",
         ),
         (
             &["solver.tolerance=5e-324"],

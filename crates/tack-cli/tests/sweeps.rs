@@ -618,7 +618,7 @@ fn an_absurd_thread_count_is_refused_before_anything_is_written() {
     assert_eq!(run.status.code(), Some(1), "{run:?}");
     let err = String::from_utf8_lossy(&run.stderr);
     assert!(
-        err.contains("--threads: 30000") && err.contains("1 to 1024"),
+        err.contains("--threads = 30000 is invalid") && err.contains("1 to 1024"),
         "{err}"
     );
     assert!(!out.exists(), "nothing may be written");

@@ -1051,7 +1051,7 @@ pub fn run_sweep(
     let mut builder = rayon::ThreadPoolBuilder::new();
     if let Some(n) = options.threads {
         let n = tack::check_threads("--threads", n as i128)
-            .map_err(|e| SweepError::Threads(format!("--threads: {e}")))?;
+            .map_err(|e| SweepError::Threads(e.to_string()))?;
         builder = builder.num_threads(n);
     }
     prepare_dir(sweep, dir)?;

@@ -303,6 +303,7 @@ impl Problem {
                 surface: &surface,
                 top_of_roughness: top_of_roughness(&surface, &smooth),
                 sphere_radius,
+                heights_only: matches!(f.geometry, Geometry::None),
                 e_star,
                 gamma,
             },
@@ -472,6 +473,9 @@ struct PathBody<'a> {
     top_of_roughness: f64,
     /// The sphere's radius (`geometry.radius`, or the radius of a body given in memory).
     sphere_radius: Option<f64>,
+    /// Whether the body is only heights (`geometry.shape = "none"`: a map, an array), whose
+    /// radius a least-squares paraboloid may find; a punch has none.
+    heights_only: bool,
     e_star: f64,
     gamma: f64,
 }
@@ -633,6 +637,15 @@ fn default_path(body: &PathBody<'_>) -> Result<PathRule, SceneError> {
     }
     let (radius, top, fitted) = match body.sphere_radius {
         Some(r) => (r, body.top_of_roughness, false),
+        None if !body.heights_only => {
+            return Err(SceneError::Inconsistent(
+                "protocol.max_approach is required: the default pull-off path needs a sphere \
+                 (geometry.shape = \"sphere\") or a sphere-like height map on geometry.shape = \
+                 \"none\"; a flat punch has no radius to set its depth and steps; give \
+                 protocol.max_approach and protocol.load_step"
+                    .into(),
+            ));
+        }
         None => {
             let fit =
                 crate::pull_off_path::fit_paraboloid(body.surface.heights(), body.grid.dx(), None);
