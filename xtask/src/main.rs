@@ -1,4 +1,5 @@
-//! `cargo xtask`: project automation: reproduce the paper's datasets and run benchmarks.
+//! `cargo xtask`: project automation: reproduce the paper's datasets, run benchmarks, tidy the
+//! sources.
 
 mod bench;
 mod convergence;
@@ -8,6 +9,7 @@ mod plot;
 mod reproduce;
 mod spec;
 mod sweeps;
+mod tidy;
 mod validation;
 
 use anyhow::{Result, bail};
@@ -38,7 +40,12 @@ commands:
                           rough spheres (H = 0.3, 0.7, three seeds) at n = 64 128 256 512 (or
                           the N given): Richardson, observed order, error estimate against the
                           distance to the finest Richardson value, time per level; writes
-                          results/convergence.json";
+                          results/convergence.json
+  tidy                    source checks beyond clippy: every .rs file opens with a //! line,
+                          every scene field of tack_fields::FIELDS is documented in
+                          docs/scenes.md, no scene field spelled as a string literal outside
+                          tack-fields (test code aside), every command here is mentioned in
+                          ARCHITECTURE.md; prints path:line: finding, fails on any";
 
 fn main() -> Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -53,6 +60,7 @@ fn main() -> Result<()> {
         Some("bench-rough") => pool()?.install(|| bench::rough(&args[1..])),
         Some("bench") => pool()?.install(|| bench::all(&args[1..])),
         Some("convergence") => pool()?.install(|| convergence::run(&args[1..])),
+        Some("tidy") => tidy::run(&args[1..]),
         Some("-h" | "--help") | None => {
             println!("{USAGE}");
             Ok(())

@@ -200,7 +200,10 @@ fn execute(command: Command) -> anyhow::Result<()> {
             let bound = if steps < p.path.max_steps {
                 format!("{steps} steps: the path's own count")
             } else {
-                format!("protocol.max_steps = {steps} steps: retraction ends when contact is lost")
+                format!(
+                    "{} = {steps} steps: retraction ends when contact is lost",
+                    tack::fields::PROTOCOL_MAX_STEPS
+                )
             };
             println!(
                 "  memory: at most about {} ({bound})",

@@ -3,6 +3,7 @@
 use std::path::Path;
 
 use tack::RunOutcome;
+use tack::fields;
 use tack::scene::{Geometry, Roughness, Scene};
 use tack::solver::Phase;
 
@@ -54,11 +55,17 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
     let adhesive = p.gamma > 0.0 && !p.path.is_indentation();
     let periodic = p.grid.boundary() == tack::geometry::Boundary::Periodic;
     let stopped = if path.completed {
-        ""
+        String::new()
     } else if adhesive {
-        "; STOPPED at protocol.max_steps before detachment"
+        format!(
+            "; STOPPED at {} before detachment",
+            fields::PROTOCOL_MAX_STEPS
+        )
     } else {
-        "; STOPPED at protocol.max_steps before contact was lost"
+        format!(
+            "; STOPPED at {} before contact was lost",
+            fields::PROTOCOL_MAX_STEPS
+        )
     };
     if p.path.is_indentation() {
         lines.push(format!(
@@ -275,7 +282,9 @@ fn describe_body(geometry: &Geometry, roughness: &Option<Roughness>) -> String {
     shape + &rough
 }
 
-/// A number with 6 significant digits, in plain notation for magnitudes in [1e-3, 1e6).
+/// A number with 6 significant digits, in plain notation for magnitudes in [1e-3, 1e6): the
+/// report's rounded display. Messages quoting a value use the round-trip formatter
+/// `tack::scene::num` (`tack_fields::num`) instead, which keeps every digit.
 pub fn num(x: f64) -> String {
     if x == 0.0 || !x.is_finite() {
         return format!("{x}");

@@ -1,5 +1,6 @@
 //! Errors raised when a grid, surface or shape is given values outside their allowed range.
 
+use tack_fields::num;
 use thiserror::Error;
 
 /// Invalid geometry input; every message names the field, the value and the allowed range.
@@ -30,9 +31,10 @@ pub enum GeometryError {
     Mismatch(String),
     /// A roughness band `[q0, q1]` the grid cannot represent.
     #[error(
-        "roughness.q0/q1 = [{q0}, {q1}] is invalid: the band must contain at least one grid wave \
+        "{q0_field}/q1 = [{q0}, {q1}] is invalid: the band must contain at least one grid wave \
          vector; the grid holds wave vectors from 2π/L = {q_min} to π/Δx = {q_nyquist} \
-         (diagonal up to √2·π/Δx)"
+         (diagonal up to √2·π/Δx)",
+        q0_field = tack_fields::ROUGHNESS_Q0
     )]
     RoughnessBand {
         /// The lower cut-off that was given.
@@ -61,16 +63,6 @@ pub enum GeometryError {
     /// A height map could not be read; the message names the file, line and column.
     #[error("height map: {0}")]
     Parse(String),
-}
-
-/// A number as a message shows it: plain for moderate magnitudes, otherwise in scientific
-/// notation with the shortest digits that round-trip (`1e306`, not 307 digits).
-pub(crate) fn num(x: f64) -> String {
-    if x == 0.0 || !x.is_finite() || (1e-5..1e16).contains(&x.abs()) {
-        format!("{x}")
-    } else {
-        format!("{x:e}")
-    }
 }
 
 /// Checks that `value` is finite and strictly positive.

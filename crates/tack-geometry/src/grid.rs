@@ -1,5 +1,7 @@
 //! The computational grid: element counts, spacing and boundary kind, with element-centre coordinates.
 
+use tack_fields as fields;
+
 use crate::error::{GeometryError, positive};
 
 /// Largest number of elements along one axis (keeps padded FFT sizes and memory sane).
@@ -29,7 +31,7 @@ pub struct Grid {
 impl Grid {
     /// Builds a validated grid: `nx, ny ≥ 1` (at most [`MAX_ELEMENTS_PER_AXIS`]) and a finite `dx > 0`.
     pub fn new(nx: usize, ny: usize, dx: f64, boundary: Boundary) -> Result<Self, GeometryError> {
-        for (field, n) in [("grid.nx", nx), ("grid.ny", ny)] {
+        for (field, n) in [(fields::GRID_NX, nx), (fields::GRID_NY, ny)] {
             if n == 0 || n > MAX_ELEMENTS_PER_AXIS {
                 return Err(GeometryError::BadCount {
                     field,
@@ -38,7 +40,7 @@ impl Grid {
                 });
             }
         }
-        positive("grid.dx", dx)?;
+        positive(fields::GRID_DX, dx)?;
         Ok(Self {
             nx,
             ny,

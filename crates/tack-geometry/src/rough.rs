@@ -25,6 +25,7 @@ use ndarray::Array2;
 use ndrustfft::{Complex, FftHandler, R2cFftHandler, ndifft, ndifft_r2c};
 use rand_chacha::ChaCha8Rng;
 use rand_chacha::rand_core::{RngCore, SeedableRng};
+use tack_fields as fields;
 
 use crate::error::{GeometryError, non_negative, positive};
 use crate::{Grid, Surface};
@@ -126,14 +127,14 @@ pub(crate) fn half_spectrum(
     let hurst = spec.hurst;
     if !(hurst > 0.0 && hurst < 1.0) {
         return Err(GeometryError::OutOfRange {
-            field: "roughness.hurst",
+            field: fields::ROUGHNESS_HURST,
             value: hurst,
             allowed: "a number in the open interval (0, 1)",
         });
     }
-    non_negative("roughness.h", spec.rms)?;
+    non_negative(fields::ROUGHNESS_H, spec.rms)?;
     let (q0, q1) = (spec.q0, spec.q1);
-    for (field, value) in [("roughness.q0", q0), ("roughness.q1", q1)] {
+    for (field, value) in [(fields::ROUGHNESS_Q0, q0), (fields::ROUGHNESS_Q1, q1)] {
         positive(field, value)?;
     }
     let band_error = GeometryError::RoughnessBand {

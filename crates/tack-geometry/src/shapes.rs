@@ -5,6 +5,8 @@
 
 use std::f64::consts::TAU;
 
+use tack_fields as fields;
+
 use crate::error::{GeometryError, non_negative, positive};
 
 /// A rigid body's height above its lowest point as a function of position.
@@ -23,7 +25,7 @@ impl Sphere {
     /// A sphere with a finite radius `R > 0` (field `geometry.radius`).
     pub fn new(radius: f64) -> Result<Self, GeometryError> {
         Ok(Self {
-            radius: positive("geometry.radius", radius)?,
+            radius: positive(fields::GEOMETRY_RADIUS, radius)?,
         })
     }
     /// The radius `R`.
@@ -41,8 +43,8 @@ impl Shape for Sphere {
 /// Checks a waviness amplitude `h ≥ 0` and wavelength `λ > 0` (fields `roughness.h`, `roughness.lambda`).
 fn waviness(h: f64, lambda: f64) -> Result<(f64, f64), GeometryError> {
     Ok((
-        non_negative("roughness.h", h)?,
-        positive("roughness.lambda", lambda)?,
+        non_negative(fields::ROUGHNESS_H, h)?,
+        positive(fields::ROUGHNESS_LAMBDA, lambda)?,
     ))
 }
 

@@ -184,7 +184,8 @@ impl Summary {
     pub const COMPLETE: &'static str = "complete";
     /// `status` of a path stopped by `protocol.max_steps` before it ended: the pull-off may lie
     /// beyond the last step.
-    pub const STOPPED_AT_MAX_STEPS: &'static str = "stopped at protocol.max_steps";
+    pub const STOPPED_AT_MAX_STEPS: &'static str =
+        concat!("stopped at ", tack_fields::field_name!(protocol.max_steps));
 
     /// Names of the attributes modelled by fields, which `extra` may not use.
     pub(crate) const RESERVED: [&'static str; 7] = [

@@ -5,6 +5,7 @@ use std::path::Path;
 
 use hdf5::{File, Group, H5Type};
 use ndarray::{Array2, Ix1, Ix2};
+use tack_fields::num;
 
 use crate::h5::{
     Budget, check_extent, declared_shape, dims, h5err, has_attr, open_dataset, open_group,
@@ -447,13 +448,4 @@ fn read_summary(file: &File, path: &Path) -> Result<Summary, IoError> {
             Vec::new()
         },
     })
-}
-
-/// Formats `x` compactly: plain decimal for moderate magnitudes, scientific otherwise.
-fn num(x: f64) -> String {
-    if x == 0.0 || (1e-3..1e6).contains(&x.abs()) {
-        format!("{x}")
-    } else {
-        format!("{x:e}")
-    }
 }

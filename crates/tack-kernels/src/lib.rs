@@ -60,7 +60,10 @@ use thiserror::Error;
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum KernelError {
     /// The effective modulus is not a finite positive number.
-    #[error("material.e_star = {0} is invalid: must be a finite number > 0")]
+    #[error(
+        "{field} = {0} is invalid: must be a finite number > 0",
+        field = tack_fields::MATERIAL_E_STAR
+    )]
     Modulus(f64),
 }
 

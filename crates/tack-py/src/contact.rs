@@ -2,6 +2,7 @@
 
 use numpy::{IntoPyArray, PyArray2, PyReadonlyArray2};
 use pyo3::prelude::*;
+use tack::fields;
 use tack::geometry::{Boundary, Grid, Surface};
 use tack::solver::{ContactSolver, ContactState, SolverOptions};
 
@@ -11,12 +12,12 @@ use crate::guard::released;
 /// The fields of the messages of the grid, operator and solver and the arguments of
 /// `tack.contact` they stand for.
 const CONTACT_NAMES: Names = &[
-    ("material.e_star", "e_star"),
-    ("grid.nx", "heights.shape[0]"),
-    ("grid.ny", "heights.shape[1]"),
-    ("grid.dx", "dx"),
-    ("solver.tolerance", "tolerance"),
-    ("solver.max_iterations", "max_iterations"),
+    (fields::MATERIAL_E_STAR, "e_star"),
+    (fields::GRID_NX, "heights.shape[0]"),
+    (fields::GRID_NY, "heights.shape[1]"),
+    (fields::GRID_DX, "dx"),
+    (fields::SOLVER_TOLERANCE, "tolerance"),
+    (fields::SOLVER_MAX_ITERATIONS, "max_iterations"),
 ];
 
 /// Equilibrium of non-adhesive contact at one prescribed approach.

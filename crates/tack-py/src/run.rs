@@ -6,6 +6,7 @@ use numpy::PyReadonlyArray2;
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
+use tack::fields::{self, field_name};
 use tack::{RunOptions, Scene};
 
 use crate::errors::{Names, to_py, value_error, value_error_named};
@@ -18,18 +19,24 @@ pub const MAX_THREADS: usize = tack::MAX_THREADS;
 /// The scene fields of the messages of `tack::heights::pull_off` and the arguments of
 /// `tack.pull_off` they stand for (the scene is written by the library from the arguments).
 const PULL_OFF_NAMES: Names = &[
-    ("material.e_star", "e_star"),
-    ("material.gamma", "gamma"),
-    ("grid.nx × grid.ny", "heights.shape"),
-    ("grid.nx/grid.ny", "heights.shape"),
-    ("grid.nx", "heights.shape[0]"),
-    ("grid.ny", "heights.shape[1]"),
-    ("grid.dx", "dx"),
-    ("protocol.max_approach", "max_approach"),
-    ("protocol.coarse_unload_step", "coarse_unload_step"),
-    ("protocol.unload_step", "unload_step"),
-    ("solver.kappa", "kappa"),
-    ("output.snapshots", "snapshots"),
+    (fields::MATERIAL_E_STAR, "e_star"),
+    (fields::MATERIAL_GAMMA, "gamma"),
+    (
+        concat!(field_name!(grid.nx), " × ", field_name!(grid.ny)),
+        "heights.shape",
+    ),
+    (
+        concat!(field_name!(grid.nx), "/", field_name!(grid.ny)),
+        "heights.shape",
+    ),
+    (fields::GRID_NX, "heights.shape[0]"),
+    (fields::GRID_NY, "heights.shape[1]"),
+    (fields::GRID_DX, "dx"),
+    (fields::PROTOCOL_MAX_APPROACH, "max_approach"),
+    (fields::PROTOCOL_COARSE_UNLOAD_STEP, "coarse_unload_step"),
+    (fields::PROTOCOL_UNLOAD_STEP, "unload_step"),
+    (fields::SOLVER_KAPPA, "kappa"),
+    (fields::OUTPUT_SNAPSHOTS, "snapshots"),
     (
         "the non-adhesive tack_solver::ContactSolver",
         "tack.contact",

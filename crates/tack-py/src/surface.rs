@@ -3,6 +3,7 @@
 
 use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::prelude::*;
+use tack::fields::{self, field_name};
 use tack::geometry::{Boundary, Grid, RoughSpec, Sphere, Surface, rough_surface};
 
 use crate::errors::{Names, value_error_named};
@@ -11,15 +12,15 @@ use crate::guard::released;
 /// The fields of the messages of the grid, the shapes and the roughness generator and the
 /// arguments of `tack.surface` they stand for.
 const SURFACE_NAMES: Names = &[
-    ("grid.nx", "shape[0]"),
-    ("grid.ny", "shape[1]"),
-    ("grid.dx", "dx"),
-    ("geometry.radius", "radius"),
-    ("roughness.hurst", "hurst"),
-    ("roughness.h", "rms"),
-    ("roughness.q0/q1", "q0/q1"),
-    ("roughness.q0", "q0"),
-    ("roughness.q1", "q1"),
+    (fields::GRID_NX, "shape[0]"),
+    (fields::GRID_NY, "shape[1]"),
+    (fields::GRID_DX, "dx"),
+    (fields::GEOMETRY_RADIUS, "radius"),
+    (fields::ROUGHNESS_HURST, "hurst"),
+    (fields::ROUGHNESS_H, "rms"),
+    (concat!(field_name!(roughness.q0), "/q1"), "q0/q1"),
+    (fields::ROUGHNESS_Q0, "q0"),
+    (fields::ROUGHNESS_Q1, "q1"),
 ];
 
 /// A `TackError` with the message of `e`, fields renamed to the arguments.

@@ -1,5 +1,6 @@
 //! Solver settings (tolerance, iteration caps) and the errors raised for invalid ones.
 
+use tack_fields::num;
 use thiserror::Error;
 
 /// Invalid solver input; messages name the field, the value and the allowed range.
@@ -53,18 +54,8 @@ impl Default for SolverOptions {
 impl SolverOptions {
     /// Checks `0 < tolerance < 1` and `max_iterations ≥ 1`.
     pub fn validate(&self) -> Result<(), SolverError> {
-        crate::validate::fraction("solver.tolerance", self.tolerance)?;
-        crate::validate::at_least_one("solver.max_iterations", self.max_iterations)?;
+        crate::validate::fraction(tack_fields::SOLVER_TOLERANCE, self.tolerance)?;
+        crate::validate::at_least_one(tack_fields::SOLVER_MAX_ITERATIONS, self.max_iterations)?;
         Ok(())
-    }
-}
-
-/// A number as a message shows it: plain for moderate magnitudes, otherwise in scientific
-/// notation with the shortest digits that round-trip (`1e308`, not 309 digits).
-fn num(x: f64) -> String {
-    if x == 0.0 || !x.is_finite() || (1e-5..1e16).contains(&x.abs()) {
-        format!("{x}")
-    } else {
-        format!("{x:e}")
     }
 }

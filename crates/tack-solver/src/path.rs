@@ -3,6 +3,7 @@
 //! on request, pressure fields and bonded masks.
 
 use ndarray::Array2;
+use tack_fields::{self as fields, field_name};
 
 use crate::{AdhesiveSolver, SolverError, StepRecord, validate};
 
@@ -162,35 +163,39 @@ impl ApproachPath {
 
     /// Checks finiteness and ordering; errors name the `protocol.*` field.
     pub fn validate(&self) -> Result<(), SolverError> {
-        validate::finite("protocol.start", self.start)?;
-        validate::finite("protocol.max_approach", self.max_approach)?;
-        validate::positive("protocol.load_step", self.load_step)?;
-        validate::positive("protocol.unload_step", self.unload_step)?;
+        validate::finite(fields::PROTOCOL_START, self.start)?;
+        validate::finite(fields::PROTOCOL_MAX_APPROACH, self.max_approach)?;
+        validate::positive(fields::PROTOCOL_LOAD_STEP, self.load_step)?;
+        validate::positive(fields::PROTOCOL_UNLOAD_STEP, self.unload_step)?;
         if let Some(c) = self.coarse_unload_step {
-            validate::positive("protocol.coarse_unload_step", c)?;
+            validate::positive(fields::PROTOCOL_COARSE_UNLOAD_STEP, c)?;
         }
         if self.max_approach < self.start {
             return Err(SolverError::OutOfRange {
-                field: "protocol.max_approach",
+                field: fields::PROTOCOL_MAX_APPROACH,
                 value: self.max_approach,
-                allowed: "≥ protocol.start",
+                allowed: concat!("≥ ", field_name!(protocol.start)),
             });
         }
         if let Some(r) = self.retract_to {
             validate::at_most(
-                "protocol.retract_to",
+                fields::PROTOCOL_RETRACT_TO,
                 r,
                 self.max_approach,
-                "a finite number ≤ protocol.max_approach (equal: no retraction, an indentation)",
+                concat!(
+                    "a finite number ≤ ",
+                    field_name!(protocol.max_approach),
+                    " (equal: no retraction, an indentation)"
+                ),
             )?;
         }
-        validate::at_least_one("protocol.max_steps", self.max_steps)?;
+        validate::at_least_one(fields::PROTOCOL_MAX_STEPS, self.max_steps)?;
         // Every approach of the path, max_approach − k·step for k ≤ max_steps, must be a
         // finite number: a step of 1e308 passed the checks above and ran into d = −inf.
         let steps = [
-            ("protocol.load_step", Some(self.load_step)),
-            ("protocol.unload_step", Some(self.unload_step)),
-            ("protocol.coarse_unload_step", self.coarse_unload_step),
+            (fields::PROTOCOL_LOAD_STEP, Some(self.load_step)),
+            (fields::PROTOCOL_UNLOAD_STEP, Some(self.unload_step)),
+            (fields::PROTOCOL_COARSE_UNLOAD_STEP, self.coarse_unload_step),
         ];
         for (field, step) in steps {
             let reach = |v: f64| v * self.max_steps as f64 + self.max_approach.abs();
@@ -200,8 +205,13 @@ impl ApproachPath {
                 return Err(SolverError::OutOfRange {
                     field,
                     value: v,
-                    allowed: "a finite number > 0 with protocol.max_steps × step + \
-                              |protocol.max_approach| ≤ 1e300 (every approach of the path finite)",
+                    allowed: concat!(
+                        "a finite number > 0 with ",
+                        field_name!(protocol.max_steps),
+                        " × step + |",
+                        field_name!(protocol.max_approach),
+                        "| ≤ 1e300 (every approach of the path finite)"
+                    ),
                 });
             }
         }

@@ -5,6 +5,7 @@
 //! `E*` is checked where the operator is built (`tack_kernels::operator_for`): a solver only
 //! ever sees a valid one.
 
+use tack_fields as fields;
 use tack_geometry::Surface;
 use tack_kernels::ElasticOperator;
 
@@ -110,14 +111,14 @@ pub(crate) fn adhesion(
     options: &AdhesiveOptions,
 ) -> Result<(), SolverError> {
     options.cg.validate()?;
-    non_negative("material.gamma", gamma)?;
-    positive("solver.kappa", kappa)?;
+    non_negative(fields::MATERIAL_GAMMA, gamma)?;
+    positive(fields::SOLVER_KAPPA, kappa)?;
     at_least_one(
-        "solver.max_active_set_iterations",
+        fields::SOLVER_MAX_ACTIVE_SET_ITERATIONS,
         options.max_active_set_iterations,
     )?;
     if let Some(t) = options.round_tolerance {
-        fraction("solver.round_tolerance", t)?;
+        fraction(fields::SOLVER_ROUND_TOLERANCE, t)?;
     }
     Ok(())
 }

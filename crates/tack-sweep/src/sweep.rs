@@ -385,11 +385,11 @@ fn axes(text: &str, vary: &toml::Table) -> Result<Vec<Axis>, String> {
     let mut leaves = Vec::new();
     flatten(vary, &mut Vec::new(), &mut leaves);
     if leaves.is_empty() {
-        return Err(
-            "[vary] is empty: give at least one scene field to vary, e.g. \
-                    `material.gamma = [0.1, 0.2]` under [vary]"
-                .to_owned(),
-        );
+        return Err(format!(
+            "[vary] is empty: give at least one scene field to vary, e.g. `{gamma} = [0.1, 0.2]` \
+             under [vary]",
+            gamma = tack::fields::MATERIAL_GAMMA
+        ));
     }
     let positions = vary_positions(text);
     leaves.sort_by_key(|(path, _)| positions.get(path).copied().unwrap_or(usize::MAX));
@@ -400,8 +400,10 @@ fn axes(text: &str, vary: &toml::Table) -> Result<Vec<Axis>, String> {
             let [key] = path.as_slice() else {
                 return Err(format!(
                     "vary.{}: a zipped entry must be one quoted key directly under [vary] that \
-                     names every field, e.g. \"roughness.h, roughness.seed\" = [[0.1, 1], [0.2, 2]]",
-                    path.join(".")
+                     names every field, e.g. \"{h}, {seed}\" = [[0.1, 1], [0.2, 2]]",
+                    path.join("."),
+                    h = tack::fields::ROUGHNESS_H,
+                    seed = tack::fields::ROUGHNESS_SEED
                 ));
             };
             let fields: Vec<String> = key.split(',').map(|f| f.trim().to_owned()).collect();
@@ -441,8 +443,10 @@ fn expand_zipped(fields: &[String], spec: &toml::Value) -> Result<Vec<Vec<toml::
     if let Some(k) = fields.iter().position(|f| f.is_empty()) {
         return Err(format!(
             "{name}: field {} of the zipped entry is empty: name the fields separated by commas, \
-             e.g. \"roughness.h, roughness.seed\"",
-            k + 1
+             e.g. \"{h}, {seed}\"",
+            k + 1,
+            h = tack::fields::ROUGHNESS_H,
+            seed = tack::fields::ROUGHNESS_SEED
         ));
     }
     let form = format!(

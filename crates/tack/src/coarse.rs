@@ -1,6 +1,8 @@
 //! The coarse (2Δx) problem of a Richardson extrapolation: the same body on a grid of twice the
 //! element size, or a refusal naming what makes the body depend on the grid.
 
+use tack_fields as fields;
+
 use crate::problem::Problem;
 use crate::scene::{Roughness, Scene, SceneError};
 
@@ -34,25 +36,30 @@ pub fn coarse_problem(scene: &Scene, problem: &Problem) -> Result<Problem, Scene
         Some(Roughness::Random { q1, .. }) => {
             let Some(q1) = *q1 else {
                 return Err(refuse(format!(
-                    "with roughness.kind = \"random\" needs a band the coarse (2Δx) grid holds: \
-                     set roughness.q1 ≤ π/(2Δx) = {} (by default q1 = π/Δx follows the grid, \
+                    "with {kind} = \"random\" needs a band the coarse (2Δx) grid holds: \
+                     set {q1_field} ≤ π/(2Δx) = {} (by default q1 = π/Δx follows the grid, \
                      so each grid would sample another surface)",
-                    crate::scene::num(q_coarse)
+                    crate::scene::num(q_coarse),
+                    kind = fields::ROUGHNESS_KIND,
+                    q1_field = fields::ROUGHNESS_Q1
                 )));
             };
             if q1 > q_coarse * (1.0 + 1e-9) {
                 return Err(refuse(format!(
-                    "with roughness.kind = \"random\": roughness.q1 = {} is above π/(2Δx) = {}, \
+                    "with {kind} = \"random\": {q1_field} = {} is above π/(2Δx) = {}, \
                      the Nyquist wave of the coarse (2Δx) grid; allowed: q0 < q1 ≤ {}",
                     crate::scene::num(q1),
                     crate::scene::num(q_coarse),
-                    crate::scene::num(q_coarse)
+                    crate::scene::num(q_coarse),
+                    kind = fields::ROUGHNESS_KIND,
+                    q1_field = fields::ROUGHNESS_Q1
                 )));
             }
             if odd(nx) || odd(ny) {
                 return Err(refuse(format!(
-                    "with roughness.kind = \"random\" needs even grid sides (the coarse grid \
-                     keeps the period of the surface); the grid is {nx} × {ny}"
+                    "with {kind} = \"random\" needs even grid sides (the coarse grid \
+                     keeps the period of the surface); the grid is {nx} × {ny}",
+                    kind = fields::ROUGHNESS_KIND
                 )));
             }
         }
@@ -65,7 +72,13 @@ pub fn coarse_problem(scene: &Scene, problem: &Problem) -> Result<Problem, Scene
             )?;
             let map =
                 tack_geometry::coarsen_band_limited(&fine, tack_geometry::BAND_LIMIT_TOLERANCE)
-                    .map_err(|e| refuse(format!("roughness.path = `{}`: {e}", path.display())))?;
+                    .map_err(|e| {
+                        refuse(format!(
+                            "{field} = `{}`: {e}",
+                            path.display(),
+                            field = fields::ROUGHNESS_PATH
+                        ))
+                    })?;
             file.roughness = None;
             // The fine map's range, so both runs crop by the same rule.
             let (lo, hi) = fine

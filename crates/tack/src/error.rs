@@ -3,6 +3,7 @@
 use std::fmt;
 use std::path::PathBuf;
 
+pub use tack_fields::num;
 use thiserror::Error;
 
 /// Everything [`crate::run()`] and its neighbours can fail with. Every message names the field,
@@ -129,15 +130,5 @@ impl SceneError {
             value,
             allowed: allowed.into(),
         }
-    }
-}
-
-/// A number as a person reads it in a message: plain for moderate magnitudes, otherwise in
-/// scientific notation with the shortest digits that round-trip (`1.797e308`, not 309 digits).
-pub fn num(x: f64) -> String {
-    if x == 0.0 || !x.is_finite() || (1e-5..1e16).contains(&x.abs()) {
-        format!("{x}")
-    } else {
-        format!("{x:e}")
     }
 }

@@ -52,7 +52,8 @@
 //!
 //! The numerical crates are re-exported ([`geometry`], [`kernels`], [`solver`], [`analytics`],
 //! [`io`]) with [`ndarray`], so a program depending on `tack` alone reaches every type its API
-//! uses.
+//! uses; so is [`fields`], the names of the scene fields (`tack::fields::GRID_DX`) and the table
+//! of what each holds.
 
 pub mod coarse;
 pub mod engine;
@@ -103,6 +104,7 @@ pub use summary::{SUMMARY_QUANTITIES, summary_quantity};
 
 pub use ndarray;
 pub use tack_analytics as analytics;
+pub use tack_fields as fields;
 pub use tack_geometry as geometry;
 pub use tack_io as io;
 pub use tack_kernels as kernels;

@@ -20,6 +20,7 @@
 //! with the bytes needed against those available, naming `grid.n`, `output.snapshots` and
 //! `protocol.max_steps`.
 
+use tack_fields as fields;
 use tack_geometry::{Boundary, Grid};
 use tack_solver::SnapshotRequest;
 
@@ -165,9 +166,9 @@ pub fn check(
     Err(SceneError::Inconsistent(format!(
         "the run may need about {} of memory, more than available: {against}. The estimate: \
          {} of working fields for {grid_field} = {} × {} elements, {} for up to {} snapshots \
-         (output.snapshots = {snapshots_text} over {max_steps} steps at most: {steps_from}), {} \
-         for {max_steps} step records; lower protocol.max_steps, keep fewer \
-         snapshots (output.snapshots = \"pull_off\" or {{ every = k }}) or use a smaller \
+         ({snapshots} = {snapshots_text} over {max_steps} steps at most: {steps_from}), {} \
+         for {max_steps} step records; lower {max_steps_field}, keep fewer \
+         snapshots ({snapshots} = \"pull_off\" or {{ every = k }}) or use a smaller \
          {grid_field}",
         bytes(total),
         bytes(e.fields),
@@ -176,6 +177,8 @@ pub fn check(
         bytes(e.snapshot_bytes),
         e.snapshots,
         bytes(e.record_bytes),
+        snapshots = fields::OUTPUT_SNAPSHOTS,
+        max_steps_field = fields::PROTOCOL_MAX_STEPS,
     )))
 }
 

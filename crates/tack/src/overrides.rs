@@ -5,6 +5,8 @@
 //! `inf`) and falls back to a plain string, so `geometry.shape=sphere` works without quotes.
 //! Keys the schema does not know are then rejected by the schema (unknown field).
 
+use tack_fields as fields;
+
 use crate::error::SceneError;
 
 /// Applies every override in order to `table`.
@@ -29,7 +31,7 @@ fn apply_one(table: &mut toml::Table, assignment: &str) -> Result<(), SceneError
         .split_once('=')
         .ok_or_else(|| SceneError::Override {
             assignment: assignment.to_owned(),
-            reason: "expected key=value, e.g. roughness.h=0.002".into(),
+            reason: format!("expected key=value, e.g. {}=0.002", fields::ROUGHNESS_H),
         })?;
     set_path(table, key, parse_value(value), assignment)
 }
@@ -55,8 +57,9 @@ fn set_path(
     let parts: Vec<&str> = key.trim().split('.').map(str::trim).collect();
     if parts.iter().any(|p| p.is_empty()) {
         return Err(fail(format!(
-            "`{}` is not a dotted key like `material.gamma`",
-            key.trim()
+            "`{}` is not a dotted key like `{gamma}`",
+            key.trim(),
+            gamma = fields::MATERIAL_GAMMA
         )));
     }
     let (last, parents) = parts.split_last().ok_or_else(|| fail("empty key".into()))?;

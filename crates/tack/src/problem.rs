@@ -9,6 +9,8 @@
 
 use std::path::Path;
 
+use tack_fields::{self as fields, field_name};
+
 use tack_geometry::{
     Boundary, FlatPunch, Grid, RoughSpec, Sphere, Surface, Waviness1d, Waviness2d, Window,
     rough_surface,
@@ -35,6 +37,9 @@ pub const MAX_ELEMENTS: usize = 1 << 26;
 
 /// The accepted range of `solver.tolerance` (relative CG residual), both ends included.
 pub const TOLERANCE_RANGE: (f64, f64) = (1e-14, 1e-1);
+
+/// The grid's size field when it is given as `nx` and `ny`.
+const GRID_NX_BY_NY: &str = concat!(field_name!(grid.nx), " × ", field_name!(grid.ny));
 
 /// Smallest wavelength, in elements, a waviness may have.
 pub const MIN_ELEMENTS_PER_WAVELENGTH: f64 = 4.0;
@@ -158,7 +163,7 @@ impl Problem {
         }
         if !(gamma.is_finite() && gamma >= 0.0) {
             return Err(SceneError::out_of_range(
-                "material.gamma",
+                fields::MATERIAL_GAMMA,
                 gamma,
                 "a finite number ≥ 0",
             ));
@@ -339,7 +344,7 @@ impl Problem {
                 Some(t) if t > 0.0 && t < 1.0 => Some(t),
                 Some(t) => {
                     return Err(SceneError::out_of_range(
-                        "solver.round_tolerance",
+                        fields::SOLVER_ROUND_TOLERANCE,
                         t,
                         "0 (every round exact) or a number in (0, 1)",
                     ));
@@ -351,7 +356,7 @@ impl Problem {
             && !(TOLERANCE_RANGE.0..=TOLERANCE_RANGE.1).contains(&t)
         {
             return Err(SceneError::out_of_range(
-                "solver.tolerance",
+                fields::SOLVER_TOLERANCE,
                 num(t),
                 "a number in 1e-14..=0.1 (the relative CG residual; default 1e-9): below 1e-14 \
                  round-off stops CG from ever converging, above 0.1 the forces are not solutions",
@@ -360,7 +365,7 @@ impl Problem {
         options.cg.validate()?;
         if options.max_active_set_iterations == 0 {
             return Err(SceneError::out_of_range(
-                "solver.max_active_set_iterations",
+                fields::SOLVER_MAX_ACTIVE_SET_ITERATIONS,
                 0,
                 "an integer ≥ 1",
             ));
@@ -374,7 +379,7 @@ impl Problem {
         let kappa = s.kappa.unwrap_or(KAPPA);
         if !(kappa.is_finite() && kappa > 0.0) {
             return Err(SceneError::out_of_range(
-                "solver.kappa",
+                fields::SOLVER_KAPPA,
                 kappa,
                 "a finite number > 0",
             ));
@@ -505,26 +510,27 @@ fn approach_path(
     };
     if let Some(d) = p.indent {
         let others = [
-            ("protocol.start", p.start.is_some()),
-            ("protocol.max_approach", p.max_approach.is_some()),
-            ("protocol.load_step", p.load_step.is_some()),
-            ("protocol.unload_step", p.unload_step.is_some()),
+            (fields::PROTOCOL_START, p.start.is_some()),
+            (fields::PROTOCOL_MAX_APPROACH, p.max_approach.is_some()),
+            (fields::PROTOCOL_LOAD_STEP, p.load_step.is_some()),
+            (fields::PROTOCOL_UNLOAD_STEP, p.unload_step.is_some()),
             (
-                "protocol.coarse_unload_step",
+                fields::PROTOCOL_COARSE_UNLOAD_STEP,
                 p.coarse_unload_step.is_some(),
             ),
-            ("protocol.retract_to", p.retract_to.is_some()),
+            (fields::PROTOCOL_RETRACT_TO, p.retract_to.is_some()),
         ];
         if let Some((field, _)) = others.iter().find(|(_, given)| *given) {
             return Err(SceneError::Inconsistent(format!(
-                "protocol.indent is one step pressed in with no retraction: leave out {field} \
-                 (or drop protocol.indent for a load–unload path)"
+                "{indent} is one step pressed in with no retraction: leave out {field} \
+                 (or drop {indent} for a load–unload path)",
+                indent = fields::PROTOCOL_INDENT
             )));
         }
-        let d = finite("protocol.indent", d)?;
+        let d = finite(fields::PROTOCOL_INDENT, d)?;
         if d <= first_touch {
             return Err(never_touches(
-                "protocol.indent",
+                fields::PROTOCOL_INDENT,
                 d,
                 0.01 * body.grid.dx().max(first_touch.abs()),
             ));
@@ -536,18 +542,18 @@ fn approach_path(
     let (max_approach, load_step, unload_step, coarse_unload_step) =
         match (p.max_approach, p.load_step) {
             (Some(max_approach), Some(load_step)) => {
-                finite("protocol.max_approach", max_approach)?;
-                finite("protocol.load_step", load_step)?;
+                finite(fields::PROTOCOL_MAX_APPROACH, max_approach)?;
+                finite(fields::PROTOCOL_LOAD_STEP, load_step)?;
                 if load_step <= 0.0 {
                     return Err(SceneError::out_of_range(
-                        "protocol.load_step",
+                        fields::PROTOCOL_LOAD_STEP,
                         load_step,
                         "a finite number > 0",
                     ));
                 }
                 if max_approach <= first_touch {
                     return Err(never_touches(
-                        "protocol.max_approach",
+                        fields::PROTOCOL_MAX_APPROACH,
                         max_approach,
                         10.0 * load_step,
                     ));
@@ -560,27 +566,32 @@ fn approach_path(
                 )
             }
             (Some(_), None) => {
-                return Err(SceneError::Inconsistent(
-                    "protocol.load_step is required with protocol.max_approach (the approach \
-                     increment while loading)"
-                        .into(),
-                ));
+                return Err(SceneError::Inconsistent(format!(
+                    "{load_step} is required with {max_approach} (the approach increment while \
+                     loading)",
+                    load_step = fields::PROTOCOL_LOAD_STEP,
+                    max_approach = fields::PROTOCOL_MAX_APPROACH
+                )));
             }
             (None, Some(_)) => {
-                return Err(SceneError::Inconsistent(
-                    "protocol.max_approach is required with protocol.load_step (the deepest \
-                     approach); leave both out for the default pull-off path of a sphere"
-                        .into(),
-                ));
+                return Err(SceneError::Inconsistent(format!(
+                    "{max_approach} is required with {load_step} (the deepest approach); leave \
+                     both out for the default pull-off path of a sphere",
+                    load_step = fields::PROTOCOL_LOAD_STEP,
+                    max_approach = fields::PROTOCOL_MAX_APPROACH
+                )));
             }
             (None, None) => {
                 let rule = default_path(body)?;
                 if p.start.is_some() || p.retract_to.is_some() {
-                    return Err(SceneError::Inconsistent(
-                        "protocol.start and protocol.retract_to need protocol.max_approach and \
-                         protocol.load_step (the default pull-off path sets its own)"
-                            .into(),
-                    ));
+                    return Err(SceneError::Inconsistent(format!(
+                        "{start} and {retract_to} need {max_approach} and {load_step} (the \
+                         default pull-off path sets its own)",
+                        start = fields::PROTOCOL_START,
+                        retract_to = fields::PROTOCOL_RETRACT_TO,
+                        max_approach = fields::PROTOCOL_MAX_APPROACH,
+                        load_step = fields::PROTOCOL_LOAD_STEP
+                    )));
                 }
                 let unload = p.unload_step.unwrap_or(rule.path.unload_step);
                 let coarse = p.coarse_unload_step.unwrap_or(rule.path.coarse_unload_step);
@@ -628,23 +639,27 @@ fn approach_path(
 fn default_path(body: &PathBody<'_>) -> Result<PathRule, SceneError> {
     if body.gamma <= 0.0 {
         return Err(SceneError::Inconsistent(format!(
-            "protocol.max_approach is required: without adhesion (material.gamma = {}) there \
-             is no pull-off to find, so there is no default path; for one state give \
-             protocol.indent = d (one step pressed in to approach d), for a load–unload curve \
-             protocol.max_approach and protocol.load_step",
-            num(body.gamma)
+            "{max_approach} is required: without adhesion ({gamma} = {}) there is no pull-off \
+             to find, so there is no default path; for one state give {indent} = d (one step \
+             pressed in to approach d), for a load–unload curve {max_approach} and {load_step}",
+            num(body.gamma),
+            max_approach = fields::PROTOCOL_MAX_APPROACH,
+            gamma = fields::MATERIAL_GAMMA,
+            indent = fields::PROTOCOL_INDENT,
+            load_step = fields::PROTOCOL_LOAD_STEP
         )));
     }
     let (radius, top, fitted) = match body.sphere_radius {
         Some(r) => (r, body.top_of_roughness, false),
         None if !body.heights_only => {
-            return Err(SceneError::Inconsistent(
-                "protocol.max_approach is required: the default pull-off path needs a sphere \
-                 (geometry.shape = \"sphere\") or a sphere-like height map on geometry.shape = \
-                 \"none\"; a flat punch has no radius to set its depth and steps; give \
-                 protocol.max_approach and protocol.load_step"
-                    .into(),
-            ));
+            return Err(SceneError::Inconsistent(format!(
+                "{max} is required: the default pull-off path needs a sphere ({shape} = \
+                 \"sphere\") or a sphere-like height map on {shape} = \"none\"; a flat punch has \
+                 no radius to set its depth and steps; give {max} and {load}",
+                max = fields::PROTOCOL_MAX_APPROACH,
+                shape = fields::GEOMETRY_SHAPE,
+                load = fields::PROTOCOL_LOAD_STEP,
+            )));
         }
         None => {
             let fit =
@@ -652,14 +667,15 @@ fn default_path(body: &PathBody<'_>) -> Result<PathRule, SceneError> {
             match fit {
                 Some(f) if f.is_sphere_like(body.grid) => (f.radius, f.apex + f.residual_max, true),
                 _ => {
-                    return Err(SceneError::Inconsistent(
-                        "protocol.max_approach is required: the default pull-off path needs a \
-                         sphere (geometry.shape = \"sphere\") or a sphere-like height map (its \
-                         least-squares paraboloid curved away from the half-space, rising over \
-                         the grid by at least half the roughness range); give \
-                         protocol.max_approach and protocol.load_step"
-                            .into(),
-                    ));
+                    return Err(SceneError::Inconsistent(format!(
+                        "{max_approach} is required: the default pull-off path needs a sphere \
+                         ({shape} = \"sphere\") or a sphere-like height map (its least-squares \
+                         paraboloid curved away from the half-space, rising over the grid by at \
+                         least half the roughness range); give {max_approach} and {load_step}",
+                        max_approach = fields::PROTOCOL_MAX_APPROACH,
+                        shape = fields::GEOMETRY_SHAPE,
+                        load_step = fields::PROTOCOL_LOAD_STEP
+                    )));
                 }
             }
         }
@@ -688,16 +704,19 @@ fn check_memory(scene: &Scene, grid: &Grid, steps: Option<usize>) -> Result<(), 
     };
     let estimate = crate::memory::estimate(grid, max_steps, &request);
     let grid_field = if f.grid.n.is_some() {
-        "grid.n"
+        fields::GRID_N
     } else {
-        "grid.nx × grid.ny"
+        GRID_NX_BY_NY
     };
     let snapshots = crate::scene::value_text(&f.output.snapshots.clone().into());
     let cap = f.protocol.max_steps.unwrap_or(DEFAULT_MAX_STEPS);
     let steps_from = if max_steps < cap {
         "the path's own step count".to_owned()
     } else {
-        format!("protocol.max_steps = {cap}, as retraction ends only when contact is lost")
+        format!(
+            "{} = {cap}, as retraction ends only when contact is lost",
+            fields::PROTOCOL_MAX_STEPS
+        )
     };
     crate::memory::check(
         &estimate,
@@ -717,7 +736,8 @@ fn under_resolved(warnings: &mut Vec<String>, what: &str, radius: f64, dx: f64) 
         warnings.push(format!(
             "under-resolved pull-off: {what} spans {elements:.3} elements (a_c/Δx < \
              {MIN_PULL_OFF_RADIUS_ELEMENTS}), where the detachment criterion's error exceeds \
-             +33%; refine grid.dx"
+             +33%; refine {dx}",
+            dx = fields::GRID_DX
         ));
     }
 }
@@ -735,7 +755,7 @@ fn check_scales(
     kappa: f64,
 ) -> Result<(), SceneError> {
     let dx = grid.dx();
-    let normal = |name: &str, value: f64, fields: &str| {
+    let normal = |name: &str, value: f64, inputs: &str| {
         if value.is_normal() && value.abs() < 1e300 {
             Ok(())
         } else {
@@ -748,7 +768,7 @@ fn check_scales(
                 num(value)
             };
             Err(SceneError::Inconsistent(format!(
-                "{fields} give {name} = {value}, outside what double precision can carry \
+                "{inputs} give {name} = {value}, outside what double precision can carry \
                  through a run (finite, between 1e-300 and 1e300 in magnitude); rescale the \
                  units of the scene (e.g. mm and MPa instead of m and Pa)"
             )))
@@ -757,15 +777,17 @@ fn check_scales(
     normal(
         "the element area Δx²",
         dx * dx,
-        &format!("grid.dx = {}", num(dx)),
+        &format!("{} = {}", fields::GRID_DX, num(dx)),
     )?;
     normal(
         "the stiffness scale E*·Δx",
         e_star * dx,
         &format!(
-            "material.e_star = {} and grid.dx = {}",
+            "{e_star_field} = {} and {dx_field} = {}",
             num(e_star),
-            num(dx)
+            num(dx),
+            e_star_field = fields::MATERIAL_E_STAR,
+            dx_field = fields::GRID_DX
         ),
     )?;
     // (An invalid κ is refused, naming solver.kappa, after this.)
@@ -775,43 +797,52 @@ fn check_scales(
             "σ_c = sqrt(E*γ/(κΔx))",
             sigma_c,
             &format!(
-                "material.e_star = {}, material.gamma = {} and grid.dx = {}",
+                "{e_star_field} = {}, {gamma_field} = {} and {dx_field} = {}",
                 num(e_star),
                 num(gamma),
-                num(dx)
+                num(dx),
+                e_star_field = fields::MATERIAL_E_STAR,
+                gamma_field = fields::MATERIAL_GAMMA,
+                dx_field = fields::GRID_DX
             ),
         )?;
         normal(
             "the adhesive force per element σ_c·Δx²",
             sigma_c * dx * dx,
             &format!(
-                "material.e_star = {}, material.gamma = {} and grid.dx = {}",
+                "{e_star_field} = {}, {gamma_field} = {} and {dx_field} = {}",
                 num(e_star),
                 num(gamma),
-                num(dx)
+                num(dx),
+                e_star_field = fields::MATERIAL_E_STAR,
+                gamma_field = fields::MATERIAL_GAMMA,
+                dx_field = fields::GRID_DX
             ),
         )?;
         if let Geometry::Sphere { radius } = *geometry {
-            let fields = format!(
-                "material.e_star = {}, material.gamma = {} and geometry.radius = {}",
+            let inputs = format!(
+                "{e_star_field} = {}, {gamma_field} = {} and {radius_field} = {}",
                 num(e_star),
                 num(gamma),
-                num(radius)
+                num(radius),
+                e_star_field = fields::MATERIAL_E_STAR,
+                gamma_field = fields::MATERIAL_GAMMA,
+                radius_field = fields::GEOMETRY_RADIUS
             );
             normal(
                 "F_JKR",
                 tack_analytics::jkr_pull_off_force(gamma, radius),
-                &fields,
+                &inputs,
             )?;
             normal(
                 "d_JKR",
                 tack_analytics::jkr_pull_off_approach(e_star, gamma, radius),
-                &fields,
+                &inputs,
             )?;
             normal(
                 "a_c",
                 tack_analytics::jkr_pull_off_radius(e_star, gamma, radius),
-                &fields,
+                &inputs,
             )?;
         }
     }
@@ -855,12 +886,12 @@ pub fn rough_spec_for_alpha_star(
             })
         }
     };
-    positive("material.e_star", e_star)?;
-    positive("material.gamma", gamma)?;
+    positive(fields::MATERIAL_E_STAR, e_star)?;
+    positive(fields::MATERIAL_GAMMA, gamma)?;
     positive("alpha_star", alpha_star)?;
     if !(hurst > 0.0 && hurst < 1.0) {
         return Err(SceneError::OutOfRange {
-            field: "roughness.hurst".into(),
+            field: fields::ROUGHNESS_HURST.into(),
             value: hurst.to_string(),
             allowed: "0 < H < 1".into(),
         });
@@ -890,10 +921,10 @@ const MAX_ELEMENTS_PER_AXIS: usize = 1 << 16;
 fn build_grid(g: &GridSpec) -> Result<Grid, SceneError> {
     let (nx, ny) = match (g.n, g.nx, g.ny) {
         (Some(n), None, None) => {
-            let n = count("grid.n", n)?;
+            let n = count(fields::GRID_N, n)?;
             (n, n)
         }
-        (None, Some(nx), Some(ny)) => (count("grid.nx", nx)?, count("grid.ny", ny)?),
+        (None, Some(nx), Some(ny)) => (count(fields::GRID_NX, nx)?, count(fields::GRID_NY, ny)?),
         (Some(_), _, _) => {
             return Err(SceneError::Inconsistent(
                 "grid: give either `n` (square grid) or both `nx` and `ny`, not both forms".into(),
@@ -907,9 +938,9 @@ fn build_grid(g: &GridSpec) -> Result<Grid, SceneError> {
     };
     if nx * ny > MAX_ELEMENTS {
         let field = if g.n.is_some() {
-            "grid.n"
+            fields::GRID_N
         } else {
-            "grid.nx × grid.ny"
+            GRID_NX_BY_NY
         };
         return Err(SceneError::Inconsistent(format!(
             "{field} = {nx} × {ny} is too large: {} elements exceed the limit of {MAX_ELEMENTS} \
@@ -922,7 +953,7 @@ fn build_grid(g: &GridSpec) -> Result<Grid, SceneError> {
         (None, Some(length)) => {
             if !(length.is_finite() && length > 0.0) {
                 return Err(SceneError::out_of_range(
-                    "grid.length",
+                    fields::GRID_LENGTH,
                     length,
                     "a finite number > 0",
                 ));
@@ -952,7 +983,7 @@ fn base_surface(grid: Grid, geometry: &Geometry) -> Result<Surface, SceneError> 
     Ok(match *geometry {
         Geometry::Sphere { radius } => Surface::from_shape(
             grid,
-            &Sphere::new(radius).map_err(rename("geometry.radius"))?,
+            &Sphere::new(radius).map_err(rename(fields::GEOMETRY_RADIUS))?,
         ),
         Geometry::FlatPunch {
             punch,
@@ -961,10 +992,10 @@ fn base_surface(grid: Grid, geometry: &Geometry) -> Result<Surface, SceneError> 
         } => {
             let punch = match (punch, radius, half_side) {
                 (PunchKind::Circle, Some(r), None) => {
-                    FlatPunch::circular(r).map_err(rename("geometry.radius"))?
+                    FlatPunch::circular(r).map_err(rename(fields::GEOMETRY_RADIUS))?
                 }
                 (PunchKind::Square, None, Some(s)) => {
-                    FlatPunch::square(s).map_err(rename("geometry.half_side"))?
+                    FlatPunch::square(s).map_err(rename(fields::GEOMETRY_HALF_SIDE))?
                 }
                 (PunchKind::Circle, _, _) => {
                     return Err(SceneError::Inconsistent(
@@ -1040,16 +1071,17 @@ fn add_roughness(
             let (nx, ny) = heights.dim();
             if (nx, ny) != grid.shape() {
                 return Err(SceneError::Inconsistent(format!(
-                    "roughness.path = `{}`: the height map is {nx} × {ny} but the grid is {} × {} \
+                    "{path_field} = `{}`: the height map is {nx} × {ny} but the grid is {} × {} \
                      ({}); the map must have the grid's shape",
                     path.display(),
                     grid.nx(),
                     grid.ny(),
                     if spec.n.is_some() {
-                        "grid.n"
+                        fields::GRID_N
                     } else {
-                        "grid.nx × grid.ny"
-                    }
+                        GRID_NX_BY_NY
+                    },
+                    path_field = fields::ROUGHNESS_PATH
                 )));
             }
             surface.add(&Surface::new(grid, heights)?)?;
@@ -1067,7 +1099,11 @@ pub(crate) fn read_map(
     grid: &Grid,
 ) -> Result<ndarray::Array2<f64>, SceneError> {
     let field = |what: String| {
-        SceneError::Inconsistent(format!("roughness.path = `{}`: {what}", given.display()))
+        SceneError::Inconsistent(format!(
+            "{} = `{}`: {what}",
+            fields::ROUGHNESS_PATH,
+            given.display()
+        ))
     };
     let is_h5 = full
         .extension()
@@ -1103,9 +1139,10 @@ pub(crate) fn read_map(
             .map_err(|e| field(e.to_string()))?
     } else {
         if dataset.is_some() {
-            return Err(field(
-                "roughness.dataset applies only to HDF5 maps (.h5, .hdf5)".into(),
-            ));
+            return Err(field(format!(
+                "{} applies only to HDF5 maps (.h5, .hdf5)",
+                fields::ROUGHNESS_DATASET
+            )));
         }
         // Parse with the grid's dx (succeeds whatever the header says), then read the
         // header's own dx: a parse error now means there is no header.
@@ -1119,9 +1156,10 @@ pub(crate) fn read_map(
     };
     if ((dx - grid.dx()) / grid.dx()).abs() > DX_MATCH_TOLERANCE {
         return Err(field(format!(
-            "the map's dx = {dx} differs from grid.dx = {} (relative tolerance \
-             {DX_MATCH_TOLERANCE:e}); set grid.dx to the map's element size",
-            grid.dx()
+            "the map's dx = {dx} differs from {dx_field} = {} (relative tolerance \
+             {DX_MATCH_TOLERANCE:e}); set {dx_field} to the map's element size",
+            grid.dx(),
+            dx_field = fields::GRID_DX
         )));
     }
     Ok(heights)
@@ -1133,9 +1171,11 @@ fn check_wavelength(grid: &Grid, lambda: f64, two_d: bool) -> Result<(), SceneEr
     let min = MIN_ELEMENTS_PER_WAVELENGTH * grid.dx();
     if lambda < min * (1.0 - 1e-12) {
         return Err(SceneError::Inconsistent(format!(
-            "roughness.lambda = {lambda} is invalid: must be ≥ 4·grid.dx = {min} to be resolved \
-             (grid.dx = {})",
-            grid.dx()
+            "{lambda_field} = {lambda} is invalid: must be ≥ 4·{dx_field} = {min} to be resolved \
+             ({dx_field} = {})",
+            grid.dx(),
+            lambda_field = fields::ROUGHNESS_LAMBDA,
+            dx_field = fields::GRID_DX
         )));
     }
     if grid.boundary() == Boundary::Periodic {
@@ -1147,9 +1187,12 @@ fn check_wavelength(grid: &Grid, lambda: f64, two_d: bool) -> Result<(), SceneEr
             let waves = length / lambda;
             if (waves - waves.round()).abs() > 1e-6 * waves.max(1.0) || waves.round() < 1.0 {
                 return Err(SceneError::Inconsistent(format!(
-                    "roughness.lambda = {lambda} does not fit the periodic grid: the period along \
+                    "{lambda_field} = {lambda} does not fit the periodic grid: the period along \
                      {axis} is {length} = {waves} wavelengths; it must be a whole number ≥ 1 \
-                     (adjust grid.dx, grid.n/nx/ny or roughness.lambda)"
+                     (adjust {dx_field}, {n_field}/nx/ny or {lambda_field})",
+                    lambda_field = fields::ROUGHNESS_LAMBDA,
+                    dx_field = fields::GRID_DX,
+                    n_field = fields::GRID_N
                 )));
             }
         }
@@ -1180,9 +1223,9 @@ fn check_fits(
     }
     let half_extent = grid.lx().min(grid.ly()) / 2.0;
     let size_field = if spec.n.is_some() {
-        "grid.n"
+        fields::GRID_N
     } else {
-        "grid.nx/grid.ny"
+        concat!(field_name!(grid.nx), "/", field_name!(grid.ny))
     };
     let (nx, ny) = grid.shape();
     match *geometry {
@@ -1198,17 +1241,19 @@ fn check_fits(
                     format!("{hertz:.4e}")
                 };
                 return Err(SceneError::Inconsistent(format!(
-                    "{size_field} = {} is too small for the sphere: at protocol.max_approach = {} \
+                    "{size_field} = {} is too small for the sphere: at {max_approach} = {} \
                      the Hertz contact radius sqrt(R·d) = {hertz} plus a 30% margin needs a \
-                     free grid of at least {n_needed} × {n_needed} elements at grid.dx = {} \
-                     (the grid is {nx} × {ny}); raise {size_field} or lower protocol.max_approach",
+                     free grid of at least {n_needed} × {n_needed} elements at {dx_field} = {} \
+                     (the grid is {nx} × {ny}); raise {size_field} or lower {max_approach}",
                     if spec.n.is_some() {
                         nx.to_string()
                     } else {
                         format!("{nx}/{ny}")
                     },
                     num(path.max_approach),
-                    num(grid.dx())
+                    num(grid.dx()),
+                    max_approach = fields::PROTOCOL_MAX_APPROACH,
+                    dx_field = fields::GRID_DX
                 )));
             }
         }
@@ -1216,8 +1261,8 @@ fn check_fits(
             radius, half_side, ..
         } => {
             let (field, size) = match (radius, half_side) {
-                (Some(r), _) => ("geometry.radius", r),
-                (_, Some(s)) => ("geometry.half_side", s),
+                (Some(r), _) => (fields::GEOMETRY_RADIUS, r),
+                (_, Some(s)) => (fields::GEOMETRY_HALF_SIDE, s),
                 _ => return Ok(()),
             };
             // The punch face needs one element to spare beyond its edge on every side. The
@@ -1231,10 +1276,11 @@ fn check_fits(
                 let n_needed = count_text(2.0 * (needed / grid.dx()).ceil() + 1.0);
                 return Err(SceneError::Inconsistent(format!(
                     "{field} = {} does not fit the grid: the punch needs a free grid of at \
-                     least {n_needed} × {n_needed} elements at grid.dx = {} (the grid is \
+                     least {n_needed} × {n_needed} elements at {dx_field} = {} (the grid is \
                      {nx} × {ny}); raise {size_field}",
                     num(size),
-                    num(grid.dx())
+                    num(grid.dx()),
+                    dx_field = fields::GRID_DX
                 )));
             }
         }

@@ -8,6 +8,7 @@
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
+use tack_fields::{self as fields, FIELDS, Field, Kind, SECTIONS, SNAPSHOT_FORMS};
 
 pub use crate::error::{SceneError, num};
 use crate::overrides::apply_overrides;
@@ -278,17 +279,15 @@ pub enum Snapshots {
     PullOff,
 }
 
-const SNAPSHOTS_ALLOWED: &str = "\"none\", \"all\", \"pull_off\", { every = k } with k ≥ 1, or \
-                                 { steps = [i, ...] } with indices ≥ 0";
-
 impl TryFrom<toml::Value> for Snapshots {
     type Error = String;
 
     fn try_from(value: toml::Value) -> Result<Self, String> {
         let bad = || {
             format!(
-                "output.snapshots = {} is invalid: must be {SNAPSHOTS_ALLOWED}",
-                value_text(&value)
+                "{field} = {} is invalid: must be {SNAPSHOT_FORMS}",
+                value_text(&value),
+                field = fields::OUTPUT_SNAPSHOTS
             )
         };
         match &value {
@@ -538,8 +537,8 @@ fn unknown_key_span(text: &str, message: &str) -> Option<std::ops::Range<usize>>
         return Some(key.span());
     }
     root.iter().find_map(|(section, value)| {
-        let known = |f: &&(&str, Kind)| f.0 == format!("{}.{name}", section.get_ref());
-        if FIELDS.iter().chain(&MORE_FIELDS).any(|f| known(&f)) {
+        let known = |f: &Field| f.section() == section.get_ref() && f.key() == name;
+        if FIELDS.iter().any(known) {
             return None;
         }
         let table = value.get_ref().as_table()?;
@@ -599,109 +598,19 @@ fn key_span(text: &str, field: &str) -> Option<std::ops::Range<usize>> {
     None
 }
 
-/// What a known scene field must hold, for [`check_fields`].
-#[derive(Clone, Copy)]
-enum Kind {
-    /// A TOML float or integer.
-    Number,
-    /// A TOML integer in `min..=max`, described as `allowed`.
-    Integer {
-        min: i64,
-        max: i64,
-        allowed: &'static str,
-    },
-    /// `true` or `false`.
-    Bool,
-    /// A string.
-    Text,
-    /// One of these strings.
-    Choice(&'static [&'static str]),
-}
-
-const AT_LEAST_ONE: Kind = Kind::Integer {
-    min: 1,
-    max: i64::MAX,
-    allowed: "an integer ≥ 1",
-};
-const ELEMENTS: Kind = Kind::Integer {
-    min: 1,
-    max: 65536,
-    allowed: "an integer in 1..=65536",
-};
-
-/// Every scalar field of the schema with its type and range (`output.snapshots` checks itself).
-const FIELDS: [(&str, Kind); 30] = [
-    ("material.e_star", Kind::Number),
-    ("material.gamma", Kind::Number),
-    (
-        "geometry.shape",
-        Kind::Choice(&["sphere", "flat_punch", "none"]),
-    ),
-    ("geometry.radius", Kind::Number),
-    ("geometry.punch", Kind::Choice(&["circle", "square"])),
-    ("geometry.half_side", Kind::Number),
-    (
-        "roughness.kind",
-        Kind::Choice(&["waviness1d", "waviness2d", "random", "file"]),
-    ),
-    ("roughness.h", Kind::Number),
-    ("roughness.lambda", Kind::Number),
-    ("roughness.hurst", Kind::Number),
-    ("roughness.q0", Kind::Number),
-    ("roughness.q1", Kind::Number),
-    (
-        "roughness.seed",
-        Kind::Integer {
-            min: 0,
-            max: i64::MAX,
-            allowed: "an integer ≥ 0 (the seed of the random phases)",
-        },
-    ),
-    ("roughness.path", Kind::Text),
-    ("roughness.dataset", Kind::Text),
-    ("grid.n", ELEMENTS),
-    ("grid.nx", ELEMENTS),
-    ("grid.ny", ELEMENTS),
-    ("grid.dx", Kind::Number),
-    ("grid.length", Kind::Number),
-    ("grid.boundary", Kind::Choice(&["free", "periodic"])),
-    ("grid.crop", Kind::Bool),
-    ("solver.kappa", Kind::Number),
-    ("solver.tolerance", Kind::Number),
-    ("solver.max_iterations", AT_LEAST_ONE),
-    ("solver.max_active_set_iterations", AT_LEAST_ONE),
-    ("protocol.start", Kind::Number),
-    ("protocol.max_approach", Kind::Number),
-    ("protocol.load_step", Kind::Number),
-    ("protocol.unload_step", Kind::Number),
-];
-
-/// The rest of [`FIELDS`] (split to keep each list readable).
-const MORE_FIELDS: [(&str, Kind); 6] = [
-    ("solver.round_tolerance", Kind::Number),
-    ("protocol.indent", Kind::Number),
-    ("protocol.coarse_unload_step", Kind::Number),
-    ("protocol.retract_to", Kind::Number),
-    ("protocol.max_steps", AT_LEAST_ONE),
-    ("output.surface", Kind::Bool),
-];
-
-/// Checks the type (and for integers the range) of every known field present, so that a
+/// Checks the type (and for integers the range) of every field of [`FIELDS`] present, so that a
 /// wrong value is reported as `grid.n = 32.0 is invalid: must be an integer in 1..=65536`
 /// rather than as the schema's `invalid type: floating point 32.0, expected usize`.
 fn check_fields(table: &toml::Table) -> Result<(), Fault> {
-    for (field, kind) in FIELDS.iter().chain(&MORE_FIELDS) {
-        let Some((section, key)) = field.split_once('.') else {
-            continue;
-        };
+    for field in FIELDS {
         let Some(value) = table
-            .get(section)
+            .get(field.section())
             .and_then(toml::Value::as_table)
-            .and_then(|t| t.get(key))
+            .and_then(|t| t.get(field.key()))
         else {
             continue;
         };
-        let allowed = match *kind {
+        let allowed = match field.kind {
             Kind::Number if value.is_float() || value.is_integer() => continue,
             Kind::Number => "a number".to_owned(),
             Kind::Integer { min, max, allowed } => match value.as_integer() {
@@ -719,11 +628,13 @@ fn check_fields(table: &toml::Table) -> Result<(), Fault> {
                 let quoted: Vec<String> = choices.iter().map(|c| format!("\"{c}\"")).collect();
                 format!("one of {}", quoted.join(", "))
             }
+            // Checked by its own parser (`output.snapshots`: [`Snapshots`]).
+            Kind::Form(_) => continue,
         };
         return Err(Fault {
-            field: Some((*field).to_owned()),
+            field: Some(field.name.to_owned()),
             error: SceneError::OutOfRange {
-                field: (*field).to_owned(),
+                field: field.name.to_owned(),
                 value: value_text(value),
                 allowed,
             },
@@ -732,18 +643,8 @@ fn check_fields(table: &toml::Table) -> Result<(), Fault> {
     Ok(())
 }
 
-/// The sections of a scene file: each must be a table. serde would otherwise take an array
+/// Each of the [`SECTIONS`] must be a table: serde would otherwise take an array
 /// (`material = [1.0, 0.125]`) field by field in declaration order, silently.
-const SECTIONS: [&str; 7] = [
-    "material",
-    "geometry",
-    "roughness",
-    "grid",
-    "solver",
-    "protocol",
-    "output",
-];
-
 fn check_sections(table: &toml::Table) -> Result<(), SceneError> {
     for name in SECTIONS {
         if let Some(value) = table.get(name)

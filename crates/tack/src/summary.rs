@@ -2,6 +2,7 @@
 //! closed forms, the run's warnings, status), the curve's columns, and the assembly of the whole
 //! [`tack_io::RunResult`] that [`crate::engine`] hands back.
 
+use tack_fields as fields;
 use tack_solver::{PathResult, Phase};
 
 use crate::problem::Problem;
@@ -95,9 +96,10 @@ pub fn warnings(problem: &Problem, path: &PathResult) -> Vec<String> {
             ""
         };
         out.push(format!(
-            "incomplete: the path stopped at protocol.max_steps = {} before contact was \
-             lost{beyond} (raise protocol.max_steps)",
-            problem.path.max_steps
+            "incomplete: the path stopped at {max_steps} = {} before contact was \
+             lost{beyond} (raise {max_steps})",
+            problem.path.max_steps,
+            max_steps = fields::PROTOCOL_MAX_STEPS
         ));
     }
     let full = records.iter().filter(|r| r.full_contact).count();
@@ -127,7 +129,9 @@ pub fn warnings(problem: &Problem, path: &PathResult) -> Vec<String> {
     if edge > 0 {
         out.push(format!(
             "contact reached the edge of the free grid in {edge} steps: the domain cuts it \
-             off (enlarge grid.n or grid.length)"
+             off (enlarge {n} or {length})",
+            n = fields::GRID_N,
+            length = fields::GRID_LENGTH
         ));
     }
     if adhesive && path.completed && !problem.path.is_indentation() {
@@ -142,15 +146,17 @@ pub fn warnings(problem: &Problem, path: &PathResult) -> Vec<String> {
             out.push(format!(
                 "pull-off not resolved by the path: {tensile} retraction steps with contact \
                  have a tensile force (at least {MIN_TENSILE_STEPS} bracket the pull-off), so the \
-                 retraction stepped over the tensile part; lower protocol.unload_step (or \
-                 protocol.coarse_unload_step)"
+                 retraction stepped over the tensile part; lower {unload} (or {coarse})",
+                unload = fields::PROTOCOL_UNLOAD_STEP,
+                coarse = fields::PROTOCOL_COARSE_UNLOAD_STEP
             ));
         } else if let Some(i) = path.pull_off_step() {
             let n = records[i].n_bonded;
             if n < MIN_PULL_OFF_ELEMENTS {
                 out.push(format!(
                     "the pull-off is carried by {n} bonded elements (fewer than \
-                     {MIN_PULL_OFF_ELEMENTS}): the mesh does not resolve it (refine grid.dx)"
+                     {MIN_PULL_OFF_ELEMENTS}): the mesh does not resolve it (refine {dx})",
+                    dx = fields::GRID_DX
                 ));
             }
         }

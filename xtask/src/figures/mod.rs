@@ -403,7 +403,10 @@ pub fn sphere_scene(
     path: &PullOff,
 ) -> Result<SceneSchema> {
     let Geometry::Sphere { radius } = file.geometry else {
-        anyhow::bail!("a sphere figure needs geometry.shape = \"sphere\"");
+        anyhow::bail!(
+            "a sphere figure needs {} = \"sphere\"",
+            tack_fields::GEOMETRY_SHAPE
+        );
     };
     let (e, g) = (file.material.e_star, file.material.gamma);
     let ds = jkr_approach_scale(e, g, radius);

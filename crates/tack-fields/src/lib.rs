@@ -1,0 +1,407 @@
+//! The scene fields of tack, named once: a constant per field ([`GRID_DX`] is `"grid.dx"`), the
+//! table [`FIELDS`] of every field a scene file accepts (its kind and range, and a one-line
+//! meaning), the scene's [`SECTIONS`], and [`num`], the formatter of numbers in messages.
+//!
+//! Every crate of the workspace names scene fields through these constants, so a message, a
+//! check and the documentation (`docs/scenes.md`, checked against [`FIELDS`] by
+//! `cargo xtask tidy`) spell a field alike. This crate depends on nothing.
+//!
+//! ```
+//! use tack_fields::{FIELDS, PROTOCOL_UNLOAD_STEP, field};
+//!
+//! let unload = field(PROTOCOL_UNLOAD_STEP).unwrap();
+//! assert_eq!((unload.section(), unload.key()), ("protocol", "unload_step"));
+//! assert!(FIELDS.iter().any(|f| f.name == "grid.dx"));
+//! ```
+
+/// What a scene field must hold. The scene loader checks every field present against its
+/// kind before the schema, so a wrong value is reported as `grid.n = 32.0 is invalid: must be
+/// an integer in 1..=65536`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    /// A TOML float or integer.
+    Number,
+    /// A TOML integer in `min..=max`, described to the user as `allowed`.
+    Integer {
+        /// Least value allowed.
+        min: i64,
+        /// Greatest value allowed.
+        max: i64,
+        /// The range in words, as messages give it (`an integer ≥ 1`).
+        allowed: &'static str,
+    },
+    /// `true` or `false`.
+    Bool,
+    /// A string.
+    Text,
+    /// One of these strings.
+    Choice(&'static [&'static str]),
+    /// A value of several forms that the field's own parser checks (`output.snapshots`);
+    /// the forms in words.
+    Form(&'static str),
+}
+
+/// One field of a scene file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Field {
+    /// The dotted name, `section.key` (`"grid.dx"`).
+    pub name: &'static str,
+    /// What the field must hold.
+    pub kind: Kind,
+    /// What the field means, in one line.
+    pub meaning: &'static str,
+}
+
+impl Field {
+    /// The section (table) of the field: `grid` for `grid.dx`.
+    pub fn section(&self) -> &'static str {
+        self.name.split_once('.').map_or(self.name, |(s, _)| s)
+    }
+
+    /// The key of the field within its section: `dx` for `grid.dx`.
+    pub fn key(&self) -> &'static str {
+        self.name.split_once('.').map_or(self.name, |(_, k)| k)
+    }
+}
+
+/// The field of this dotted name, if a scene has one.
+pub fn field(name: &str) -> Option<&'static Field> {
+    FIELDS.iter().find(|f| f.name == name)
+}
+
+/// The sections of a scene file, each a TOML table (`version` is the only top-level key
+/// besides them).
+pub const SECTIONS: [&str; 7] = [
+    "material",
+    "geometry",
+    "roughness",
+    "grid",
+    "solver",
+    "protocol",
+    "output",
+];
+
+/// Defines, from one list, a constant per field and the macro [`field_name!`] that gives the
+/// same name as a literal.
+macro_rules! scene_fields {
+    ($($constant:ident = $section:ident . $key:ident,)*) => {
+        $(
+            #[doc = concat!("`", stringify!($section), ".", stringify!($key), "`.")]
+            pub const $constant: &str = concat!(stringify!($section), ".", stringify!($key));
+        )*
+
+        /// Every constant, in the order of the list (the tests hold [`FIELDS`] to it).
+        #[cfg(test)]
+        const CONSTANTS: &[&str] = &[$($constant),*];
+
+        /// The name of a scene field as a string literal, for the places that need one rather
+        /// than a constant: `concat!` (a `&'static str` message built at compile time) and
+        /// attributes. Only the fields of [`FIELDS`] are accepted, so a typo fails to compile.
+        ///
+        /// ```
+        /// const ALLOWED: &str = concat!("≥ ", tack_fields::field_name!(protocol.start));
+        /// assert_eq!(ALLOWED, "≥ protocol.start");
+        /// assert_eq!(tack_fields::field_name!(grid.dx), tack_fields::GRID_DX);
+        /// ```
+        #[macro_export]
+        macro_rules! field_name {
+            $(
+                ($section . $key) => {
+                    concat!(stringify!($section), ".", stringify!($key))
+                };
+            )*
+        }
+    };
+}
+
+scene_fields! {
+    MATERIAL_E_STAR = material.e_star,
+    MATERIAL_GAMMA = material.gamma,
+    GEOMETRY_SHAPE = geometry.shape,
+    GEOMETRY_RADIUS = geometry.radius,
+    GEOMETRY_PUNCH = geometry.punch,
+    GEOMETRY_HALF_SIDE = geometry.half_side,
+    ROUGHNESS_KIND = roughness.kind,
+    ROUGHNESS_H = roughness.h,
+    ROUGHNESS_LAMBDA = roughness.lambda,
+    ROUGHNESS_HURST = roughness.hurst,
+    ROUGHNESS_Q0 = roughness.q0,
+    ROUGHNESS_Q1 = roughness.q1,
+    ROUGHNESS_SEED = roughness.seed,
+    ROUGHNESS_PATH = roughness.path,
+    ROUGHNESS_DATASET = roughness.dataset,
+    GRID_N = grid.n,
+    GRID_NX = grid.nx,
+    GRID_NY = grid.ny,
+    GRID_DX = grid.dx,
+    GRID_LENGTH = grid.length,
+    GRID_BOUNDARY = grid.boundary,
+    GRID_CROP = grid.crop,
+    SOLVER_KAPPA = solver.kappa,
+    SOLVER_TOLERANCE = solver.tolerance,
+    SOLVER_MAX_ITERATIONS = solver.max_iterations,
+    SOLVER_MAX_ACTIVE_SET_ITERATIONS = solver.max_active_set_iterations,
+    SOLVER_ROUND_TOLERANCE = solver.round_tolerance,
+    PROTOCOL_INDENT = protocol.indent,
+    PROTOCOL_START = protocol.start,
+    PROTOCOL_MAX_APPROACH = protocol.max_approach,
+    PROTOCOL_LOAD_STEP = protocol.load_step,
+    PROTOCOL_UNLOAD_STEP = protocol.unload_step,
+    PROTOCOL_COARSE_UNLOAD_STEP = protocol.coarse_unload_step,
+    PROTOCOL_RETRACT_TO = protocol.retract_to,
+    PROTOCOL_MAX_STEPS = protocol.max_steps,
+    OUTPUT_SNAPSHOTS = output.snapshots,
+    OUTPUT_SURFACE = output.surface,
+}
+
+/// The forms `output.snapshots` takes, in words (the [`Kind::Form`] of [`OUTPUT_SNAPSHOTS`]).
+pub const SNAPSHOT_FORMS: &str = "\"none\", \"all\", \"pull_off\", { every = k } with k ≥ 1, or \
+                                  { steps = [i, ...] } with indices ≥ 0";
+
+/// An integer ≥ 1 (counts and caps).
+const AT_LEAST_ONE: Kind = Kind::Integer {
+    min: 1,
+    max: i64::MAX,
+    allowed: "an integer ≥ 1",
+};
+
+/// An element count of a grid side.
+const ELEMENTS: Kind = Kind::Integer {
+    min: 1,
+    max: 65536,
+    allowed: "an integer in 1..=65536",
+};
+
+/// Shorthand for a table entry.
+const fn f(name: &'static str, kind: Kind, meaning: &'static str) -> Field {
+    Field {
+        name,
+        kind,
+        meaning,
+    }
+}
+
+/// Every field a scene file accepts, section by section in the order of `docs/scenes.md`,
+/// with what it must hold and what it means. The ranges of numbers (`> 0`, finite, ...) are
+/// checked when a scene is validated; the kinds here when it is read.
+pub const FIELDS: &[Field] = &[
+    f(MATERIAL_E_STAR, Kind::Number, "effective modulus E*"),
+    f(
+        MATERIAL_GAMMA,
+        Kind::Number,
+        "work of adhesion γ per unit area (0: non-adhesive)",
+    ),
+    f(
+        GEOMETRY_SHAPE,
+        Kind::Choice(&["sphere", "flat_punch", "none"]),
+        "the macroscopic body",
+    ),
+    f(
+        GEOMETRY_RADIUS,
+        Kind::Number,
+        "radius of a sphere or of a circular punch face",
+    ),
+    f(
+        GEOMETRY_PUNCH,
+        Kind::Choice(&["circle", "square"]),
+        "the face of a flat punch",
+    ),
+    f(
+        GEOMETRY_HALF_SIDE,
+        Kind::Number,
+        "half the side of a square punch face",
+    ),
+    f(
+        ROUGHNESS_KIND,
+        Kind::Choice(&["waviness1d", "waviness2d", "random", "file"]),
+        "the type of roughness added to the shape",
+    ),
+    f(
+        ROUGHNESS_H,
+        Kind::Number,
+        "amplitude of a waviness, rms height of random roughness",
+    ),
+    f(ROUGHNESS_LAMBDA, Kind::Number, "wavelength of a waviness"),
+    f(
+        ROUGHNESS_HURST,
+        Kind::Number,
+        "Hurst exponent H of random roughness",
+    ),
+    f(
+        ROUGHNESS_Q0,
+        Kind::Number,
+        "lower cut-off wave vector of random roughness",
+    ),
+    f(
+        ROUGHNESS_Q1,
+        Kind::Number,
+        "upper cut-off wave vector of random roughness",
+    ),
+    f(
+        ROUGHNESS_SEED,
+        Kind::Integer {
+            min: 0,
+            max: i64::MAX,
+            allowed: "an integer ≥ 0 (the seed of the random phases)",
+        },
+        "seed of the random phases",
+    ),
+    f(
+        ROUGHNESS_PATH,
+        Kind::Text,
+        "measured height map, relative to the scene file's directory",
+    ),
+    f(
+        ROUGHNESS_DATASET,
+        Kind::Text,
+        "HDF5 dataset of a measured height map",
+    ),
+    f(GRID_N, ELEMENTS, "elements per side of a square grid"),
+    f(GRID_NX, ELEMENTS, "elements along x"),
+    f(GRID_NY, ELEMENTS, "elements along y"),
+    f(GRID_DX, Kind::Number, "element size"),
+    f(GRID_LENGTH, Kind::Number, "domain length along x, nx·dx"),
+    f(
+        GRID_BOUNDARY,
+        Kind::Choice(&["free", "periodic"]),
+        "non-periodic half-space or one period of a repeated pattern",
+    ),
+    f(
+        GRID_CROP,
+        Kind::Bool,
+        "crop the domain to where contact can occur",
+    ),
+    f(
+        SOLVER_KAPPA,
+        Kind::Number,
+        "Pohrt–Popov constant κ of σ_c = sqrt(E*γ/(κΔx))",
+    ),
+    f(SOLVER_TOLERANCE, Kind::Number, "relative CG tolerance"),
+    f(
+        SOLVER_MAX_ITERATIONS,
+        AT_LEAST_ONE,
+        "cap on CG iterations per solve",
+    ),
+    f(
+        SOLVER_MAX_ACTIVE_SET_ITERATIONS,
+        AT_LEAST_ONE,
+        "cap on detach/attach rounds per approach step",
+    ),
+    f(
+        SOLVER_ROUND_TOLERANCE,
+        Kind::Number,
+        "CG tolerance of the inexact detach/attach rounds (0: every round exact)",
+    ),
+    f(
+        PROTOCOL_INDENT,
+        Kind::Number,
+        "one step pressed in to this approach, no retraction",
+    ),
+    f(PROTOCOL_START, Kind::Number, "first approach"),
+    f(PROTOCOL_MAX_APPROACH, Kind::Number, "deepest approach"),
+    f(
+        PROTOCOL_LOAD_STEP,
+        Kind::Number,
+        "approach increment while loading",
+    ),
+    f(
+        PROTOCOL_UNLOAD_STEP,
+        Kind::Number,
+        "approach decrement while retracting",
+    ),
+    f(
+        PROTOCOL_COARSE_UNLOAD_STEP,
+        Kind::Number,
+        "approach decrement while retracting and the force is still compressive",
+    ),
+    f(
+        PROTOCOL_RETRACT_TO,
+        Kind::Number,
+        "stop retracting below this approach",
+    ),
+    f(
+        PROTOCOL_MAX_STEPS,
+        AT_LEAST_ONE,
+        "cap on the number of steps",
+    ),
+    f(
+        OUTPUT_SNAPSHOTS,
+        Kind::Form(SNAPSHOT_FORMS),
+        "which steps store their pressure field and bonded mask",
+    ),
+    f(OUTPUT_SURFACE, Kind::Bool, "store the surface heights"),
+];
+
+/// A number as a person reads it in a message: plain for moderate magnitudes (and for 0, NaN
+/// and infinities), otherwise in scientific notation with the shortest digits that round-trip
+/// (`1.797e308`, not 309 digits; `5e-324`).
+pub fn num(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-5..1e16).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_are_unique_dotted_and_in_known_sections() {
+        for (i, f) in FIELDS.iter().enumerate() {
+            assert!(SECTIONS.contains(&f.section()), "{}", f.name);
+            assert!(!f.key().is_empty() && !f.key().contains('.'), "{}", f.name);
+            assert!(
+                FIELDS[..i].iter().all(|g| g.name != f.name),
+                "{} twice",
+                f.name
+            );
+            assert!(!f.meaning.is_empty(), "{}", f.name);
+        }
+        assert_eq!(FIELDS.len(), 37);
+    }
+
+    #[test]
+    fn the_table_has_every_constant_in_order() {
+        let names: Vec<&str> = FIELDS.iter().map(|f| f.name).collect();
+        assert_eq!(names, CONSTANTS);
+    }
+
+    #[test]
+    fn constants_and_literals_agree() {
+        assert_eq!(field_name!(protocol.unload_step), PROTOCOL_UNLOAD_STEP);
+        assert_eq!(field_name!(output.surface), FIELDS[FIELDS.len() - 1].name);
+        assert_eq!(MATERIAL_E_STAR, "material.e_star");
+    }
+
+    #[test]
+    fn lookup_by_name() {
+        assert_eq!(field(GRID_DX).map(|f| f.kind), Some(Kind::Number));
+        assert_eq!(field("grid.dy"), None);
+        let unload = field(PROTOCOL_UNLOAD_STEP).unwrap();
+        assert_eq!(
+            (unload.section(), unload.key()),
+            ("protocol", "unload_step")
+        );
+    }
+
+    #[test]
+    fn numbers_are_plain_or_shortest_scientific() {
+        assert_eq!(num(0.0), "0");
+        assert_eq!(num(0.25), "0.25");
+        assert_eq!(num(-3.0), "-3");
+        assert_eq!(num(1e-5), "0.00001");
+        assert_eq!(num(1.5e-7), "1.5e-7");
+        assert_eq!(num(1.797e308), "1.797e308");
+        assert_eq!(num(5e-324), "5e-324");
+        assert_eq!(num(1e16), "1e16");
+        assert_eq!(num(f64::NAN), "NaN");
+        assert_eq!(num(f64::NEG_INFINITY), "-inf");
+    }
+}
+
+/// The example of README.md, run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctest;
