@@ -370,8 +370,7 @@ pub fn all(args: &[String]) -> Result<()> {
     rows.extend(hertz_only(1024)?);
 
     std::fs::create_dir_all("results")?;
-    std::fs::write("results/bench.json.tmp", json(&rows))?;
-    std::fs::rename("results/bench.json.tmp", "results/bench.json")?;
+    tack_io::write_text_atomically("results/bench.json".as_ref(), &json(&rows))?;
     println!("wrote results/bench.json");
     Ok(())
 }

@@ -223,11 +223,10 @@ pub fn run(args: &[String]) -> Result<()> {
          |ΔF| covered {first}, tack's estimate {ours}; Richardson was closer than F in {closer}"
     );
     std::fs::create_dir_all("results")?;
-    std::fs::write(
-        "results/convergence.json.tmp",
-        format!("[\n{}\n]\n", json.join(",\n")),
+    tack_io::write_text_atomically(
+        "results/convergence.json".as_ref(),
+        &format!("[\n{}\n]\n", json.join(",\n")),
     )?;
-    std::fs::rename("results/convergence.json.tmp", "results/convergence.json")?;
     println!("\nwrote results/convergence.json");
     Ok(())
 }

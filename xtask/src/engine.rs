@@ -46,7 +46,7 @@ pub struct RunSpec {
 
 /// What a run produced.
 #[derive(Debug)]
-pub struct RunOutput {
+pub struct FigureRun {
     /// File stem.
     pub name: String,
     /// The scene as run (full grid).
@@ -63,7 +63,7 @@ pub struct RunOutput {
     pub seconds: f64,
 }
 
-impl RunOutput {
+impl FigureRun {
     /// Pull-off force over the JKR force (NaN for bodies other than spheres).
     pub fn pull_off_ratio(&self) -> f64 {
         self.path.pull_off_force() / self.problem.references.f_jkr.unwrap_or(f64::NAN)
@@ -96,7 +96,7 @@ impl RunOutput {
 /// crop window, the result), keeping the fields of `spec.keep`: the pull-off and last-contact
 /// fields by the scene's own `output.snapshots = "pull_off"`, the break-up and periodic unload
 /// fields by a [`Keeper`] observer.
-pub fn run(spec: &RunSpec) -> Result<RunOutput> {
+pub fn run(spec: &RunSpec) -> Result<FigureRun> {
     let mut scene = spec.scene.clone();
     scene.file.output.snapshots = if spec.keep.pull_off || spec.keep.last_contact {
         Snapshots::PullOff
@@ -116,7 +116,7 @@ pub fn run(spec: &RunSpec) -> Result<RunOutput> {
         kept.insert(s.step, s);
     }
     outcome.replace_snapshots(kept.into_values().collect());
-    Ok(RunOutput {
+    Ok(FigureRun {
         name: spec.name.clone(),
         scene: spec.scene.clone(),
         touched_edge: outcome.path.records.iter().any(|r| r.edge_contact),
@@ -207,7 +207,7 @@ impl Observer for Keeper {
 
 /// Runs a batch in parallel; prints one line per finished run (`[label k/n] name: ...`).
 /// Results come back in the order of `specs`.
-pub fn run_all(label: &str, specs: &[RunSpec]) -> Result<Vec<Arc<RunOutput>>> {
+pub fn run_all(label: &str, specs: &[RunSpec]) -> Result<Vec<Arc<FigureRun>>> {
     let done = AtomicUsize::new(0);
     let n = specs.len();
     specs
@@ -222,7 +222,7 @@ pub fn run_all(label: &str, specs: &[RunSpec]) -> Result<Vec<Arc<RunOutput>>> {
 }
 
 /// One line about a finished run.
-fn describe(r: &RunOutput) -> String {
+fn describe(r: &FigureRun) -> String {
     let (nx, ny) = r.problem.grid.shape();
     let mut s = format!(
         "{}: {} steps on {}, {:.1} s",
@@ -254,7 +254,7 @@ fn describe(r: &RunOutput) -> String {
 /// the snapshots on the full grid as `tack run` writes them.
 /// Of the kept fields, only the pull-off step, the last contact and the steps in `shown` are
 /// written (the others served the figure's selection).
-pub fn write_run(dir: &Path, r: &RunOutput, shown: &[usize]) -> Result<()> {
+pub fn write_run(dir: &Path, r: &FigureRun, shown: &[usize]) -> Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
     let last = r.path.records.iter().rposition(|s| s.n_bonded > 0);
     let keep = |k: usize| k == r.pull_off_step() || Some(k) == last || shown.contains(&k);

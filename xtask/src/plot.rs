@@ -102,9 +102,7 @@ pub fn svg(path: &Path, size: (u32, u32), draw: impl FnOnce(&Area) -> Result<()>
         draw(&root)?;
         root.present().map_err(pe)?;
     }
-    let tmp = path.with_extension("svg.tmp");
-    std::fs::write(&tmp, text)?;
-    std::fs::rename(&tmp, path)?;
+    tack_io::write_text_atomically(path, &text)?;
     Ok(())
 }
 

@@ -10,7 +10,7 @@ use std::time::Instant;
 
 use anyhow::{Context, Result};
 
-use crate::figures::{self, Ctx, Summary};
+use crate::figures::{self, Ctx, FigureSummary};
 use crate::validation;
 
 /// What to reproduce and where.
@@ -98,7 +98,7 @@ pub struct Done {
     /// The figure's title (from its spec).
     pub title: String,
     /// The summary.
-    pub summary: Summary,
+    pub summary: FigureSummary,
     /// Wall time in seconds.
     pub seconds: f64,
 }
@@ -201,10 +201,8 @@ pub fn run(args: &[String]) -> Result<()> {
 }
 
 fn write_atomic(path: &std::path::Path, text: &str) -> Result<()> {
-    let tmp = path.with_extension("tmp");
-    std::fs::write(&tmp, text).with_context(|| format!("writing {}", tmp.display()))?;
-    std::fs::rename(&tmp, path).with_context(|| format!("writing {}", path.display()))?;
-    Ok(())
+    tack_io::write_text_atomically(path, text)
+        .with_context(|| format!("writing {}", path.display()))
 }
 
 #[cfg(test)]

@@ -17,7 +17,7 @@ use tack::provenance;
 use tack::scene::Scene;
 use tack_cli::plot;
 use tack_cli::progress::{Progress, SweepProgress};
-use tack_cli::report::{self, num};
+use tack_cli::report::{self, rounded};
 use tack_sweep::{MergeOptions, Shard, Sweep, SweepOptions};
 
 /// Adhesive strength of rough elastic contacts (Li, Pohrt & Popov 2019), by FFT-accelerated BEM.
@@ -166,9 +166,9 @@ fn execute(command: Command) -> anyhow::Result<()> {
                 output.display(),
                 g.nx(),
                 g.ny(),
-                num(g.dx()),
-                num(problem.surface.min()),
-                num(problem.surface.max())
+                rounded(g.dx()),
+                rounded(problem.surface.min()),
+                rounded(problem.surface.max())
             );
         }
         Command::Check { scene, set } => {
@@ -180,17 +180,17 @@ fn execute(command: Command) -> anyhow::Result<()> {
                 scene.display(),
                 p.grid.nx(),
                 p.grid.ny(),
-                num(p.grid.dx()),
-                num(p.first_touch),
-                num(p.path.start),
-                num(p.path.max_approach),
-                num(p.path.load_step),
-                num(p.path.unload_step),
+                rounded(p.grid.dx()),
+                rounded(p.first_touch),
+                rounded(p.path.start),
+                rounded(p.path.max_approach),
+                rounded(p.path.load_step),
+                rounded(p.path.unload_step),
                 p.path
                     .coarse_unload_step
                     .map_or_else(String::new, |c| format!(
                         ", {} while the force is compressive",
-                        num(c)
+                        rounded(c)
                     ))
             );
             if let Some(rule) = &p.path_rule {

@@ -266,7 +266,7 @@ fn draw_curve<DB: DrawingBackend>(
         }
         _ => format!(
             "force–approach (pull-off force {})",
-            crate::report::num(fig.result.summary.pull_off_force)
+            crate::report::rounded(fig.result.summary.pull_off_force)
         ),
     };
     let mut chart = ChartBuilder::on(area)

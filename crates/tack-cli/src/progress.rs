@@ -8,7 +8,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use tack::solver::{Observer, Phase, StepRecord};
 use tack_sweep::SweepObserver;
 
-use crate::report::num;
+use crate::report::rounded;
 
 /// Drives a progress spinner from the solver's step hook.
 pub struct Progress {
@@ -47,8 +47,8 @@ impl Observer for Progress {
         };
         self.bar.set_message(format!(
             "{phase}: d = {}, F = {}, bonded {}{}",
-            num(r.approach),
-            num(r.force),
+            rounded(r.approach),
+            rounded(r.force),
             r.n_bonded,
             if r.converged { "" } else { " (not converged)" }
         ));

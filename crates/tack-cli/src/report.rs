@@ -26,9 +26,9 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
     ));
     lines.push(format!(
         "material    E* = {}, gamma = {}, kappa = {}",
-        num(p.e_star),
-        num(p.gamma),
-        num(p.kappa)
+        rounded(p.e_star),
+        rounded(p.gamma),
+        rounded(p.kappa)
     ));
     let boundary = match p.grid.boundary() {
         tack::geometry::Boundary::Free => "free",
@@ -70,7 +70,7 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
     if p.path.is_indentation() {
         lines.push(format!(
             "path        indentation: one step to d = {}{stopped}",
-            num(p.path.max_approach)
+            rounded(p.path.max_approach)
         ));
     } else {
         lines.push(format!(
@@ -78,8 +78,8 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
             path.records.len(),
             loads,
             path.records.len() - loads,
-            num(p.path.start),
-            num(p.path.max_approach),
+            rounded(p.path.start),
+            rounded(p.path.max_approach),
         ));
     }
     if let Some(rule) = &p.path_rule {
@@ -97,9 +97,9 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
         if let Some(r) = path.records.last() {
             lines.push(format!(
                 "force       F = {} at d = {}, contact area {}{}",
-                num(r.force),
-                num(r.approach),
-                num(r.area),
+                rounded(r.force),
+                rounded(r.approach),
+                rounded(r.area),
                 if r.full_contact {
                     " (full contact)"
                 } else {
@@ -111,8 +111,8 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
         match path.pull_off_step() {
             Some(i) if adhesive => lines.push(format!(
                 "pull-off    F = {} at d = {}{}",
-                num(s.pull_off_force),
-                num(path.records[i].approach),
+                rounded(s.pull_off_force),
+                rounded(path.records[i].approach),
                 if periodic {
                     " (the least force over the steps not in full contact)"
                 } else {
@@ -126,8 +126,8 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
                     .max_by(|a, b| a.force.total_cmp(&b.force));
                 lines.push(format!(
                     "force       no adhesion (gamma = 0), no pull-off; peak load F = {} at d = {}",
-                    num(peak.map_or(f64::NAN, |r| r.force)),
-                    num(peak.map_or(f64::NAN, |r| r.approach))
+                    rounded(peak.map_or(f64::NAN, |r| r.force)),
+                    rounded(peak.map_or(f64::NAN, |r| r.approach))
                 ));
             }
             None => lines.push("pull-off    none: no step outside full contact".to_owned()),
@@ -136,14 +136,14 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
     if adhesive && s.f_jkr.is_finite() && s.f_jkr != 0.0 {
         lines.push(format!(
             "            F_JKR = {}, F/F_JKR = {:.4} (Eq. 7)",
-            num(s.f_jkr),
+            rounded(s.f_jkr),
             s.pull_off_ratio
         ));
     }
     if let Some(&fk) = s.extra.get("f_kendall").filter(|_| adhesive) {
         lines.push(format!(
             "            F_Kendall = {}, F/F_Kendall = {:.4}",
-            num(fk),
+            rounded(fk),
             s.pull_off_force / fk
         ));
     }
@@ -157,8 +157,8 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
             .map_or(String::new(), |r| format!(", F/F_JKR = {r:.4}"));
         lines.push(format!(
             "Richardson  F = {} = 2·F(Δx) − F(2Δx), F(2Δx) = {}{ratio}",
-            num(fr),
-            num(fc)
+            rounded(fr),
+            rounded(fc)
         ));
         if let Some(&err) = s.extra.get("pull_off_error_estimate") {
             let relative = if s.pull_off_force != 0.0 {
@@ -169,7 +169,7 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
             lines.push(format!(
                 "            error estimate of F(Δx) = {}{relative}: the larger of |F(Δx) − F(2Δx)| \
                  and, for spheres, {}·(Δx/a_c)·|F|",
-                num(err),
+                rounded(err),
                 tack::solver::CRITERION_ERROR_COEFFICIENT
             ));
         }
@@ -180,9 +180,9 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
     {
         lines.push(format!(
             "            min mean pressure = {} = {:.4} p* (p* = {}, complete-contact pressure)",
-            num(p_min),
+            rounded(p_min),
             p_min / p_star,
-            num(p_star)
+            rounded(p_star)
         ));
     }
     if let Some(a) = s.johnson_alpha {
@@ -282,10 +282,16 @@ fn describe_body(geometry: &Geometry, roughness: &Option<Roughness>) -> String {
     shape + &rough
 }
 
+/// The former name of [`rounded`] (one `num` is enough: `tack_fields::num`).
+#[deprecated(since = "0.1.0", note = "renamed `rounded`")]
+pub fn num(x: f64) -> String {
+    rounded(x)
+}
+
 /// A number with 6 significant digits, in plain notation for magnitudes in [1e-3, 1e6): the
 /// report's rounded display. Messages quoting a value use the round-trip formatter
-/// `tack::scene::num` (`tack_fields::num`) instead, which keeps every digit.
-pub fn num(x: f64) -> String {
+/// `tack_fields::num` instead, which keeps every digit.
+pub fn rounded(x: f64) -> String {
     if x == 0.0 || !x.is_finite() {
         return format!("{x}");
     }
@@ -345,12 +351,12 @@ mod tests {
         let text = report(&scene, &outcome, None);
         let want = format!(
             "F = {} at d = {} ",
-            num(records[i].force),
-            num(records[i].approach)
+            rounded(records[i].force),
+            rounded(records[i].approach)
         );
         assert!(text.contains(&want), "{text}\nwants {want}");
         assert!(
-            !text.contains(&format!("at d = {} ", num(least.approach))),
+            !text.contains(&format!("at d = {} ", rounded(least.approach))),
             "{text}"
         );
         // The least mean pressure is a state's, not the full-contact bound.
@@ -377,7 +383,7 @@ mod tests {
             .map(|r| r.force)
             .fold(0.0, f64::max);
         assert!(
-            text.contains(&format!("peak load F = {}", num(peak))),
+            text.contains(&format!("peak load F = {}", rounded(peak))),
             "{text}"
         );
     }
@@ -407,20 +413,20 @@ mod tests {
             (s.pull_off_force - s.extra["pull_off_force_coarse"]).abs()
         );
         assert!(
-            text.contains(&format!("error estimate of F(Δx) = {}", num(err))),
+            text.contains(&format!("error estimate of F(Δx) = {}", rounded(err))),
             "{text}"
         );
     }
 
     #[test]
     fn numbers_have_six_significant_digits() {
-        assert_eq!(num(-5.3454057683), "-5.34541");
-        assert_eq!(num(0.005), "0.005");
-        assert_eq!(num(3.0), "3");
-        assert_eq!(num(123456.7), "123457");
-        assert_eq!(num(1.5e-7), "1.5e-7");
-        assert_eq!(num(5e-4), "5e-4");
-        assert_eq!(num(f64::NAN), "NaN");
-        assert_eq!(num(0.0), "0");
+        assert_eq!(rounded(-5.3454057683), "-5.34541");
+        assert_eq!(rounded(0.005), "0.005");
+        assert_eq!(rounded(3.0), "3");
+        assert_eq!(rounded(123456.7), "123457");
+        assert_eq!(rounded(1.5e-7), "1.5e-7");
+        assert_eq!(rounded(5e-4), "5e-4");
+        assert_eq!(rounded(f64::NAN), "NaN");
+        assert_eq!(rounded(0.0), "0");
     }
 }

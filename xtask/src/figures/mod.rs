@@ -1,5 +1,5 @@
 //! The paper's Figures 1–8: each builds its runs from its spec, runs them, and writes
-//! `figN.h5`, `figN.svg`, the runs' result files under `figN/` and a [`Summary`]. Figures 1, 2
+//! `figN.h5`, `figN.svg`, the runs' result files under `figN/` and a [`FigureSummary`]. Figures 1, 2
 //! and 4 run through the engine (`figN/<run>.h5`); Figures 5 and 7 are tack sweeps whose point
 //! files stay in `figN/sweep-<mode>/` (resumed by a rerun); Figures 6 and 8 read Figure 7's sweep
 //! and copy the point files they show to `figN/<run>.h5`.
@@ -25,7 +25,7 @@ use tack::heights::{COARSE_UNLOAD_STEP, LOAD_DEPTH, UNLOAD_STEP};
 use tack::scene::{Geometry, SceneSchema};
 use tack_analytics::jkr_approach_scale;
 
-use crate::engine::{RunOutput, write_run};
+use crate::engine::{FigureRun, write_run};
 use crate::plot::{Area, svg};
 use crate::spec::FigureSpec;
 
@@ -61,7 +61,7 @@ pub struct Item {
 
 /// The numbers a figure reports, printed with three significant digits.
 #[derive(Debug, Clone, PartialEq, Default)]
-pub struct Summary {
+pub struct FigureSummary {
     /// Figure number.
     pub figure: u8,
     /// One line on what was compared.
@@ -72,7 +72,7 @@ pub struct Summary {
     pub notes: Vec<String>,
 }
 
-impl Summary {
+impl FigureSummary {
     /// An empty summary of figure `figure`.
     pub fn new(figure: u8, compared: impl Into<String>) -> Self {
         Self {
@@ -195,7 +195,7 @@ impl Table {
 pub enum RunFiles<'a> {
     /// Engine runs: written to `figN/<name>.h5` (`figN/` is emptied first), with the fields of
     /// their pull-off step, last contact and the steps in `table.shown`.
-    Engine(&'a [Arc<RunOutput>]),
+    Engine(&'a [Arc<FigureRun>]),
     /// The runs are the point files of the figure's sweep in `figN/sweep-<mode>/`: nothing is
     /// written, and the result files an older layout left directly in `figN/` are removed.
     Sweep,
@@ -218,7 +218,7 @@ pub fn write_figure(
     ctx: &Ctx,
     spec: &FigureSpec,
     table: &Table,
-    summary: &Summary,
+    summary: &FigureSummary,
     runs: RunFiles,
     size: (u32, u32),
     draw: impl FnOnce(&Area) -> Result<()>,
@@ -336,7 +336,7 @@ pub fn runs_location(n: u8, full: bool) -> String {
 }
 
 /// Runs figure `n` (1–8) and returns its summary.
-pub fn run(n: u8, ctx: &Ctx) -> Result<Summary> {
+pub fn run(n: u8, ctx: &Ctx) -> Result<FigureSummary> {
     match n {
         1 => periodic::fig1(ctx),
         2 => periodic::fig2(ctx),

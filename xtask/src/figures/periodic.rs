@@ -12,8 +12,8 @@ use tack_analytics::{
 };
 use tack_solver::{Phase, count_clusters};
 
-use super::{Ctx, RunFiles, Summary, Table, write_figure};
-use crate::engine::{Keep, RunOutput, RunSpec, run_all};
+use super::{Ctx, FigureSummary, RunFiles, Table, write_figure};
+use crate::engine::{FigureRun, Keep, RunSpec, run_all};
 use crate::plot::{Chart, Map, Series, Style, draw_chart, draw_maps};
 use crate::spec::{FigureSpec, scene};
 
@@ -31,7 +31,7 @@ struct Params {
 }
 
 /// The runs of a periodic waviness figure: one per α, γ = α²π²h²E*/(2λ).
-fn runs(spec: &FigureSpec, params: &Params, keep: Keep) -> Result<Vec<std::sync::Arc<RunOutput>>> {
+fn runs(spec: &FigureSpec, params: &Params, keep: Keep) -> Result<Vec<std::sync::Arc<FigureRun>>> {
     let base = spec.scene()?;
     let (h, lambda) = match base.roughness {
         Some(Roughness::Waviness1d { h, lambda } | Roughness::Waviness2d { h, lambda }) => {
@@ -58,7 +58,7 @@ fn runs(spec: &FigureSpec, params: &Params, keep: Keep) -> Result<Vec<std::sync:
 
 /// Unload states at the tip of a saw tooth (the next step has fewer bonded elements: the front
 /// is critical) that are not in full contact: the numerical Griffith equilibria.
-fn griffith_states(r: &RunOutput) -> impl Iterator<Item = usize> + '_ {
+fn griffith_states(r: &FigureRun) -> impl Iterator<Item = usize> + '_ {
     let rec = &r.path.records;
     (0..rec.len().saturating_sub(1)).filter(move |&k| {
         r.path.phases[k] == Phase::Unload
@@ -69,7 +69,7 @@ fn griffith_states(r: &RunOutput) -> impl Iterator<Item = usize> + '_ {
 }
 
 /// Figure 1: p̄/p*_1D against ψ = πa/λ with Eq. 2 overlaid, for several α.
-pub fn fig1(ctx: &Ctx) -> Result<Summary> {
+pub fn fig1(ctx: &Ctx) -> Result<FigureSummary> {
     let spec = ctx.spec(1)?;
     let params: Params = spec.params()?;
     let runs = runs(&spec, &params, Keep::default())?;
@@ -77,7 +77,7 @@ pub fn fig1(ctx: &Ctx) -> Result<Summary> {
         "# approach = psi = pi a/lambda (a = n_bonded dx/2) of a Griffith state (unload, tip of a saw tooth)\n\
          # force = mean pressure / p*_1D\n# mean_pressure = Eq. 2 at psi\n# area = 0\n# n_bonded = index of alpha in the spec",
     );
-    let mut summary = Summary::new(
+    let mut summary = FigureSummary::new(
         1,
         format!(
             "max |p̄ − Eq. 2|/p*_1D over Griffith states with πa/λ in [{}, {}]",
@@ -147,7 +147,7 @@ pub fn fig1(ctx: &Ctx) -> Result<Summary> {
 /// The pattern h[1 − cos(2πx/λ)cos(2πy/λ)] has two troughs per λ×λ cell, at (λ/2, 0) and
 /// (0, λ/2), so near full contact there are two holes per cell: the radius of one is
 /// b = sqrt((λ² − A)/(2π)), and Eq. 5's curve is at πa*/λ = sqrt(π − 2ψ_b²).
-pub fn fig2(ctx: &Ctx) -> Result<Summary> {
+pub fn fig2(ctx: &Ctx) -> Result<FigureSummary> {
     let spec = ctx.spec(2)?;
     let params: Params = spec.params()?;
     let base = spec.scene()?;
@@ -167,7 +167,7 @@ pub fn fig2(ctx: &Ctx) -> Result<Summary> {
          # n_bonded = index of alpha in the spec",
     );
     let (lo, hi) = (params.compare[0], params.compare[1]);
-    let mut summary = Summary::new(
+    let mut summary = FigureSummary::new(
         2,
         format!("max |p̄ − Eq. 5|/p*_2D over Griffith states with ψ_b = πb/λ in [{lo}, {hi}]"),
     );

@@ -10,7 +10,7 @@ use tack::scene::{Geometry, Roughness, SceneSchema, Snapshots};
 use tack_analytics::{GaussianFit, fit_gaussian, jkr_pull_off_approach, lambda_star};
 use tack_geometry::{Boundary, Grid, rough_surface};
 
-use super::{Ctx, PullOff, RunFiles, Summary, Table, crop_maps, sphere_scene, write_figure};
+use super::{Ctx, FigureSummary, PullOff, RunFiles, Table, crop_maps, sphere_scene, write_figure};
 use crate::plot::{Chart, Map, Series, Style, draw_chart, draw_maps};
 use crate::sweeps::{FigureSweep, PointRun, PointScene};
 
@@ -198,14 +198,14 @@ const FIT_START: GaussianFit = GaussianFit {
 
 /// Figure 7: mean ± standard deviation of |F_ad/F_JKR| over realizations against h (A) and
 /// against α* with Eq. 12 and the fitted Gaussian (B).
-pub fn fig7(ctx: &Ctx) -> Result<Summary> {
+pub fn fig7(ctx: &Ctx) -> Result<FigureSummary> {
     let spec = ctx.spec(7)?;
     let (p, pts, d_jkr, notes) = points(ctx)?;
     let mut table = Table::new(
         "# approach = alpha* (Eq. 11), force = mean |F_ad/F_JKR| over the seeds\n\
          # area = its standard deviation, mean_pressure = Eq. 12 at alpha*, n_bonded = index of H",
     );
-    let mut summary = Summary::new(
+    let mut summary = FigureSummary::new(
         7,
         "mean |F_ad/F_JKR| over realizations vs α*: Gaussian fit A·exp(−((α*−c)/w)²) vs Eq. 12",
     );
@@ -303,7 +303,7 @@ pub fn fig7(ctx: &Ctx) -> Result<Summary> {
 }
 
 /// Figure 6: force–distance curves of the first realization for several H and roughnesses.
-pub fn fig6(ctx: &Ctx) -> Result<Summary> {
+pub fn fig6(ctx: &Ctx) -> Result<FigureSummary> {
     let spec = ctx.spec(6)?;
     let sel: Fig6 = spec.params()?;
     let (_, pts, d_jkr, _) = points(ctx)?;
@@ -311,7 +311,7 @@ pub fn fig6(ctx: &Ctx) -> Result<Summary> {
         "# approach = d/|d_JKR| (from the mean plane), force = F/|F_JKR|, every step of the first seed\n\
          # area = alpha*, mean_pressure = NaN, n_bonded = index of the (H, alpha*) curve",
     );
-    let mut summary = Summary::new(
+    let mut summary = FigureSummary::new(
         6,
         "force–distance curves (first realization); pull-off |F_ad/F_JKR| per curve",
     );
@@ -393,7 +393,7 @@ pub fn fig6(ctx: &Ctx) -> Result<Summary> {
 
 /// Figure 8: contact configurations at pull-off of the first realization, for each H at the
 /// roughness of greatest force, at |F_ad/F_JKR| ≈ `middle` and below `weak`.
-pub fn fig8(ctx: &Ctx) -> Result<Summary> {
+pub fn fig8(ctx: &Ctx) -> Result<FigureSummary> {
     let spec = ctx.spec(8)?;
     let sel: Fig8 = spec.params()?;
     let (p, pts, d_jkr, _) = points(ctx)?;
@@ -401,7 +401,7 @@ pub fn fig8(ctx: &Ctx) -> Result<Summary> {
         "# approach = h/|d_JKR| of the shown configuration, force = mean |F_ad/F_JKR| there\n\
          # area = alpha*, mean_pressure = NaN, n_bonded = index of H (three rows each: max, middle, weak)",
     );
-    let mut summary = Summary::new(
+    let mut summary = FigureSummary::new(
         8,
         "contact configurations at pull-off: chosen α* per H (max force, ≈ middle, < weak)",
     );

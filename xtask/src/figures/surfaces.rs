@@ -7,7 +7,7 @@ use tack::Problem;
 use tack::scene::{Geometry, SceneSchema};
 use tack_analytics::{jkr_pull_off_approach, jkr_pull_off_radius};
 
-use super::{Ctx, RunFiles, Summary, Table, rough_sphere, wavy_sphere, write_figure};
+use super::{Ctx, FigureSummary, RunFiles, Table, rough_sphere, wavy_sphere, write_figure};
 use crate::plot::{Chart, Map, Series, Style, draw_chart, draw_maps};
 use crate::spec::scene;
 
@@ -67,7 +67,7 @@ fn cut(ctx: &Ctx, file: SceneSchema, extent: f64) -> Result<Cut> {
 }
 
 /// Figure 3: height maps of the wavy and the randomly rough sphere, and their centre lines.
-pub fn fig3(ctx: &Ctx) -> Result<Summary> {
+pub fn fig3(ctx: &Ctx) -> Result<FigureSummary> {
     let spec = ctx.spec(3)?;
     let p: Fig3 = spec.params()?;
     let wavy = wavy_sphere::scene_for(ctx, p.wavy_alpha)?;
@@ -91,7 +91,7 @@ pub fn fig3(ctx: &Ctx) -> Result<Summary> {
             table.push(s, x, f, f64::NAN, 0.0);
         }
     }
-    let mut summary = Summary::new(
+    let mut summary = FigureSummary::new(
         3,
         "surfaces: sphere + 2D waviness (α) and sphere + random roughness (α*)",
     );

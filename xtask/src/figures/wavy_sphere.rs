@@ -15,9 +15,9 @@ use tack_analytics::{
 };
 
 use super::{
-    Ctx, PullOff, RunFiles, Summary, Table, crop_maps, jkr_curve, sphere_scene, write_figure,
+    Ctx, FigureSummary, PullOff, RunFiles, Table, crop_maps, jkr_curve, sphere_scene, write_figure,
 };
-use crate::engine::{Keep, RunOutput, RunSpec, run_all};
+use crate::engine::{FigureRun, Keep, RunSpec, run_all};
 use crate::plot::{Chart, Map, Series, Style, draw_chart, draw_maps};
 use crate::spec::scene;
 use crate::sweeps::{FigureSweep, PointScene};
@@ -96,7 +96,7 @@ pub fn scene_for(ctx: &Ctx, alpha: f64) -> Result<SceneSchema> {
 
 /// Figure 4's runs: one per α, keeping the pull-off, the last contact and the unload steps
 /// every 0.25 (Rγ²/E*²)^(1/3) for the contact configurations.
-fn runs(ctx: &Ctx, base: &SceneSchema, p: &Fig4) -> Result<Vec<Arc<RunOutput>>> {
+fn runs(ctx: &Ctx, base: &SceneSchema, p: &Fig4) -> Result<Vec<Arc<FigureRun>>> {
     let path = PullOff::for_mode(ctx.full);
     let specs = p
         .alphas
@@ -143,7 +143,7 @@ fn wave(file: &SceneSchema) -> (f64, f64, f64) {
 }
 
 /// The force–approach curve of a run, F/|F_JKR| against (d − offset)/|d_JKR|.
-fn normalised_curve(r: &RunOutput, offset: f64) -> Vec<(f64, f64)> {
+fn normalised_curve(r: &FigureRun, offset: f64) -> Vec<(f64, f64)> {
     let f = r.problem.references.f_jkr.unwrap_or(f64::NAN).abs();
     let d = jkr_pull_off_approach(r.problem.e_star, r.problem.gamma, radius(&r.scene.file)).abs();
     r.path
@@ -154,7 +154,7 @@ fn normalised_curve(r: &RunOutput, offset: f64) -> Vec<(f64, f64)> {
 }
 
 /// Figure 4: sphere + 2D waviness, λ/R = 0.05, pull-off at several amplitudes.
-pub fn fig4(ctx: &Ctx) -> Result<Summary> {
+pub fn fig4(ctx: &Ctx) -> Result<FigureSummary> {
     let spec = ctx.spec(4)?;
     let p: Fig4 = spec.params()?;
     let base = spec.scene()?;
@@ -163,7 +163,7 @@ pub fn fig4(ctx: &Ctx) -> Result<Summary> {
         "# approach = h/lambda, force = |F_ad/F_JKR| (most tensile force over Eq. 7)\n\
          # mean_pressure = Lambda(alpha) (Eq. 9), area = alpha (Eq. 3), n_bonded = run index",
     );
-    let mut summary = Summary::new(
+    let mut summary = FigureSummary::new(
         4,
         "|F_ad/F_JKR| of a sphere with 2D waviness (λ/R = 0.05) against Λ(α) (Eq. 9), per amplitude",
     );
@@ -307,7 +307,7 @@ pub fn fig4(ctx: &Ctx) -> Result<Summary> {
 /// Figure 5: |F_ad/F_JKR| against α for several (E*, γ, R, λ), with Eq. 9. Every (combination,
 /// α) is a point of one sweep (Figure 4's scene with the combination's overrides, resolution
 /// and path), storing no fields: only the pull-off force is needed.
-pub fn fig5(ctx: &Ctx) -> Result<Summary> {
+pub fn fig5(ctx: &Ctx) -> Result<FigureSummary> {
     let spec = ctx.spec(5)?;
     let p: Fig5 = spec.params()?;
     let spec4 = ctx.spec(4)?;
@@ -365,7 +365,7 @@ pub fn fig5(ctx: &Ctx) -> Result<Summary> {
         "# approach = alpha (Eq. 3), force = |F_ad/F_JKR|, mean_pressure = Lambda(alpha) (Eq. 9)\n\
          # area = lambda/R, n_bonded = combination index",
     );
-    let mut summary = Summary::new(
+    let mut summary = FigureSummary::new(
         5,
         "|F_ad/F_JKR| against Λ(α) (Eq. 9): rms deviation, the α of the collapse, the maximum",
     );
