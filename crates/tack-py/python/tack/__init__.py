@@ -264,7 +264,8 @@ def pull_off(
     load step to ``max_approach = apex + top of the roughness + 3 d_s`` (apex and roughness
     relative to the fitted paraboloid; a smooth sphere bonds a disc of about 1.6 a_c, deep
     enough for the JKR pull-off), then retraction by 0.2 d_s while the force is compressive
-    and by 0.02 d_s through the tensile part until nothing is bonded. On a free grid the Hertz
+    and by min(0.02, 0.2 dx/a_c) d_s through the tensile part (a_c the JKR pull-off radius)
+    until nothing is bonded. On a free grid the Hertz
     radius at that depth plus 30% must fit in the array. A body without a radius (flat, wavy)
     needs ``max_approach`` and ``unload_step``. The summary's ``f_jkr`` and
     ``pull_off_ratio`` refer to the sphere of radius R; ``provenance["scene"]`` records the
