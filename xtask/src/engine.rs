@@ -98,7 +98,8 @@ impl FigureRun {
 /// fields by a [`Keeper`] observer.
 pub fn run(spec: &RunSpec) -> Result<FigureRun> {
     let mut scene = spec.scene.clone();
-    scene.file.output.snapshots = if spec.keep.pull_off || spec.keep.last_contact {
+    // The solver's own rule keeps the pull-off step; the Keeper keeps the rest.
+    scene.file.output.snapshots = if spec.keep.pull_off {
         Snapshots::PullOff
     } else {
         Snapshots::None
@@ -112,8 +113,13 @@ pub fn run(spec: &RunSpec) -> Result<FigureRun> {
     let mut outcome =
         tack::run(&scene, &options, &mut keeper).with_context(|| format!("run {}", spec.name))?;
     let mut kept: BTreeMap<usize, StepFields> = keeper.into_snapshots();
+    // Of the solver's "pull_off" snapshots only the pull-off step was asked for (its last
+    // contact counts every phase; the Keeper's, as the figures always had it, the unload).
+    let pull_off = outcome.path.pull_off_step();
     for s in std::mem::take(&mut outcome.path.snapshots) {
-        kept.insert(s.step, s);
+        if Some(s.step) == pull_off {
+            kept.insert(s.step, s);
+        }
     }
     outcome.replace_snapshots(kept.into_values().collect());
     Ok(FigureRun {
@@ -127,14 +133,16 @@ pub fn run(spec: &RunSpec) -> Result<FigureRun> {
     })
 }
 
-/// Keeps the fields of [`Keep::break_up`] and [`Keep::unload_every`] as the path runs (the
-/// pull-off and last contact are the run's own snapshots).
+/// Keeps the fields of [`Keep::last_contact`], [`Keep::break_up`] and [`Keep::unload_every`]
+/// as the path runs (the pull-off is the run's own snapshot rule).
 struct Keeper {
     keep: Keep,
     periodic: bool,
     kept: BTreeMap<usize, StepFields>,
     /// The previous unload step (break-up detection).
     prev: Option<StepFields>,
+    /// The latest unload step with a bonded element.
+    last: Option<StepFields>,
     /// Approach at or below which the next `unload_every` field is kept; `None` before the
     /// first unload step.
     next_every: Option<f64>,
@@ -148,13 +156,17 @@ impl Keeper {
             periodic,
             kept: BTreeMap::new(),
             prev: None,
+            last: None,
             next_every: None,
             broken: false,
         }
     }
 
     /// The kept fields by step.
-    fn into_snapshots(self) -> BTreeMap<usize, StepFields> {
+    fn into_snapshots(mut self) -> BTreeMap<usize, StepFields> {
+        if let Some(last) = self.last.take() {
+            self.kept.insert(last.step, last);
+        }
         self.kept
     }
 }
@@ -198,6 +210,9 @@ impl Observer for Keeper {
             self.kept.insert(pr.step, pr);
             self.kept.insert(step, snap());
             self.broken = true;
+        }
+        if keep.last_contact && rec.n_bonded > 0 {
+            self.last = Some(snap());
         }
         if keep.break_up {
             self.prev = Some(snap());

@@ -175,24 +175,34 @@ fn execute(command: Command) -> anyhow::Result<()> {
             let loaded = Scene::load(&scene, &set)?;
             let p = Problem::from_scene(&loaded)?;
             println!(
-                "{}: ok\n  grid {} x {}, dx = {}\n  first touch at d = {}; path d = {} → {} \
-                 (load step {}, unload step {}{})",
+                "{}: ok\n  grid {} x {}, dx = {}",
                 scene.display(),
                 p.grid.nx(),
                 p.grid.ny(),
                 rounded(p.grid.dx()),
-                rounded(p.first_touch),
-                rounded(p.path.start),
-                rounded(p.path.max_approach),
-                rounded(p.path.load_step),
-                rounded(p.path.unload_step),
-                p.path
-                    .coarse_unload_step
-                    .map_or_else(String::new, |c| format!(
-                        ", {} while the force is compressive",
-                        rounded(c)
-                    ))
             );
+            if p.path.is_indentation() {
+                println!(
+                    "  first touch at d = {}; indentation: one step to d = {}",
+                    rounded(p.first_touch),
+                    rounded(p.path.max_approach)
+                );
+            } else {
+                println!(
+                    "  first touch at d = {}; path d = {} → {} (load step {}, unload step {}{})",
+                    rounded(p.first_touch),
+                    rounded(p.path.start),
+                    rounded(p.path.max_approach),
+                    rounded(p.path.load_step),
+                    rounded(p.path.unload_step),
+                    p.path
+                        .coarse_unload_step
+                        .map_or_else(String::new, |c| format!(
+                            ", {} while the force is compressive",
+                            rounded(c)
+                        ))
+                );
+            }
             if let Some(rule) = &p.path_rule {
                 println!("  {rule}");
             }

@@ -152,6 +152,10 @@ fn check_bounds_memory_by_the_steps_the_path_takes() {
         stdout.contains("(1 steps: the path's own count)"),
         "{stdout}"
     );
+    assert!(
+        stdout.contains("indentation: one step to d = 0.2") && !stdout.contains("unload step"),
+        "{stdout}"
+    );
     assert!(stdout.contains("MiB"), "{stdout}");
     assert!(!stdout.contains("GiB"), "{stdout}");
 }

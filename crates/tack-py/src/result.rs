@@ -179,9 +179,13 @@ impl Result {
     }
 
     /// Index of the step with the pull-off force (periodic full-contact steps left out), or
-    /// None for an empty curve.
+    /// None for an empty curve or a run without a pull-off (an indentation: `pull_off_force`
+    /// is NaN).
     #[getter]
     fn pull_off_step(&self) -> Option<usize> {
+        if self.inner.summary.pull_off_force.is_nan() {
+            return None;
+        }
         let c = &self.inner.curve;
         let full = |i: usize| {
             c.full_contact

@@ -109,18 +109,13 @@ impl ApproachPath {
     /// # Ok::<(), tack_solver::SolverError>(())
     /// ```
     pub fn indentation(approach: f64) -> Result<Self, SolverError> {
-        // The steps are never taken (one load step lands on `max_approach`, and retraction
-        // stops before its first step); they only need to be valid.
-        let step = if approach.is_finite() && approach != 0.0 {
-            approach.abs()
-        } else {
-            1.0
-        };
+        // The steps are never taken (the one load step is `max_approach`, and retraction stops
+        // before its first step); they only need to be valid.
         let path = Self {
             start: approach,
             max_approach: approach,
-            load_step: step,
-            unload_step: step,
+            load_step: 1.0,
+            unload_step: 1.0,
             coarse_unload_step: None,
             retract_to: Some(approach),
             max_steps: Self::DEFAULT_MAX_STEPS,
@@ -129,10 +124,11 @@ impl ApproachPath {
         Ok(path)
     }
 
-    /// Whether the path stops at its deepest approach (`retract_to = max_approach`: no
-    /// retraction step), as [`ApproachPath::indentation`] does.
+    /// Whether the path is one step at its deepest approach and no retraction
+    /// (`start = max_approach = retract_to`), as [`ApproachPath::indentation`] builds it. A
+    /// load-only path of several steps (`retract_to = max_approach > start`) is not one.
     pub fn is_indentation(&self) -> bool {
-        self.retract_to == Some(self.max_approach)
+        self.start == self.max_approach && self.retract_to == Some(self.max_approach)
     }
 
     /// The most steps the path can take: exact for the load phase; for the retraction, the
@@ -508,6 +504,14 @@ impl AdhesiveSolver {
             }
             k += 1;
         }
+        // A load cut short by `max_steps` never retracts (and is not complete).
+        if out
+            .records
+            .last()
+            .is_none_or(|r| r.approach < path.max_approach)
+        {
+            return Ok(out);
+        }
         // Retract from `anchor` in steps of `stride`: the coarse step while the force is
         // compressive, then the unload step from the approach where it stopped being so.
         let (mut anchor, mut stride) = (
@@ -515,7 +519,7 @@ impl AdhesiveSolver {
             path.coarse_unload_step.unwrap_or(path.unload_step),
         );
         let mut k = 1usize;
-        while out.records.len() < path.max_steps {
+        loop {
             if stride != path.unload_step
                 && let Some(last) = out.records.last()
                 && last.force <= 0.0
@@ -523,8 +527,13 @@ impl AdhesiveSolver {
                 (anchor, stride, k) = (last.approach, path.unload_step, 1);
             }
             let d = anchor - k as f64 * stride;
+            // The path's own end first: a path that ends at `retract_to` on its last allowed
+            // step (an indentation with `max_steps = 1`) is complete, not stopped by the cap.
             if path.retract_to.is_some_and(|r| d < r) {
                 out.completed = true;
+                break;
+            }
+            if out.records.len() >= path.max_steps {
                 break;
             }
             let rec = self.record_step(d, Phase::Unload, observer, &mut out)?;
@@ -596,6 +605,33 @@ mod tests {
             .filter(|(_, p)| **p == Phase::Unload)
             .map(|(s, _)| s.approach)
             .collect()
+    }
+
+    #[test]
+    fn an_indentation_is_complete_after_its_one_step_even_at_the_step_cap() {
+        for max_steps in [1, 100] {
+            let path = ApproachPath {
+                max_steps,
+                ..ApproachPath::indentation(1.5).unwrap()
+            };
+            let r = sphere_solver()
+                .run_path(&path, &SnapshotRequest::None, &mut ())
+                .unwrap();
+            assert_eq!(r.records.len(), 1);
+            assert!(r.completed, "max_steps = {max_steps}");
+            assert_eq!(r.phases, vec![Phase::Load]);
+        }
+        // A load cut short by the cap is not complete and does not retract.
+        let cut = ApproachPath {
+            max_steps: 2,
+            retract_to: Some(6.0),
+            ..path(None)
+        };
+        let r = sphere_solver()
+            .run_path(&cut, &SnapshotRequest::None, &mut ())
+            .unwrap();
+        assert_eq!(r.records.len(), 2);
+        assert!(!r.completed);
     }
 
     #[test]

@@ -19,6 +19,12 @@ use crate::scene::{Roughness, Scene, SceneError};
 /// (`tack_geometry::coarsen_band_limited`). Periodic grids need even sides.
 pub fn coarse_problem(scene: &Scene, problem: &Problem) -> Result<Problem, SceneError> {
     let refuse = |reason: String| SceneError::Inconsistent(format!("--richardson {reason}"));
+    if problem.path.is_indentation() {
+        return Err(refuse(format!(
+            "extrapolates the pull-off force; an indentation ({}) has none",
+            tack_fields::PROTOCOL_INDENT
+        )));
+    }
     if problem.heights_in_memory {
         return Err(refuse(
             "needs a geometry that does not depend on the grid; heights given as an array are \

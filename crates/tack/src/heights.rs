@@ -35,7 +35,7 @@ use tack_geometry::{Boundary, Grid};
 use crate::Error;
 use crate::engine::{RunOptions, RunOutcome};
 pub use crate::problem::HeightBody;
-use crate::problem::{Problem, SPHERE_FIT_MARGIN};
+use crate::problem::Problem;
 pub use crate::pull_off_path::{
     COARSE_PER_UNLOAD_STEP, COARSE_UNLOAD_STEP, LOAD_DEPTH, Paraboloid, UNLOAD_STEP,
     UNLOAD_STEP_PER_ELEMENT, fit_paraboloid,
@@ -245,7 +245,7 @@ pub fn pull_off_scene(
         (None, None) => COARSE_PER_UNLOAD_STEP * unload_step,
     };
     if let (Some(r), Some(f), Boundary::Free) = (radius, fit, spec.boundary) {
-        check_contact_fits(&grid, r, &f, max_approach, first_touch)?;
+        crate::pull_off_path::check_contact_fits(&grid, r, &f, max_approach, first_touch)?;
     }
 
     let file = SceneSchema {
@@ -304,37 +304,6 @@ pub fn pull_off_scene(
         scene.text
     );
     Ok(PullOffPlan { scene, radius, fit })
-}
-
-/// On a free grid the loaded contact (Hertz radius at the deepest approach, with the 30%
-/// margin of the scene check) must lie inside the array around the paraboloid's vertex.
-fn check_contact_fits(
-    grid: &Grid,
-    radius: f64,
-    fit: &Paraboloid,
-    max_approach: f64,
-    first_touch: f64,
-) -> Result<(), SceneError> {
-    let depth = (max_approach - first_touch).max(0.0);
-    let hertz = (radius * depth).sqrt();
-    let needed = SPHERE_FIT_MARGIN * hertz;
-    let dx = grid.dx();
-    let (x0, y0) = fit.vertex;
-    let (x_lo, x_hi) = (grid.x(0) - 0.5 * dx, grid.x(grid.nx() - 1) + 0.5 * dx);
-    let (y_lo, y_hi) = (grid.y(0) - 0.5 * dx, grid.y(grid.ny() - 1) + 0.5 * dx);
-    let room = (x0 - x_lo).min(x_hi - x0).min(y0 - y_lo).min(y_hi - y0);
-    if needed > room {
-        return Err(SceneError::Inconsistent(format!(
-            "heights: the {} × {} array at dx = {dx} is too small for the pull-off: at \
-             max_approach = {max_approach:.6e} the Hertz contact radius sqrt(R·d) = {hertz:.4e} \
-             (R = {radius:.4e}, d = {depth:.4e} from the first touch) plus a 30% margin reaches \
-             {needed:.4e} from the vertex at ({x0:.4e}, {y0:.4e}), but the array's edge is \
-             {room:.4e} away; use a larger array or a smaller max_approach",
-            grid.nx(),
-            grid.ny()
-        )));
-    }
-    Ok(())
 }
 
 /// The pull-off of a body given as `heights` by the rule of [`PullOffSpec`]: the scene of

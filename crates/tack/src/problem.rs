@@ -27,8 +27,7 @@ use crate::scene::{
 /// Relative tolerance on a height map's `dx` against `grid.dx`.
 pub const DX_MATCH_TOLERANCE: f64 = 1e-9;
 
-/// Margin on the Hertz contact radius `sqrt(R·d)` when checking that a sphere fits a free grid.
-pub const SPHERE_FIT_MARGIN: f64 = 1.3;
+pub use crate::pull_off_path::SPHERE_FIT_MARGIN;
 
 /// Largest number of grid elements `nx·ny` a scene may ask for (8192 × 8192): beyond it the
 /// solver's fields and FFT buffers would not fit in memory, and the run would abort instead of
@@ -325,7 +324,14 @@ impl Problem {
                 rule.radius,
             ));
         }
-        check_fits(&f.grid, &grid, &f.geometry, &path, first_touch)?;
+        check_fits(
+            &f.grid,
+            &grid,
+            &f.geometry,
+            &path,
+            first_touch,
+            path_rule.is_some(),
+        )?;
         check_memory(scene, &grid, Some(path.step_bound()))?;
 
         let defaults = AdhesiveOptions::default();
@@ -650,7 +656,26 @@ fn default_path(body: &PathBody<'_>) -> Result<PathRule, SceneError> {
         )));
     }
     let (radius, top, fitted) = match body.sphere_radius {
-        Some(r) => (r, body.top_of_roughness, false),
+        // A sphere shape: its apex is at 0, the roughness on top of it.
+        Some(r) if !body.heights_only => (r, body.top_of_roughness, false),
+        // Heights only, with the radius given (a body in memory): the paraboloid of that
+        // radius through the heights finds the apex and the top of the roughness on it.
+        Some(r) => {
+            let fit = crate::pull_off_path::fit_paraboloid(
+                body.surface.heights(),
+                body.grid.dx(),
+                Some(r),
+            )
+            .ok_or_else(|| {
+                SceneError::Inconsistent(format!(
+                    "{} is required: no paraboloid of radius {} fits the heights (fewer than 3 \
+                     elements along an axis)",
+                    fields::PROTOCOL_MAX_APPROACH,
+                    num(r)
+                ))
+            })?;
+            return finish_default_path(body, r, fit, false);
+        }
         None if !body.heights_only => {
             return Err(SceneError::Inconsistent(format!(
                 "{max} is required: the default pull-off path needs a sphere ({shape} = \
@@ -665,7 +690,9 @@ fn default_path(body: &PathBody<'_>) -> Result<PathRule, SceneError> {
             let fit =
                 crate::pull_off_path::fit_paraboloid(body.surface.heights(), body.grid.dx(), None);
             match fit {
-                Some(f) if f.is_sphere_like(body.grid) => (f.radius, f.apex + f.residual_max, true),
+                Some(f) if f.is_sphere_like(body.grid) => {
+                    return finish_default_path(body, f.radius, f, true);
+                }
                 _ => {
                     return Err(SceneError::Inconsistent(format!(
                         "{max_approach} is required: the default pull-off path needs a sphere \
@@ -690,6 +717,37 @@ fn default_path(body: &PathBody<'_>) -> Result<PathRule, SceneError> {
             top,
             body.grid.dx(),
         ),
+    })
+}
+
+/// The default path of a heights-only body whose paraboloid `fit` (radius `radius`) is known;
+/// on a free grid the loaded contact must fit the array around the vertex.
+fn finish_default_path(
+    body: &PathBody<'_>,
+    radius: f64,
+    fit: crate::pull_off_path::Paraboloid,
+    fitted: bool,
+) -> Result<PathRule, SceneError> {
+    let path = crate::pull_off_path::default_pull_off_path(
+        body.e_star,
+        body.gamma,
+        radius,
+        fit.apex + fit.residual_max,
+        body.grid.dx(),
+    );
+    if body.grid.boundary() == Boundary::Free {
+        crate::pull_off_path::check_contact_fits(
+            body.grid,
+            radius,
+            &fit,
+            path.max_approach,
+            body.surface.min(),
+        )?;
+    }
+    Ok(PathRule {
+        radius,
+        fitted,
+        path,
     })
 }
 
@@ -1217,7 +1275,25 @@ fn check_fits(
     geometry: &Geometry,
     path: &ApproachPath,
     first_touch: f64,
+    default_path: bool,
 ) -> Result<(), SceneError> {
+    // What set the deepest approach, as the message names it.
+    let depth_field = if path.is_indentation() {
+        fields::PROTOCOL_INDENT
+    } else if default_path {
+        "the default pull-off path's depth"
+    } else {
+        fields::PROTOCOL_MAX_APPROACH
+    };
+    let shallower = if default_path {
+        format!(
+            "give a shallower path ({} with {})",
+            fields::PROTOCOL_MAX_APPROACH,
+            fields::PROTOCOL_LOAD_STEP
+        )
+    } else {
+        format!("lower {depth_field}")
+    };
     if grid.boundary() != Boundary::Free {
         return Ok(());
     }
@@ -1241,10 +1317,10 @@ fn check_fits(
                     format!("{hertz:.4e}")
                 };
                 return Err(SceneError::Inconsistent(format!(
-                    "{size_field} = {} is too small for the sphere: at {max_approach} = {} \
+                    "{size_field} = {} is too small for the sphere: at {depth_field} = {} \
                      the Hertz contact radius sqrt(R·d) = {hertz} plus a 30% margin needs a \
                      free grid of at least {n_needed} × {n_needed} elements at {dx_field} = {} \
-                     (the grid is {nx} × {ny}); raise {size_field} or lower {max_approach}",
+                     (the grid is {nx} × {ny}); raise {size_field} or {shallower}",
                     if spec.n.is_some() {
                         nx.to_string()
                     } else {
@@ -1252,7 +1328,6 @@ fn check_fits(
                     },
                     num(path.max_approach),
                     num(grid.dx()),
-                    max_approach = fields::PROTOCOL_MAX_APPROACH,
                     dx_field = fields::GRID_DX
                 )));
             }
@@ -1390,6 +1465,47 @@ load_step = 0.05
     }
 
     #[test]
+    fn a_body_in_memory_with_a_radius_loads_from_its_own_apex() {
+        // The sphere given as an array with its radius, on geometry "none" and no [protocol]:
+        // the same depth as the sphere scene (the array's highest point is far off the apex).
+        let sphere = build(no_protocol(), &[]).unwrap();
+        let heights = Surface::from_shape(sphere.grid, &Sphere::new(1.0).unwrap()).into_heights();
+        let flat = no_protocol().replace("shape = \"sphere\"\nradius = 1.0", "shape = \"none\"");
+        let scene = Scene::parse(&flat, ".", &[]).unwrap();
+        let body = HeightBody {
+            heights: &heights,
+            roughness_range: Some(0.0),
+            radius: Some(1.0),
+        };
+        let p = crate::heights::problem(&scene, &body).unwrap();
+        assert!(
+            (p.path.max_approach - sphere.path.max_approach).abs() < 1e-9,
+            "{} vs {}",
+            p.path.max_approach,
+            sphere.path.max_approach
+        );
+        assert_eq!(p.path.unload_step, sphere.path.unload_step);
+        assert!(!p.path_rule.unwrap().fitted);
+        // Too deep for the array: the contact-fits check of the pull-off applies.
+        let small = Surface::from_shape(
+            Grid::square(12, 0.05, Boundary::Free).unwrap(),
+            &Sphere::new(1.0).unwrap(),
+        )
+        .into_heights();
+        let scene = Scene::parse(&flat.replace("n = 64", "n = 12"), ".", &[]).unwrap();
+        let e = crate::heights::problem(
+            &scene,
+            &HeightBody {
+                heights: &small,
+                ..body
+            },
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("too small for the pull-off"), "{e}");
+    }
+
+    #[test]
     fn an_indentation_is_one_step_and_excludes_the_path_fields() {
         let text = format!("{}[protocol]\nindent = 0.1\n", no_protocol());
         let p = build(&text, &[]).unwrap();
@@ -1411,6 +1527,23 @@ load_step = 0.05
             .unwrap_err()
             .to_string();
         assert!(e.contains("protocol.indent"), "{e}");
+        // Richardson extrapolates a pull-off, which an indentation does not have.
+        let scene = Scene::parse(&text, ".", &[]).unwrap();
+        let e = crate::coarse::coarse_problem(&scene, &p)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("an indentation (protocol.indent) has none"),
+            "{e}"
+        );
+        // A load-only path of several steps is not an indentation.
+        let load_only = build(SPHERE, &["protocol.retract_to=0.5"]).unwrap();
+        assert!(!load_only.path.is_indentation());
+        // Too deep for the grid: the message names protocol.indent.
+        let e = build(&text, &["protocol.indent=3.0"])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("at protocol.indent = 3"), "{e}");
     }
 
     #[test]

@@ -13,6 +13,8 @@
 use ndarray::Array2;
 use tack_geometry::Grid;
 
+use crate::error::SceneError;
+
 /// Default load depth of the default pull-off path, in units of d_s = (Rγ²/E*²)^(1/3): the path loads in one
 /// step to this many d_s below the top of the roughness (the paper's rough-sphere runs; on a
 /// smooth sphere it bonds a disc of about 1.6 a_c).
@@ -31,7 +33,7 @@ pub const UNLOAD_STEP: f64 = 0.02;
 /// elements of the rim detach at approaches about Δx/a_c·d_s apart, so a step of a fixed share
 /// of that spacing keeps the path's share of the pull-off error a fixed small fraction of the
 /// criterion's (+1.4 Δx/a_c): on the smooth sphere at most 0.7% at a_c/Δx = 10 … 80, where the
-/// criterion's is +14% … +2% (`cargo run --release -p tack --example retraction_step`, README).
+/// criterion's is +14.1% … +1.0% (`cargo run --release -p tack --example retraction_step`, README).
 pub const UNLOAD_STEP_PER_ELEMENT: f64 = 0.2;
 
 /// Coarse retraction step over the fine one when no radius sets the scale.
@@ -208,6 +210,41 @@ fn min_max(values: impl Iterator<Item = f64>) -> (f64, f64) {
     values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
         (lo.min(v), hi.max(v))
     })
+}
+
+/// Margin on the Hertz contact radius `sqrt(R·d)` when checking that a sphere's loaded contact
+/// fits a free grid.
+pub const SPHERE_FIT_MARGIN: f64 = 1.3;
+
+/// On a free grid the loaded contact (Hertz radius at the deepest approach, with the 30%
+/// margin of the scene check) must lie inside the array around the paraboloid's vertex.
+pub(crate) fn check_contact_fits(
+    grid: &Grid,
+    radius: f64,
+    fit: &Paraboloid,
+    max_approach: f64,
+    first_touch: f64,
+) -> Result<(), SceneError> {
+    let depth = (max_approach - first_touch).max(0.0);
+    let hertz = (radius * depth).sqrt();
+    let needed = SPHERE_FIT_MARGIN * hertz;
+    let dx = grid.dx();
+    let (x0, y0) = fit.vertex;
+    let (x_lo, x_hi) = (grid.x(0) - 0.5 * dx, grid.x(grid.nx() - 1) + 0.5 * dx);
+    let (y_lo, y_hi) = (grid.y(0) - 0.5 * dx, grid.y(grid.ny() - 1) + 0.5 * dx);
+    let room = (x0 - x_lo).min(x_hi - x0).min(y0 - y_lo).min(y_hi - y0);
+    if needed > room {
+        return Err(SceneError::Inconsistent(format!(
+            "heights: the {} × {} array at dx = {dx} is too small for the pull-off: at \
+             max_approach = {max_approach:.6e} the Hertz contact radius sqrt(R·d) = {hertz:.4e} \
+             (R = {radius:.4e}, d = {depth:.4e} from the first touch) plus a 30% margin reaches \
+             {needed:.4e} from the vertex at ({x0:.4e}, {y0:.4e}), but the array's edge is \
+             {room:.4e} away; use a larger array or a smaller max_approach",
+            grid.nx(),
+            grid.ny()
+        )));
+    }
+    Ok(())
 }
 
 #[cfg(test)]

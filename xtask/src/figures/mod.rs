@@ -355,9 +355,11 @@ pub fn run(n: u8, ctx: &Ctx) -> Result<FigureSummary> {
 /// paper-grade figures sample the pull-off twice as finely. `cargo xtask convergence` uses it too.
 pub const FULL_UNLOAD_STEP: f64 = 0.5 * UNLOAD_STEP;
 
-/// The approach path of a sphere pull-off in JKR units, for the sphere figures (4–8): tack's
-/// default pull-off rule ([`tack::heights::PullOffSpec`]), with [`FULL_UNLOAD_STEP`] through
-/// the tensile part in full mode.
+/// The approach path of a sphere pull-off in JKR units, for the sphere figures (4–8): the load
+/// depth and coarse step of tack's default pull-off rule (`tack::pull_off_path`) and the
+/// paper's fixed tensile step, [`UNLOAD_STEP`] (the rule's cap) in quick mode and
+/// [`FULL_UNLOAD_STEP`] in full mode; the rule's own step, `min(0.02, 0.2·Δx/a_c)·d_s`, would
+/// refine it on the figures' finer meshes.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PullOff {
     /// Deepest approach below the highest point of the roughness (the `offset` of
@@ -469,8 +471,9 @@ mod tests {
     use tack::geometry::{Boundary, Grid, Sphere, Surface};
     use tack::heights::{PullOffSpec, pull_off_scene};
 
-    /// The quick mode's path is tack's default pull-off path (`tack::heights`): on a smooth
-    /// sphere, `sphere_scene` loads to the same depth and retracts by the same steps as
+    /// The quick mode's path is tack's default pull-off path (`tack::heights`) where that path
+    /// takes its largest tensile step (a_c/Δx ≤ 10, as at dx = 0.01R here): on a smooth sphere,
+    /// `sphere_scene` loads to the same depth and retracts by the same steps as
     /// `pull_off_scene`; the full mode differs only in its tensile step, half as large.
     #[test]
     fn the_figure_path_is_tacks_pull_off_rule() {
