@@ -106,12 +106,9 @@ pub fn run(spec: &RunSpec) -> Result<FigureRun> {
     };
     let periodic = scene.file.grid.boundary == tack::scene::BoundaryKind::Periodic;
     let mut keeper = Keeper::new(spec.keep, periodic);
-    let options = tack::RunOptions {
-        command_line: Some(tack::provenance::command_line()),
-        ..tack::RunOptions::default()
-    };
-    let mut outcome =
-        tack::run(&scene, &options, &mut keeper).with_context(|| format!("run {}", spec.name))?;
+    // Default options: this process's command line, the batch's pool (`run_all`).
+    let mut outcome = tack::run(&scene, &tack::RunOptions::default(), &mut keeper)
+        .with_context(|| format!("run {}", spec.name))?;
     let mut kept: BTreeMap<usize, StepFields> = keeper.into_snapshots();
     // Of the solver's "pull_off" snapshots only the pull-off step was asked for (its last
     // contact counts every phase; the Keeper's, as the figures always had it, the unload).

@@ -15,18 +15,9 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
 use tack::SceneSchema;
+// The sections of a scene, in the order docs/scenes.md documents them.
+use tack_fields::SECTIONS;
 use tack_sweep::{SWEEP_COPY, Sweep, SweepOptions, point_path, run_sweep, verify_point};
-
-/// The sections of a scene in the order docs/scenes.md documents them.
-const SECTIONS: [&str; 7] = [
-    "material",
-    "geometry",
-    "roughness",
-    "grid",
-    "solver",
-    "protocol",
-    "output",
-];
 
 /// One point of a figure sweep: its scene and a note for the row comment (`H = 0.1, α* = 0.2`).
 pub struct PointScene {

@@ -12,7 +12,7 @@ use std::path::Path;
 use tack_fields::{self as fields, field_name};
 
 use tack_geometry::{
-    Boundary, FlatPunch, Grid, RoughSpec, Sphere, Surface, Waviness1d, Waviness2d, Window,
+    Boundary, FlatPunch, Grid, RoughSpec, Shape, Sphere, Surface, Waviness1d, Waviness2d, Window,
     rough_surface,
 };
 use tack_solver::{
@@ -205,15 +205,6 @@ impl Problem {
                     Some(tack_analytics::alpha_star(e_star, gamma, h, hurst, q0, q1));
             }
         }
-        // The smooth macroscopic shape, to find the top of the roughness for the default
-        // pull-off path.
-        let top_of_roughness = |surface: &Surface, smooth: &Surface| {
-            (surface.heights() - smooth.heights())
-                .iter()
-                .copied()
-                .fold(f64::NEG_INFINITY, f64::max)
-        };
-        let smooth = base_surface(grid, &f.geometry)?;
         let mut body_radius = None;
         if let Some(body) = body {
             let array = height_surface(grid, body.heights)?;
@@ -305,7 +296,6 @@ impl Problem {
             &PathBody {
                 grid: &grid,
                 surface: &surface,
-                top_of_roughness: top_of_roughness(&surface, &smooth),
                 sphere_radius,
                 heights_only: matches!(f.geometry, Geometry::None),
                 e_star,
@@ -480,8 +470,6 @@ pub(crate) fn height_surface(
 struct PathBody<'a> {
     grid: &'a Grid,
     surface: &'a Surface,
-    /// The greatest height of the roughness (and array) above the smooth shape.
-    top_of_roughness: f64,
     /// The sphere's radius (`geometry.radius`, or the radius of a body given in memory).
     sphere_radius: Option<f64>,
     /// Whether the body is only heights (`geometry.shape = "none"`: a map, an array), whose
@@ -657,7 +645,7 @@ fn default_path(body: &PathBody<'_>) -> Result<PathRule, SceneError> {
     }
     let (radius, top, fitted) = match body.sphere_radius {
         // A sphere shape: its apex is at 0, the roughness on top of it.
-        Some(r) if !body.heights_only => (r, body.top_of_roughness, false),
+        Some(r) if !body.heights_only => (r, top_above_sphere(body, r)?, false),
         // Heights only, with the radius given (a body in memory): the paraboloid of that
         // radius through the heights finds the apex and the top of the roughness on it.
         Some(r) => {
@@ -718,6 +706,19 @@ fn default_path(body: &PathBody<'_>) -> Result<PathRule, SceneError> {
             body.grid.dx(),
         ),
     })
+}
+
+/// The greatest height of the body above the sphere of radius `radius` on its grid: the top of
+/// the roughness (and of any array added), computed only when the default path needs it.
+fn top_above_sphere(body: &PathBody<'_>, radius: f64) -> Result<f64, SceneError> {
+    let sphere = Sphere::new(radius).map_err(rename(fields::GEOMETRY_RADIUS))?;
+    let grid = body.grid;
+    Ok(body
+        .surface
+        .heights()
+        .indexed_iter()
+        .map(|((i, j), h)| h - sphere.height(grid.x(i), grid.y(j)))
+        .fold(f64::NEG_INFINITY, f64::max))
 }
 
 /// The default path of a heights-only body whose paraboloid `fit` (radius `radius`) is known;

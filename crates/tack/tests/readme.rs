@@ -33,23 +33,16 @@ fn the_repository_readme_shows_the_library_example() {
 #[test]
 fn the_readme_opens_with_the_readme_example() {
     let readme = include_str!("../README.md");
-    let example = include_str!("../examples/readme.rs");
-    let start = readme.find("```rust\n").expect("a ```rust block") + "```rust\n".len();
-    let block = &readme[start..];
-    let block = &block[..block.find("```").expect("the block's end")];
-    let program: String = example
-        .lines()
-        .filter(|l| !l.starts_with("//!"))
-        .map(|l| format!("{l}\n"))
-        .collect();
+    let (block, program) =
+        block_and_program(readme, "# tack", include_str!("../examples/readme.rs"));
     assert_eq!(
         block, program,
         "README.md's first rust block != examples/readme.rs"
     );
     // The first code block of the README is that program, not something before it.
-    let before = &readme[..start - "```rust\n".len()];
-    assert!(
-        !before.contains("```"),
+    assert_eq!(
+        readme.find("```"),
+        readme.find("```rust\n"),
         "a code block comes before the program"
     );
 }
