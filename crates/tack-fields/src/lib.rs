@@ -71,8 +71,9 @@ pub fn field(name: &str) -> Option<&'static Field> {
 
 /// The sections of a scene file, each a TOML table (`version` is the only top-level key
 /// besides them).
-pub const SECTIONS: [&str; 7] = [
+pub const SECTIONS: [&str; 8] = [
     "material",
+    "adhesion",
     "geometry",
     "roughness",
     "grid",
@@ -117,6 +118,8 @@ macro_rules! scene_fields {
 scene_fields! {
     MATERIAL_E_STAR = material.e_star,
     MATERIAL_GAMMA = material.gamma,
+    ADHESION_MODEL = adhesion.model,
+    ADHESION_SIGMA0 = adhesion.sigma0,
     GEOMETRY_SHAPE = geometry.shape,
     GEOMETRY_RADIUS = geometry.radius,
     GEOMETRY_PUNCH = geometry.punch,
@@ -190,6 +193,16 @@ pub const FIELDS: &[Field] = &[
         MATERIAL_GAMMA,
         Kind::Number,
         "work of adhesion γ per unit area (0: non-adhesive)",
+    ),
+    f(
+        ADHESION_MODEL,
+        Kind::Choice(&["jkr_limit", "dugdale"]),
+        "zero-range criterion or a Dugdale cohesive zone",
+    ),
+    f(
+        ADHESION_SIGMA0,
+        Kind::Number,
+        "Dugdale: cohesive tension σ0 (the range is γ/σ0)",
     ),
     f(
         GEOMETRY_SHAPE,

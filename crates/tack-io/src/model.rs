@@ -64,6 +64,9 @@ pub struct Curve {
     /// least admissible ones (a bound), not a state's; `None` in files written before the
     /// column existed.
     pub full_contact: Option<Vec<bool>>,
+    /// Dugdale law: elements of the cohesive zone (out of contact, carrying the tension σ0);
+    /// `None` for the zero-range criterion and in files written before the column existed.
+    pub n_cohesive: Option<Vec<u64>>,
 }
 
 impl Curve {
@@ -94,6 +97,9 @@ impl Curve {
         }
         if let Some(f) = &self.full_contact {
             cols.push(("full_contact", f.len()));
+        }
+        if let Some(z) = &self.n_cohesive {
+            cols.push(("n_cohesive", z.len()));
         }
         cols
     }
@@ -173,6 +179,9 @@ pub struct Summary {
     /// How the run ended ([`Summary::COMPLETE`], [`Summary::STOPPED_AT_MAX_STEPS`], ...), the
     /// string attribute `status`; `None` in files written before it existed.
     pub status: Option<String>,
+    /// The adhesion law, the string attribute `adhesion_model` (`jkr_limit`, `dugdale`); `None`
+    /// in files written before it existed (the zero-range criterion).
+    pub adhesion_model: Option<String>,
     /// What makes the result less than trustworthy (under-resolved pull-off, pull-off not
     /// bracketed by the path, a closed-form reference that does not apply, ...), one sentence
     /// each; the string attribute `warnings`, one per line (empty: none).
@@ -188,13 +197,14 @@ impl Summary {
         concat!("stopped at ", tack_fields::field_name!(protocol.max_steps));
 
     /// Names of the attributes modelled by fields, which `extra` may not use.
-    pub(crate) const RESERVED: [&'static str; 7] = [
+    pub(crate) const RESERVED: [&'static str; 8] = [
         "pull_off_force",
         "f_jkr",
         "pull_off_ratio",
         "johnson_alpha",
         "alpha_star",
         "status",
+        "adhesion_model",
         "warnings",
     ];
 

@@ -108,6 +108,9 @@ pub fn describe(path: &Path) -> Result<String, IoError> {
     if let Some(status) = &r.summary.status {
         lines.push(format!("  status = {status}"));
     }
+    if let Some(model) = &r.summary.adhesion_model {
+        lines.push(format!("  adhesion_model = {model}"));
+    }
     for (name, value) in r.summary.attributes() {
         lines.push(format!("  {name} = {}", num(value)));
     }
@@ -274,7 +277,7 @@ fn read_column<T: H5Type>(
 }
 
 /// The columns of `/curve`, `approach` first, and whether each is optional.
-const CURVE_COLUMNS: [(&str, bool); 10] = [
+const CURVE_COLUMNS: [(&str, bool); 11] = [
     ("approach", false),
     ("force", false),
     ("area", false),
@@ -285,6 +288,7 @@ const CURVE_COLUMNS: [(&str, bool); 10] = [
     ("converged", false),
     ("mean_pressure", true),
     ("full_contact", true),
+    ("n_cohesive", true),
 ];
 
 /// Checks, before any is read, that `approach` fits the file (`budget`, not taken) and every
@@ -348,6 +352,11 @@ fn read_curve(file: &File, path: &Path, budget: &mut Budget) -> Result<Curve, Io
         full_contact: if g.link_exists("full_contact") {
             let full: Vec<u8> = read_column(&g, "full_contact", path, budget)?;
             Some(full.into_iter().map(|c| c != 0).collect())
+        } else {
+            None
+        },
+        n_cohesive: if g.link_exists("n_cohesive") {
+            Some(read_column(&g, "n_cohesive", path, budget)?)
         } else {
             None
         },
@@ -438,6 +447,11 @@ fn read_summary(file: &File, path: &Path) -> Result<Summary, IoError> {
         extra,
         status: if has_attr(&g, "status", path)? {
             Some(read_str_attr(&g, "status", path)?)
+        } else {
+            None
+        },
+        adhesion_model: if has_attr(&g, "adhesion_model", path)? {
+            Some(read_str_attr(&g, "adhesion_model", path)?)
         } else {
             None
         },

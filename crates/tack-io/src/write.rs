@@ -191,6 +191,9 @@ fn write_curve(file: &File, curve: &Curve, path: &Path) -> Result<(), IoError> {
     if let Some(full) = &curve.full_contact {
         write_dataset(&group, "full_contact", (&flags(full)).into(), path)?;
     }
+    if let Some(zone) = &curve.n_cohesive {
+        write_dataset(&group, "n_cohesive", zone.into(), path)?;
+    }
     Ok(())
 }
 
@@ -253,6 +256,9 @@ fn write_summary(file: &File, summary: &Summary, path: &Path) -> Result<(), IoEr
         .try_for_each(|(name, value)| write_attr(&group, name, &value, path))?;
     if let Some(status) = &summary.status {
         write_str_attr(&group, "status", status, path)?;
+    }
+    if let Some(model) = &summary.adhesion_model {
+        write_str_attr(&group, "adhesion_model", model, path)?;
     }
     if summary.warnings.iter().any(|w| w.contains('\n')) {
         return Err(IoError::Invalid {

@@ -81,6 +81,7 @@ fn small() -> RunResult {
             ..Provenance::current("abc123", "2026-01-01T00:00:00Z")
         },
         curve: Curve {
+            n_cohesive: None,
             approach: vec![0.0, 0.25, 0.5, 0.25, 0.0],
             force: vec![0.0, 1.5, 3.0, 0.5, -0.75],
             area: vec![0.0, 0.1, 0.2, 0.1, 0.05],

@@ -97,6 +97,7 @@ fn sample() -> RunResult {
             ..Provenance::current("abc123", "2026-01-01T00:00:00Z")
         },
         curve: Curve {
+            n_cohesive: None,
             force: vec![0.0, 1.5, -0.875, f64::MIN_POSITIVE, 2.0_f64.sqrt()],
             area: vec![0.0, 0.1, 0.2, 0.3, 0.0],
             n_bonded: vec![0, 10, 20, 30, 0],
@@ -135,6 +136,7 @@ fn minimal() -> RunResult {
     RunResult {
         provenance: Provenance::current("unknown", "2026-01-01T00:00:00Z"),
         curve: Curve {
+            n_cohesive: None,
             approach: vec![0.5],
             force: vec![1.0],
             area: vec![0.1],

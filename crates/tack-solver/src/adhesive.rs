@@ -17,11 +17,12 @@ use tack_geometry::{Boundary, Surface, Window};
 use tack_kernels::{ElasticOperator, FreeOperator, padded_size};
 
 use crate::base::SolverBase;
+use crate::dugdale::{Cohesive, ZoneScratch};
 use crate::cg::{PcgWork, Work, pcg};
 use crate::clusters::count_clusters;
 use crate::state::Convergence;
 use crate::subgrid::{SubgridCache, free_operator};
-use crate::{SolverError, SolverOptions, StepRecord, validate};
+use crate::{AdhesionLaw, SolverError, SolverOptions, StepRecord, validate};
 
 /// The Pohrt–Popov constant κ of `σ_c = sqrt(E*γ/(κΔx))`, from the mean displacement of a
 /// square element under its own pressure: κ = (2/π)[ln(1+√2) − (√2−1)/3] = 0.473201.
@@ -112,16 +113,19 @@ impl Default for AdhesiveOptions {
 
 /// Quasi-static adhesive contact along an approach path; owns operator, fields and scratch.
 pub struct AdhesiveSolver {
-    base: SolverBase,
-    sigma_c: f64,
-    options: AdhesiveOptions,
-    bonded: Array2<bool>,
-    pcg: PcgWork,
+    pub(crate) base: SolverBase,
+    /// The criterion's σ_c (zero-range law) or the cohesive tension σ0 (Dugdale law).
+    pub(crate) sigma_c: f64,
+    pub(crate) options: AdhesiveOptions,
+    pub(crate) bonded: Array2<bool>,
+    pub(crate) pcg: PcgWork,
     /// Bonded-set CGs on sub-grids of a free grid, by shape.
-    boxes: SubgridCache<SubProblem>,
+    pub(crate) boxes: SubgridCache<SubProblem>,
     /// Pressure and approach of the previous step, for the secant predictor.
     history: Option<(Array2<f64>, f64)>,
     last_approach: Option<f64>,
+    /// The Dugdale law's cohesive zone and scratch (`None`: the zero-range criterion).
+    pub(crate) cohesive: Option<Cohesive>,
 }
 
 /// Distinct sub-grid shapes kept by one solver.
@@ -137,10 +141,36 @@ impl AdhesiveSolver {
         kappa: f64,
         options: AdhesiveOptions,
     ) -> Result<Self, SolverError> {
+        Self::with_law(op, surface, gamma, AdhesionLaw::JkrLimit { kappa }, options)
+    }
+
+    /// A solver for `surface` against `op` with work of adhesion `gamma` under `law`: the
+    /// zero-range criterion ([`AdhesiveSolver::new`]) or a Dugdale cohesive zone of tension σ0
+    /// and range `h0 = γ/σ0` ([`AdhesionLaw::Dugdale`], `γ > 0`).
+    pub fn with_law(
+        op: Box<dyn ElasticOperator>,
+        surface: &Surface,
+        gamma: f64,
+        law: AdhesionLaw,
+        options: AdhesiveOptions,
+    ) -> Result<Self, SolverError> {
+        let kappa = match law {
+            AdhesionLaw::JkrLimit { kappa } => kappa,
+            AdhesionLaw::Dugdale { .. } => KAPPA,
+        };
         validate::adhesion(gamma, kappa, &options)?;
         let base = SolverBase::new(op, surface)?;
-        let sigma_c = (base.op.e_star() * gamma / (kappa * base.grid().dx())).sqrt();
         let shape = base.grid().shape();
+        let (sigma_c, cohesive) = match law {
+            AdhesionLaw::JkrLimit { kappa } => (
+                (base.op.e_star() * gamma / (kappa * base.grid().dx())).sqrt(),
+                None,
+            ),
+            AdhesionLaw::Dugdale { sigma0 } => {
+                let cohesive = Cohesive::new(gamma, sigma0, surface, shape)?;
+                (sigma0, Some(cohesive))
+            }
+        };
         Ok(Self {
             base,
             sigma_c,
@@ -150,6 +180,7 @@ impl AdhesiveSolver {
             boxes: SubgridCache::new(SUBGRID_SHAPES),
             history: None,
             last_approach: None,
+            cohesive,
         })
     }
 
@@ -164,11 +195,21 @@ impl AdhesiveSolver {
         self.options.bonded_subgrid = on;
     }
 
-    /// The critical tensile stress `σ_c = sqrt(E*γ/(κΔx))` of the detachment criterion.
+    /// The critical tensile stress `σ_c = sqrt(E*γ/(κΔx))` of the detachment criterion, or the
+    /// cohesive tension σ0 of the Dugdale law (the greatest tension any element carries).
     pub fn critical_stress(&self) -> f64 {
         self.sigma_c
     }
-    /// Current element pressures.
+    /// The adhesion law's range `h0 = γ/σ0` (Dugdale), `None` for the zero-range criterion.
+    pub fn range(&self) -> Option<f64> {
+        self.cohesive.as_ref().map(|c| c.range)
+    }
+    /// Dugdale law: the cohesive zone (elements not in contact that carry the tension σ0, their
+    /// gap below the range). `None` for the zero-range criterion.
+    pub fn cohesive_zone(&self) -> Option<&Array2<bool>> {
+        self.cohesive.as_ref().map(|c| &c.zone)
+    }
+    /// Current element pressures (the cohesive zone's tension −σ0 included).
     pub fn pressure(&self) -> &Array2<f64> {
         &self.base.pressure
     }
@@ -191,9 +232,15 @@ impl AdhesiveSolver {
     /// the state is full contact and reports the least mean pressure at which no element's
     /// tension exceeds `σ_c`; for `d < mean f` full contact is impossible (the mean gap is
     /// positive), so the most tensile element of the full-contact field is detached.
+    ///
+    /// Under the Dugdale law the same loop runs on three sets (contact, cohesive zone, free);
+    /// see [`AdhesionLaw::Dugdale`].
     pub fn step(&mut self, approach: f64) -> Result<StepRecord, SolverError> {
         let d = validate::approach(approach)?;
         self.predict(d);
+        if self.cohesive.is_some() {
+            return Ok(self.step_dugdale(d));
+        }
         let periodic = self.base.periodic();
         let n = self.base.heights().len();
         let fmean = self.base.fmean;
@@ -361,7 +408,7 @@ impl AdhesiveSolver {
     /// Secant predictor: with an unchanged bonded set the pressure is affine in `d`, so
     /// `p(d) = p₁ + (p₁ − p₀)(d − d₁)/(d₁ − d₀)` is exact and CG only corrects for set changes.
     /// Remembers the current state as the new `(p₀, d₀)`.
-    fn predict(&mut self, d: f64) {
+    pub(crate) fn predict(&mut self, d: f64) {
         if let Some(d1) = self.last_approach {
             match &mut self.history {
                 Some((p0, d0)) if *d0 != d1 => {
@@ -454,13 +501,18 @@ impl AdhesiveSolver {
     /// periodic, sub-grids are switched off, or the box's transform would not be clearly
     /// cheaper than the grid's.
     fn bonded_window(&self) -> Option<Window> {
+        self.subgrid_of(&self.bonded)
+    }
+
+    /// The sub-grid around the `true` elements of `mask` (see [`Self::bonded_window`]).
+    pub(crate) fn subgrid_of(&self, mask: &Array2<bool>) -> Option<Window> {
         let grid = self.base.grid();
         if grid.boundary() != Boundary::Free || !self.options.bonded_subgrid {
             return None;
         }
         let (nx, ny) = grid.shape();
         let (mut i0, mut i1, mut j0, mut j1) = (usize::MAX, 0, usize::MAX, 0);
-        for (i, row) in self.bonded.outer_iter().enumerate() {
+        for (i, row) in mask.outer_iter().enumerate() {
             let row = row.to_slice().expect("standard layout");
             if let Some(first) = row.iter().position(|&b| b) {
                 let last = row.iter().rposition(|&b| b).unwrap_or(first);
@@ -488,7 +540,7 @@ impl AdhesiveSolver {
         small.then_some(Window { i0, i1, j0, j1 })
     }
 
-    fn record(
+    pub(crate) fn record(
         &self,
         d: f64,
         cg: usize,
@@ -500,6 +552,9 @@ impl AdhesiveSolver {
         let grid = self.base.grid();
         let n_bonded = self.bonded.iter().filter(|&&b| b).count();
         let totals = self.base.totals(n_bonded);
+        let zone = self.cohesive_zone();
+        let n_cohesive = zone.map_or(0, |z| z.iter().filter(|&&b| b).count());
+        let free = grid.boundary() == Boundary::Free;
         StepRecord {
             approach: d,
             force: totals.force,
@@ -512,7 +567,9 @@ impl AdhesiveSolver {
             residual,
             converged,
             full_contact: full,
-            edge_contact: grid.boundary() == Boundary::Free && crate::touches_edge(&self.bonded),
+            edge_contact: free
+                && (crate::touches_edge(&self.bonded) || zone.is_some_and(crate::touches_edge)),
+            n_cohesive,
         }
     }
 }
@@ -522,31 +579,44 @@ const SUBGRID_COST_RATIO: f64 = 0.8;
 
 /// Deterministic fingerprint of a bonded set (for cycle detection within one step).
 /// The mask is packed into 64-bit words (element order) and those are hashed.
-fn hash_mask(mask: &Array2<bool>) -> u64 {
+pub(crate) fn hash_mask(mask: &Array2<bool>) -> u64 {
+    hash_masks(&[mask])
+}
+
+/// Deterministic fingerprint of several masks of one grid (the Dugdale law's two sets).
+pub(crate) fn hash_masks(masks: &[&Array2<bool>]) -> u64 {
     let mut h = DefaultHasher::new();
+    for mask in masks {
+        hash_into(mask, &mut h);
+    }
+    h.finish()
+}
+
+fn hash_into(mask: &Array2<bool>, h: &mut DefaultHasher) {
     let bits = mask.as_slice().expect("standard layout");
     for chunk in bits.chunks(64) {
         let word = chunk
             .iter()
             .enumerate()
             .fold(0u64, |w, (k, &b)| w | (u64::from(b) << k));
-        word.hash(&mut h);
+        word.hash(h);
     }
-    h.finish()
 }
 
 /// A bonded-set CG on a sub-grid: its own free operator and buffers.
-struct SubProblem {
-    op: FreeOperator,
-    work: Work,
-    pcg: PcgWork,
-    pressure: Array2<f64>,
-    heights: Array2<f64>,
-    bonded: Array2<bool>,
+pub(crate) struct SubProblem {
+    pub(crate) op: FreeOperator,
+    pub(crate) work: Work,
+    pub(crate) pcg: PcgWork,
+    pub(crate) pressure: Array2<f64>,
+    pub(crate) heights: Array2<f64>,
+    pub(crate) bonded: Array2<bool>,
+    /// The Dugdale law's zone and scratch on this sub-grid, made on first use.
+    pub(crate) zone: Option<ZoneScratch>,
 }
 
 impl SubProblem {
-    fn new(shape: (usize, usize), dx: f64, e_star: f64) -> Self {
+    pub(crate) fn new(shape: (usize, usize), dx: f64, e_star: f64) -> Self {
         Self {
             op: free_operator(shape, dx, e_star),
             work: Work::new(shape),
@@ -554,6 +624,7 @@ impl SubProblem {
             pressure: Array2::zeros(shape),
             heights: Array2::zeros(shape),
             bonded: Array2::from_elem(shape, false),
+            zone: None,
         }
     }
 }

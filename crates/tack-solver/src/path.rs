@@ -537,7 +537,7 @@ impl AdhesiveSolver {
                 break;
             }
             let rec = self.record_step(d, Phase::Unload, observer, &mut out)?;
-            if rec.n_bonded == 0 && path.retract_to.is_none() {
+            if rec.n_bonded + rec.n_cohesive == 0 && path.retract_to.is_none() {
                 out.completed = true;
                 break;
             }

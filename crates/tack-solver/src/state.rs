@@ -59,8 +59,12 @@ pub struct StepRecord {
     /// full contact admissible, see [`AdhesiveSolver::step`](crate::AdhesiveSolver::step)).
     pub full_contact: bool,
     /// Free grids: a bonded element lies on the outer ring of the grid, so the contact may be
-    /// cut off by the domain (enlarge the grid or the crop).
+    /// cut off by the domain (enlarge the grid or the crop). Under the Dugdale law a cohesive
+    /// element there counts too.
     pub edge_contact: bool,
+    /// Dugdale law: elements of the cohesive zone (out of contact, carrying the tension σ0);
+    /// always 0 under the zero-range criterion.
+    pub n_cohesive: usize,
 }
 
 /// The integrals of a pressure field that both records carry.

@@ -41,7 +41,7 @@ pub use crate::pull_off_path::{
     UNLOAD_STEP_PER_ELEMENT, fit_paraboloid,
 };
 use crate::scene::{
-    BoundaryKind, Geometry, GridSpec, Material, OutputSpec, Protocol, SCENE_VERSION, Scene,
+    AdhesionModel, AdhesionSpec, BoundaryKind, Geometry, GridSpec, Material, OutputSpec, Protocol, SCENE_VERSION, Scene,
     SceneError, SceneSchema, Snapshots, SolverSpec,
 };
 
@@ -105,6 +105,9 @@ pub struct PullOffSpec {
     pub coarse_unload_step: Option<f64>,
     /// Pohrt–Popov constant κ; `None`: `tack_solver::KAPPA`.
     pub kappa: Option<f64>,
+    /// The adhesion law (`[adhesion]`): the zero-range criterion (default) or a Dugdale
+    /// cohesive zone, which approaches from out of contact in retraction steps.
+    pub adhesion: AdhesionSpec,
     /// Which steps keep their fields (default: the pull-off step and the last contact).
     pub snapshots: Snapshots,
 }
@@ -122,6 +125,7 @@ impl PullOffSpec {
             unload_step: None,
             coarse_unload_step: None,
             kappa: None,
+            adhesion: AdhesionSpec::default(),
             snapshots: Snapshots::PullOff,
         }
     }
@@ -248,7 +252,16 @@ pub fn pull_off_scene(
         crate::pull_off_path::check_contact_fits(&grid, r, &f, max_approach, first_touch)?;
     }
 
+    // A finite range approaches from out of contact (as a scene's default path does).
+    let (start, load_step) = match (spec.adhesion.model, spec.adhesion.sigma0) {
+        (AdhesionModel::Dugdale, Some(sigma0)) if sigma0 > 0.0 => (
+            first_touch - spec.gamma / sigma0 - unload_step,
+            unload_step,
+        ),
+        _ => (max_approach, (max_approach - first_touch).max(unload_step)),
+    };
     let file = SceneSchema {
+        adhesion: spec.adhesion,
         version: SCENE_VERSION,
         material: Material {
             e_star: spec.e_star,
@@ -273,9 +286,9 @@ pub fn pull_off_scene(
             ..SolverSpec::default()
         },
         protocol: Protocol {
-            start: Some(max_approach),
+            start: Some(start),
             max_approach: Some(max_approach),
-            load_step: Some((max_approach - first_touch).max(unload_step)),
+            load_step: Some(load_step),
             indent: None,
             unload_step: Some(unload_step),
             coarse_unload_step: Some(coarse_unload_step),

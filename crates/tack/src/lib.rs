@@ -99,7 +99,7 @@ pub use problem::Problem;
 pub use provenance::{GIT_REVISION, VERSION, command_line, now_rfc3339};
 #[allow(deprecated)]
 pub use scene::SceneFile;
-pub use scene::{SCENE_VERSION, Scene, SceneSchema};
+pub use scene::{AdhesionModel, AdhesionSpec, SCENE_VERSION, Scene, SceneSchema};
 pub use summary::{SUMMARY_QUANTITIES, summary_quantity};
 
 pub use ndarray;

@@ -16,12 +16,13 @@ use tack_geometry::{
     rough_surface,
 };
 use tack_solver::{
-    AdhesiveOptions, AdhesiveSolver, ApproachPath, KAPPA, SnapshotRequest, contact_window,
+    AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, KAPPA, RANGE_ROUND_OFF,
+    SnapshotRequest, contact_window,
 };
 
 use crate::scene::{
-    BoundaryKind, DEFAULT_MAX_STEPS, Geometry, GridSpec, Protocol, PunchKind, Roughness, Scene,
-    SceneError, num,
+    AdhesionModel, BoundaryKind, DEFAULT_MAX_STEPS, Geometry, GridSpec, Protocol, PunchKind, Roughness, Scene,
+    SceneError, SceneSchema, num,
 };
 
 /// Relative tolerance on a height map's `dx` against `grid.dx`.
@@ -54,6 +55,10 @@ pub struct References {
     pub johnson_alpha: Option<f64>,
     /// The adhesion parameter α* (Eq. 11) of random roughness.
     pub alpha_star: Option<f64>,
+    /// Dugdale law on a sphere: the Maugis parameter λ = 2σ0 (R/(πγK²))^(1/3), K = 4E*/3.
+    pub maugis_lambda: Option<f64>,
+    /// Dugdale law on a sphere: the Maugis–Dugdale pull-off force under approach control.
+    pub f_maugis: Option<f64>,
     /// Kendall's pull-off force −sqrt(8πa³E*γ) (signed: tensile) of a circular punch.
     pub f_kendall: Option<f64>,
     /// Mean pressure of complete non-adhesive contact of a waviness: p*_1D = πE*h/λ (Eq. 2)
@@ -72,8 +77,11 @@ pub struct Problem {
     pub e_star: f64,
     /// Work of adhesion `γ`.
     pub gamma: f64,
-    /// Pohrt–Popov constant κ.
+    /// Pohrt–Popov constant κ (read by the zero-range law only).
     pub kappa: f64,
+    /// The adhesion law (`[adhesion]`): the zero-range criterion with [`Problem::kappa`], or a
+    /// Dugdale cohesive zone.
+    pub law: AdhesionLaw,
     /// Solver settings.
     pub options: AdhesiveOptions,
     /// The approach path.
@@ -287,6 +295,15 @@ impl Problem {
         }
 
         let first_touch = surface.min();
+        let kappa = f.solver.kappa.unwrap_or(KAPPA);
+        if !(kappa.is_finite() && kappa > 0.0) {
+            return Err(SceneError::out_of_range(
+                fields::SOLVER_KAPPA,
+                kappa,
+                "a finite number > 0",
+            ));
+        }
+        let law = adhesion_law(f, kappa, &surface)?;
         let sphere_radius = match f.geometry {
             Geometry::Sphere { radius } => Some(radius),
             _ => body_radius,
@@ -300,6 +317,7 @@ impl Problem {
                 heights_only: matches!(f.geometry, Geometry::None),
                 e_star,
                 gamma,
+                law,
             },
         )?;
         path.validate()?;
@@ -366,26 +384,33 @@ impl Problem {
                 "an integer ≥ 1",
             ));
         }
+        if let AdhesionLaw::Dugdale { sigma0 } = law {
+            dugdale_references(&mut references, &mut warnings, e_star, gamma, sigma0, &grid);
+        }
+        // A cohesive zone loads elements up to the range above the contact: the crop keeps them.
+        let range = match law {
+            AdhesionLaw::Dugdale { sigma0 } => gamma / sigma0,
+            AdhesionLaw::JkrLimit { .. } => 0.0,
+        };
         let window = if f.grid.crop {
-            contact_window(&surface, path.max_approach, roughness_range, e_star, gamma)
-                .filter(|w| w.shape() != grid.shape())
+            contact_window(
+                &surface,
+                path.max_approach,
+                roughness_range + range,
+                e_star,
+                gamma,
+            )
+            .filter(|w| w.shape() != grid.shape())
         } else {
             None
         };
-        let kappa = s.kappa.unwrap_or(KAPPA);
-        if !(kappa.is_finite() && kappa > 0.0) {
-            return Err(SceneError::out_of_range(
-                fields::SOLVER_KAPPA,
-                kappa,
-                "a finite number > 0",
-            ));
-        }
         Ok(Self {
             grid,
             surface,
             e_star,
             gamma,
             kappa,
+            law,
             options,
             path,
             snapshots: (&f.output.snapshots).into(),
@@ -416,13 +441,112 @@ impl Problem {
             None => self.surface.clone(),
         };
         let op = tack_kernels::operator_for(*surface.grid(), self.e_star)?;
-        Ok(AdhesiveSolver::new(
+        Ok(AdhesiveSolver::with_law(
             op,
             &surface,
             self.gamma,
-            self.kappa,
+            self.law,
             self.options,
         )?)
+    }
+}
+
+/// Least length of a Dugdale cohesive zone, in elements, below which a result is flagged: the
+/// zone's tension is then carried by a ring of elements too thin to shape it.
+pub const MIN_COHESIVE_ZONE_ELEMENTS: f64 = 2.0;
+
+/// The length `πE*γ/(4σ0²)` of the cohesive zone ahead of a straight crack under the Dugdale law
+/// (Griffith's `K² = 2E*γ` in `l = (π/8)(K/σ0)²`): what the mesh must resolve.
+pub fn cohesive_zone_length(e_star: f64, gamma: f64, sigma0: f64) -> f64 {
+    std::f64::consts::PI * e_star * gamma / (4.0 * sigma0 * sigma0)
+}
+
+/// The Dugdale law's references and warnings: λ of a sphere (its radius read back from F_JKR),
+/// and a zone narrower than [`MIN_COHESIVE_ZONE_ELEMENTS`].
+fn dugdale_references(
+    references: &mut References,
+    warnings: &mut Vec<String>,
+    e_star: f64,
+    gamma: f64,
+    sigma0: f64,
+    grid: &Grid,
+) {
+    if let Some(f_jkr) = references.f_jkr {
+        let radius = -f_jkr / (1.5 * std::f64::consts::PI * gamma);
+        let k = 4.0 * e_star / 3.0;
+        let lambda =
+            2.0 * sigma0 * (radius / (std::f64::consts::PI * gamma * k * k)).powf(1.0 / 3.0);
+        references.maugis_lambda = Some(lambda);
+    }
+    let zone = cohesive_zone_length(e_star, gamma, sigma0);
+    let elements = zone / grid.dx();
+    if elements < MIN_COHESIVE_ZONE_ELEMENTS {
+        warnings.push(format!(
+            "under-resolved cohesive zone: its length πE*γ/(4σ0²) = {} spans {} elements (at \
+             least {MIN_COHESIVE_ZONE_ELEMENTS} needed); the Dugdale law then acts element by \
+             element and the forces depend on the mesh (refine {dx} or lower {sigma0_field})",
+            num(zone),
+            num((elements * 100.0).round() / 100.0),
+            dx = fields::GRID_DX,
+            sigma0_field = fields::ADHESION_SIGMA0,
+        ));
+    }
+}
+
+/// The adhesion law of `[adhesion]`, checked: `sigma0` only with, and always with, the Dugdale
+/// model; `solver.kappa` only with the zero-range criterion; a Dugdale range `γ/σ0` above the
+/// round-off of the heights.
+fn adhesion_law(f: &SceneSchema, kappa: f64, surface: &Surface) -> Result<AdhesionLaw, SceneError> {
+    let model = fields::ADHESION_MODEL;
+    match (f.adhesion.model, f.adhesion.sigma0) {
+        (AdhesionModel::JkrLimit, None) => Ok(AdhesionLaw::JkrLimit { kappa }),
+        (AdhesionModel::JkrLimit, Some(s)) => Err(SceneError::Inconsistent(format!(
+            "{sigma0} = {} is read by the Dugdale law only: set {model} = \"dugdale\" or leave \
+             {sigma0} out (the default {model} = \"jkr_limit\" has zero range)",
+            num(s),
+            sigma0 = fields::ADHESION_SIGMA0,
+        ))),
+        (AdhesionModel::Dugdale, None) => Err(SceneError::Inconsistent(format!(
+            "{sigma0} is required with {model} = \"dugdale\": the cohesive tension σ0 > 0 (the \
+             range is {gamma}/σ0)",
+            sigma0 = fields::ADHESION_SIGMA0,
+            gamma = fields::MATERIAL_GAMMA,
+        ))),
+        (AdhesionModel::Dugdale, Some(sigma0)) => {
+            if !(sigma0.is_finite() && sigma0 > 0.0) {
+                return Err(SceneError::out_of_range(
+                    fields::ADHESION_SIGMA0,
+                    sigma0,
+                    "a finite number > 0",
+                ));
+            }
+            if f.solver.kappa.is_some() {
+                return Err(SceneError::Inconsistent(format!(
+                    "{kappa} is the zero-range criterion's constant; {model} = \"dugdale\" does \
+                     not read it: leave it out",
+                    kappa = fields::SOLVER_KAPPA,
+                )));
+            }
+            let gamma = f.material.gamma;
+            if gamma <= 0.0 {
+                return Err(SceneError::Inconsistent(format!(
+                    "{model} = \"dugdale\" needs {gamma_field} > 0 (the range is γ/σ0); got {}",
+                    num(gamma),
+                    gamma_field = fields::MATERIAL_GAMMA,
+                )));
+            }
+            let top = surface.heights().iter().fold(0.0f64, |m, &h| m.max(h.abs()));
+            let range = gamma / sigma0;
+            if range <= RANGE_ROUND_OFF * top {
+                return Err(SceneError::out_of_range(
+                    fields::ADHESION_SIGMA0,
+                    sigma0,
+                    "small enough that the range material.gamma/sigma0 exceeds 1e-12 of the \
+                     largest height (below it the gap test is round-off)",
+                ));
+            }
+            Ok(AdhesionLaw::Dugdale { sigma0 })
+        }
     }
 }
 
@@ -477,6 +601,7 @@ struct PathBody<'a> {
     heights_only: bool,
     e_star: f64,
     gamma: f64,
+    law: AdhesionLaw,
 }
 
 /// The approach path of `[protocol]`: an indentation (`indent`), the given load–unload path
@@ -590,10 +715,19 @@ fn approach_path(
                 let unload = p.unload_step.unwrap_or(rule.path.unload_step);
                 let coarse = p.coarse_unload_step.unwrap_or(rule.path.coarse_unload_step);
                 let max_approach = rule.path.max_approach;
-                let load = (max_approach - first_touch).max(unload);
-                // One load step straight to the deepest approach.
+                let (start, load) = match body.law {
+                    // One load step straight to the deepest approach.
+                    AdhesionLaw::JkrLimit { .. } => {
+                        (max_approach, (max_approach - first_touch).max(unload))
+                    }
+                    // A finite range makes the approach physical: from just before the first
+                    // element comes within the range, in retraction steps (quasi-static).
+                    AdhesionLaw::Dugdale { sigma0 } => {
+                        (first_touch - body.gamma / sigma0 - unload, unload)
+                    }
+                };
                 let path = ApproachPath {
-                    start: max_approach,
+                    start,
                     max_approach,
                     load_step: load,
                     unload_step: unload,

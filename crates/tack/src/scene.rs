@@ -24,6 +24,9 @@ pub struct SceneSchema {
     pub version: i64,
     /// `[material]`.
     pub material: Material,
+    /// `[adhesion]`: the adhesion law, optional (default: the zero-range limit).
+    #[serde(default, skip_serializing_if = "AdhesionSpec::is_default")]
+    pub adhesion: AdhesionSpec,
     /// `[geometry]`: the macroscopic shape.
     pub geometry: Geometry,
     /// `[roughness]`: added to the shape, optional.
@@ -55,6 +58,47 @@ pub struct Material {
     pub e_star: f64,
     /// Work of adhesion `γ` per unit area (≥ 0; 0 is non-adhesive).
     pub gamma: f64,
+}
+
+/// `[adhesion]`: which law turns the work of adhesion `material.gamma` into tractions.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AdhesionSpec {
+    /// `"jkr_limit"` (default) or `"dugdale"`.
+    #[serde(default)]
+    pub model: AdhesionModel,
+    /// Dugdale: the cohesive tension σ0 (> 0); the range is `h0 = γ/σ0`. Only with
+    /// `model = "dugdale"`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sigma0: Option<f64>,
+}
+
+impl AdhesionSpec {
+    /// The default section (left out when a scene is written).
+    pub fn is_default(&self) -> bool {
+        *self == Self::default()
+    }
+}
+
+/// `adhesion.model`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AdhesionModel {
+    /// The zero-range limit: the Pohrt–Popov detachment criterion (the paper's model).
+    #[default]
+    JkrLimit,
+    /// A Dugdale cohesive zone of tension σ0 and range γ/σ0 (Maugis 1992).
+    Dugdale,
+}
+
+impl AdhesionModel {
+    /// The name in scene files and results: `"jkr_limit"` or `"dugdale"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::JkrLimit => "jkr_limit",
+            Self::Dugdale => "dugdale",
+        }
+    }
 }
 
 /// `[geometry]`: the macroscopic shape, selected by `shape`.

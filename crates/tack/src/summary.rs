@@ -3,7 +3,7 @@
 //! [`tack_io::RunResult`] that [`crate::engine`] hands back.
 
 use tack_fields as fields;
-use tack_solver::{PathResult, Phase};
+use tack_solver::{AdhesionLaw, PathResult, Phase};
 
 use crate::problem::Problem;
 
@@ -46,9 +46,40 @@ pub fn summary(problem: &Problem, path: &PathResult) -> tack_io::Summary {
     if min_mean_pressure.is_finite() {
         extra.insert("min_mean_pressure".to_owned(), min_mean_pressure);
     }
-    let sigma_c = (problem.e_star * problem.gamma / (problem.kappa * problem.grid.dx())).sqrt();
-    extra.insert("sigma_c".to_owned(), sigma_c);
-    extra.insert("kappa".to_owned(), problem.kappa);
+    match problem.law {
+        AdhesionLaw::JkrLimit { kappa } => {
+            let sigma_c = (problem.e_star * problem.gamma / (kappa * problem.grid.dx())).sqrt();
+            extra.insert("sigma_c".to_owned(), sigma_c);
+            extra.insert("kappa".to_owned(), kappa);
+        }
+        AdhesionLaw::Dugdale { sigma0 } => {
+            extra.insert("sigma0".to_owned(), sigma0);
+            extra.insert("range".to_owned(), problem.gamma / sigma0);
+            let zone = crate::problem::cohesive_zone_length(problem.e_star, problem.gamma, sigma0);
+            extra.insert(
+                "cohesive_zone_elements".to_owned(),
+                zone / problem.grid.dx(),
+            );
+        }
+    }
+    if let Some(l) = r.maugis_lambda {
+        extra.insert("maugis_lambda".to_owned(), l);
+    }
+    if let Some(f) = r.f_maugis {
+        extra.insert("f_maugis".to_owned(), f);
+    }
+    let cycle = path.cycle();
+    if let Some(w) = cycle.dissipated_energy {
+        extra.insert("dissipated_energy".to_owned(), w);
+    }
+    if let Some((d, f)) = cycle.jump_in {
+        extra.insert("jump_in_approach".to_owned(), d);
+        extra.insert("jump_in_force".to_owned(), f);
+    }
+    if let Some((d, f)) = cycle.jump_out {
+        extra.insert("jump_out_approach".to_owned(), d);
+        extra.insert("jump_out_force".to_owned(), f);
+    }
     extra.insert("first_touch".to_owned(), problem.first_touch);
     let bad = path.records.iter().filter(|r| !r.converged).count();
     extra.insert("non_converged_steps".to_owned(), bad as f64);
@@ -73,7 +104,17 @@ pub fn summary(problem: &Problem, path: &PathResult) -> tack_io::Summary {
         alpha_star: r.alpha_star,
         extra,
         status: Some(status.to_owned()),
+        adhesion_model: Some(model_name(problem.law).to_owned()),
         warnings: warnings(problem, path),
+    }
+}
+
+/// The name of an adhesion law in scene files and results (`/summary` attribute
+/// `adhesion_model`).
+pub fn model_name(law: AdhesionLaw) -> &'static str {
+    match law {
+        AdhesionLaw::JkrLimit { .. } => crate::scene::AdhesionModel::JkrLimit.name(),
+        AdhesionLaw::Dugdale { .. } => crate::scene::AdhesionModel::Dugdale.name(),
     }
 }
 
@@ -139,7 +180,10 @@ pub fn warnings(problem: &Problem, path: &PathResult) -> Vec<String> {
             .iter()
             .zip(&path.phases)
             .filter(|(r, phase)| {
-                **phase == Phase::Unload && r.force < 0.0 && r.n_bonded > 0 && !r.full_contact
+                **phase == Phase::Unload
+                    && r.force < 0.0
+                    && r.n_bonded + r.n_cohesive > 0
+                    && !r.full_contact
             })
             .count();
         if tensile < MIN_TENSILE_STEPS {
@@ -151,7 +195,9 @@ pub fn warnings(problem: &Problem, path: &PathResult) -> Vec<String> {
                 coarse = fields::PROTOCOL_COARSE_UNLOAD_STEP
             ));
         } else if let Some(i) = path.pull_off_step() {
-            let n = records[i].n_bonded;
+            // Under the Dugdale law the zone carries the pull-off too (all of it as the
+            // contact shrinks to nothing at small λ).
+            let n = records[i].n_bonded + records[i].n_cohesive;
             if n < MIN_PULL_OFF_ELEMENTS {
                 out.push(format!(
                     "the pull-off is carried by {n} bonded elements (fewer than \
@@ -171,7 +217,7 @@ pub const MIN_TENSILE_STEPS: usize = 3;
 /// Names of every scalar [`summary`] can record: the [`tack_io::Summary`] fields, then its
 /// `extra` keys. A run need not have all of them (`d_jkr` only for spheres, `crop_rows` only
 /// when cropped, ...). Parameter sweeps collect quantities by these names.
-pub const SUMMARY_QUANTITIES: [&str; 21] = [
+pub const SUMMARY_QUANTITIES: [&str; 31] = [
     "pull_off_force",
     "f_jkr",
     "pull_off_ratio",
@@ -183,6 +229,16 @@ pub const SUMMARY_QUANTITIES: [&str; 21] = [
     "min_mean_pressure",
     "sigma_c",
     "kappa",
+    "sigma0",
+    "range",
+    "cohesive_zone_elements",
+    "maugis_lambda",
+    "f_maugis",
+    "dissipated_energy",
+    "jump_in_approach",
+    "jump_in_force",
+    "jump_out_approach",
+    "jump_out_force",
     "first_touch",
     "non_converged_steps",
     "edge_contact_steps",
@@ -209,8 +265,11 @@ pub fn summary_quantity(summary: &tack_io::Summary, name: &str) -> f64 {
 }
 
 /// The curve of a path, one entry per step.
+///
+/// The column `n_cohesive` is kept when some step has a cohesive zone (Dugdale law).
 pub fn curve(path: &PathResult) -> tack_io::Curve {
     let r = &path.records;
+    let cohesive = r.iter().any(|s| s.n_cohesive > 0);
     tack_io::Curve {
         approach: r.iter().map(|s| s.approach).collect(),
         force: r.iter().map(|s| s.force).collect(),
@@ -222,6 +281,7 @@ pub fn curve(path: &PathResult) -> tack_io::Curve {
         converged: r.iter().map(|s| s.converged).collect(),
         mean_pressure: Some(r.iter().map(|s| s.mean_pressure).collect()),
         full_contact: Some(r.iter().map(|s| s.full_contact).collect()),
+        n_cohesive: cohesive.then(|| r.iter().map(|s| s.n_cohesive as u64).collect()),
     }
 }
 
@@ -275,6 +335,7 @@ pub fn surface_file(problem: &Problem, provenance: tack_io::Provenance) -> tack_
             alpha_star: problem.references.alpha_star,
             extra: Default::default(),
             status: None,
+            adhesion_model: Some(model_name(problem.law).to_owned()),
             warnings: problem.warnings.clone(),
         },
     }

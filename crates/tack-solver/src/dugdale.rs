@@ -1,0 +1,335 @@
+//! The Dugdale cohesive-zone law (Maugis 1992): a constant tension σ0 wherever the gap lies in
+//! `0 < g < h0`, with `γ = σ0·h0`; solved by the adhesive solver's active-set loop on three sets.
+//!
+//! At approach `d` every element is in one of three sets: **contact** `C` (`g = 0`, `p ≥ −σ0`),
+//! the **cohesive zone** `Z` (`p = −σ0`, `0 < g < h0`) or **free** `F` (`p = 0`, `g ≥ h0`).
+//! A round solves `K_CC p_C = (d − f − K p_Z)_C` with `p_Z = −σ0` (the zone's displacement
+//! enters as a shift of the heights, so the bonded-set CG is reused unchanged), brings the gap up
+//! to date everywhere and applies every transition the one solution calls for, together:
+//! `C → Z` where `p < −σ0`, `Z → C` where `g < 0`, `Z → F` where `g > h0`, `F → C` where
+//! `g < 0`, `F → Z` where `g < h0`. It repeats until no set changes; a revisited pair of sets
+//! stops the step as not converged, as does the round cap. The `C ↔ Z` tests carry a margin of
+//! the CG tolerance (for an element at the contact edge `p < −σ0` in `C` is equivalent to
+//! `g > 0` in `Z`, so without one round-off could flip it forever); the `Z ↔ F` test has none
+//! (near `g = h0` both states can be admissible: the law's own bistability, settled by the
+//! previous step's state). Every round is solved to the CG tolerance.
+
+use ndarray::{Array2, ArrayView2, ArrayViewMut2, Zip};
+use std::collections::HashSet;
+use tack_fields as fields;
+use tack_geometry::Surface;
+use tack_kernels::ElasticOperator;
+
+use crate::adhesive::{SubProblem, hash_masks};
+use crate::cg::{PcgWork, Work, pcg};
+use crate::state::Convergence;
+use crate::{AdhesiveSolver, SolverError, SolverOptions, StepRecord};
+
+/// The adhesion law of an [`AdhesiveSolver`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum AdhesionLaw {
+    /// The zero-range (JKR) limit: the Pohrt–Popov detachment criterion
+    /// `σ_c = sqrt(E*γ/(κΔx))`; an element bonds when it penetrates (see [`crate::KAPPA`]).
+    JkrLimit {
+        /// The Pohrt–Popov constant κ.
+        kappa: f64,
+    },
+    /// A Dugdale cohesive zone: tension `σ0` wherever `0 < gap < h0 = γ/σ0` (the module docs of
+    /// `dugdale.rs` and docs/theory.md give the three-set algorithm).
+    Dugdale {
+        /// The cohesive tension σ0 > 0.
+        sigma0: f64,
+    },
+}
+
+/// The smallest range allowed, relative to the largest height: below it the gap test
+/// `g < h0` is decided by the round-off of `f − d + u`.
+pub const RANGE_ROUND_OFF: f64 = 1e-12;
+
+/// The Dugdale law's state on the solver's grid: σ0, the range, the cohesive zone and scratch.
+pub(crate) struct Cohesive {
+    pub(crate) sigma0: f64,
+    pub(crate) range: f64,
+    pub(crate) zone: Array2<bool>,
+    /// Contact or zone: the loaded elements that fix the sub-grid.
+    loaded: Array2<bool>,
+    scratch: ZoneScratch,
+}
+
+impl Cohesive {
+    /// Checks `σ0 > 0`, `γ > 0` and a range above the round-off of the heights.
+    pub(crate) fn new(
+        gamma: f64,
+        sigma0: f64,
+        surface: &Surface,
+        shape: (usize, usize),
+    ) -> Result<Self, SolverError> {
+        crate::validate::positive(fields::ADHESION_SIGMA0, sigma0)?;
+        if gamma <= 0.0 {
+            return Err(SolverError::OutOfRange {
+                field: fields::MATERIAL_GAMMA,
+                value: gamma,
+                allowed: "a finite number > 0 under the Dugdale law (the range is γ/σ0)",
+            });
+        }
+        let range = gamma / sigma0;
+        let top = surface.heights().iter().fold(0.0f64, |m, &f| m.max(f.abs()));
+        if !(range > RANGE_ROUND_OFF * top) {
+            return Err(SolverError::OutOfRange {
+                field: fields::ADHESION_SIGMA0,
+                value: sigma0,
+                allowed: "small enough that the range γ/σ0 exceeds 1e-12 of the largest height",
+            });
+        }
+        Ok(Self {
+            sigma0,
+            range,
+            zone: Array2::from_elem(shape, false),
+            loaded: Array2::from_elem(shape, false),
+            scratch: ZoneScratch::new(shape),
+        })
+    }
+}
+
+/// The zone's tension field, its displacement and the shifted heights on one (sub-)grid.
+pub(crate) struct ZoneScratch {
+    zone: Array2<bool>,
+    tension: Array2<f64>,
+    uz: Array2<f64>,
+    shifted: Array2<f64>,
+}
+
+impl ZoneScratch {
+    pub(crate) fn new(shape: (usize, usize)) -> Self {
+        let z = Array2::zeros(shape);
+        Self {
+            zone: Array2::from_elem(shape, false),
+            tension: z.clone(),
+            uz: z.clone(),
+            shifted: z,
+        }
+    }
+}
+
+impl AdhesiveSolver {
+    /// One approach step under the Dugdale law (module docs); `d` is validated.
+    pub(crate) fn step_dugdale(&mut self, d: f64) -> StepRecord {
+        let periodic = self.base.periodic();
+        let n = self.base.heights().len();
+        let fmean = self.base.fmean;
+        let (sigma0, range) = {
+            let c = self.cohesive.as_ref().expect("the Dugdale law");
+            (c.sigma0, c.range)
+        };
+        let tolerance = self.options.cg.tolerance;
+        let (mut cg_total, mut worst, mut converged, mut full) = (0, 0.0f64, true, false);
+        let mut visited = HashSet::new();
+        let mut rounds = 0;
+        let closed = periodic && d >= fmean - 1e-12 * (fmean.abs() + d.abs());
+        if closed {
+            self.bonded.fill(true);
+            self.zone_mut().fill(false);
+        }
+        loop {
+            if rounds == self.options.max_active_set_iterations {
+                converged = false;
+                break;
+            }
+            rounds += 1;
+            let n_bonded = self.bonded.iter().filter(|&&b| b).count();
+            if periodic && n_bonded == n {
+                // Full contact: as under the criterion, with σ0 the greatest tension.
+                let p_min = self.base.full_contact_field();
+                if closed {
+                    self.base.pressure.mapv_inplace(|p| p - p_min - sigma0);
+                    self.base.gap.fill(0.0);
+                    full = true;
+                    break;
+                }
+                let ncols = self.bonded.ncols();
+                let weakest = self
+                    .base
+                    .pressure
+                    .iter()
+                    .position(|&p| p == p_min)
+                    .unwrap_or(0);
+                let at = (weakest / ncols, weakest % ncols);
+                self.bonded[at] = false;
+                self.zone_mut()[at] = true;
+                continue;
+            }
+            let zone = &self.cohesive.as_ref().expect("the Dugdale law").zone;
+            let cycle = !visited.insert(hash_masks(&[&self.bonded, zone]));
+            let c = self.solve_cohesive(d);
+            cg_total += c.iterations;
+            worst = worst.max(c.residual);
+            converged &= c.converged;
+            self.base.update_gap(d);
+            if cycle {
+                converged = false;
+                break;
+            }
+            let p_margin = tolerance * sigma0;
+            let g_margin = tolerance * c.scale.max(range);
+            let mut changed = false;
+            let coh = self.cohesive.as_mut().expect("the Dugdale law");
+            Zip::from(&mut self.bonded)
+                .and(&mut coh.zone)
+                .and(&mut self.base.pressure)
+                .and(&self.base.gap)
+                .for_each(|b, z, p, &g| {
+                    if *b {
+                        if *p < -sigma0 - p_margin {
+                            (*b, *z, *p) = (false, true, -sigma0);
+                            changed = true;
+                        }
+                    } else if *z {
+                        if g < -g_margin {
+                            (*b, *z) = (true, false);
+                            changed = true;
+                        } else if g > range {
+                            (*z, *p) = (false, 0.0);
+                            changed = true;
+                        }
+                    } else if g < -g_margin {
+                        *b = true;
+                        changed = true;
+                    } else if g < range {
+                        (*z, *p) = (true, -sigma0);
+                        changed = true;
+                    }
+                });
+            if !changed {
+                break;
+            }
+        }
+        self.record(d, cg_total, rounds, worst, converged, full)
+    }
+
+    fn zone_mut(&mut self) -> &mut Array2<bool> {
+        &mut self.cohesive.as_mut().expect("the Dugdale law").zone
+    }
+
+    /// Solves the contact set with the zone's tension held: `pressure` holds `p_C` on the
+    /// contact, `−σ0` on the zone and 0 elsewhere, `work.disp = K p` on the whole grid. On free
+    /// grids whose loaded elements fill little of the grid, the solve runs on a sub-grid around
+    /// them (exact, as for the criterion) and one full-grid product follows.
+    fn solve_cohesive(&mut self, d: f64) -> Convergence {
+        let cg = self.options.cg;
+        let pre = self.options.preconditioned;
+        let window = {
+            let coh = self.cohesive.as_mut().expect("the Dugdale law");
+            Zip::from(&mut coh.loaded)
+                .and(&self.bonded)
+                .and(&coh.zone)
+                .for_each(|l, &b, &z| *l = b || z);
+            let coh = self.cohesive.as_ref().expect("the Dugdale law");
+            self.subgrid_of(&coh.loaded)
+        };
+        let coh = self.cohesive.as_mut().expect("the Dugdale law");
+        let base = &mut self.base;
+        let Some(window) = window else {
+            coh.scratch.zone.assign(&coh.zone);
+            return solve_with_zone(
+                base.op.as_mut(),
+                base.surface.heights().view(),
+                self.bonded.view(),
+                coh.sigma0,
+                d,
+                base.pressure.view_mut(),
+                &mut base.work,
+                &mut self.pcg,
+                &mut coh.scratch,
+                &cg,
+                pre,
+            );
+        };
+        let shape = window.shape();
+        let (dx, e_star) = (base.grid().dx(), base.op.e_star());
+        let sub = self
+            .boxes
+            .get_or_insert_with(shape, || SubProblem::new(shape, dx, e_star));
+        let block = ndarray::s![window.i0..window.i1, window.j0..window.j1];
+        let scratch = sub.zone.get_or_insert_with(|| ZoneScratch::new(shape));
+        sub.pressure.assign(&base.pressure.slice(block));
+        sub.heights.assign(&base.surface.heights().slice(block));
+        sub.bonded.assign(&self.bonded.slice(block));
+        scratch.zone.assign(&coh.zone.slice(block));
+        let out = solve_with_zone(
+            &mut sub.op,
+            sub.heights.view(),
+            sub.bonded.view(),
+            coh.sigma0,
+            d,
+            sub.pressure.view_mut(),
+            &mut sub.work,
+            &mut sub.pcg,
+            scratch,
+            &cg,
+            pre,
+        );
+        base.pressure.fill(0.0);
+        base.pressure.slice_mut(block).assign(&sub.pressure);
+        base.op
+            .apply(base.pressure.view(), base.work.disp.view_mut());
+        out
+    }
+}
+
+/// `K_CC p_C = (d − f − K p_Z)_C` on one grid with `p_Z = −σ0` on `scratch.zone`; leaves the
+/// whole pressure in `pressure` and `work.disp = K p`.
+#[allow(clippy::too_many_arguments)]
+fn solve_with_zone(
+    op: &mut dyn ElasticOperator,
+    heights: ArrayView2<f64>,
+    bonded: ArrayView2<bool>,
+    sigma0: f64,
+    d: f64,
+    mut pressure: ArrayViewMut2<f64>,
+    work: &mut Work,
+    pcg_work: &mut PcgWork,
+    scratch: &mut ZoneScratch,
+    cg: &SolverOptions,
+    preconditioned: bool,
+) -> Convergence {
+    Zip::from(&mut scratch.tension)
+        .and(&scratch.zone)
+        .for_each(|t, &z| *t = if z { -sigma0 } else { 0.0 });
+    if scratch.zone.iter().any(|&z| z) {
+        op.apply(scratch.tension.view(), scratch.uz.view_mut());
+    } else {
+        scratch.uz.fill(0.0);
+    }
+    let c = if bonded.iter().any(|&b| b) {
+        Zip::from(&mut scratch.shifted)
+            .and(&heights)
+            .and(&scratch.uz)
+            .for_each(|s, &f, &u| *s = f + u);
+        pcg(
+            op,
+            scratch.shifted.view(),
+            bonded,
+            d,
+            pressure.view_mut(),
+            work,
+            pcg_work,
+            cg,
+            preconditioned,
+        )
+    } else {
+        pressure.fill(0.0);
+        work.disp.fill(0.0);
+        Convergence::EXACT
+    };
+    Zip::from(&mut pressure)
+        .and(&scratch.tension)
+        .for_each(|p, &t| {
+            if t != 0.0 {
+                *p = t;
+            }
+        });
+    Zip::from(&mut work.disp)
+        .and(&scratch.uz)
+        .for_each(|u, &z| *u += z);
+    c
+}
