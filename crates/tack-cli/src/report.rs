@@ -24,11 +24,20 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
         "body        {}",
         describe_body(&f.geometry, &f.roughness)
     ));
+    let law = match p.law {
+        tack::solver::AdhesionLaw::JkrLimit { kappa } => {
+            format!("zero-range limit, kappa = {}", rounded(kappa))
+        }
+        tack::solver::AdhesionLaw::Dugdale { sigma0 } => format!(
+            "Dugdale, sigma0 = {}, range = {}",
+            rounded(sigma0),
+            rounded(p.gamma / sigma0)
+        ),
+    };
     lines.push(format!(
-        "material    E* = {}, gamma = {}, kappa = {}",
+        "material    E* = {}, gamma = {} ({law})",
         rounded(p.e_star),
         rounded(p.gamma),
-        rounded(p.kappa)
     ));
     let boundary = match p.grid.boundary() {
         tack::geometry::Boundary::Free => "free",

@@ -81,7 +81,8 @@ impl Result {
     /// The scalar results: `pull_off_force`, `f_jkr`, `pull_off_ratio` (NaN where F_JKR does
     /// not apply), `johnson_alpha`, `alpha_star` (None where they do not apply), then the
     /// extras (`d_jkr`, `sigma_c`, `kappa`, `first_touch`, `non_converged_steps`, ...), then
-    /// `status` (`"complete"`, `"stopped at protocol.max_steps"`; None in old files) and
+    /// `status` (`"complete"`, `"stopped at protocol.max_steps"`; None in old files),
+    /// `adhesion_model` (`"jkr_limit"`, `"dugdale"`; None in old files) and
     /// `warnings` (a list of sentences: why the result may not be trusted).
     #[getter]
     fn summary(&self, py: Python<'_>) -> PyResult<Py<PyDict>> {
@@ -99,6 +100,7 @@ impl Result {
                     d.set_item(name, value)?;
                 }
                 d.set_item("status", s.status.as_deref())?;
+                d.set_item("adhesion_model", s.adhesion_model.as_deref())?;
                 d.set_item("warnings", &s.warnings)?;
                 Ok(d.unbind())
             })?;

@@ -36,6 +36,8 @@ const PULL_OFF_NAMES: Names = &[
     (fields::PROTOCOL_COARSE_UNLOAD_STEP, "coarse_unload_step"),
     (fields::PROTOCOL_UNLOAD_STEP, "unload_step"),
     (fields::SOLVER_KAPPA, "kappa"),
+    (fields::ADHESION_SIGMA0, "sigma0"),
+    (fields::ADHESION_MODEL, "model"),
     (fields::OUTPUT_SNAPSHOTS, "snapshots"),
     (
         "the non-adhesive tack_solver::ContactSolver",
@@ -195,7 +197,7 @@ fn command_line(py: Python<'_>) -> String {
 
 /// The pull-off of a body given as heights (`tack::heights::pull_off`).
 #[pyfunction]
-#[pyo3(signature = (heights, *, dx, e_star, gamma, periodic=false, radius=None, max_approach=None, unload_step=None, coarse_unload_step=None, kappa=None, snapshots=None, threads=None, progress=None))]
+#[pyo3(signature = (heights, *, dx, e_star, gamma, periodic=false, radius=None, max_approach=None, unload_step=None, coarse_unload_step=None, kappa=None, model="jkr_limit", sigma0=None, snapshots=None, threads=None, progress=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn pull_off(
     py: Python<'_>,
@@ -209,6 +211,8 @@ pub fn pull_off(
     unload_step: Option<f64>,
     coarse_unload_step: Option<f64>,
     kappa: Option<f64>,
+    model: &str,
+    sigma0: Option<f64>,
     snapshots: Option<Bound<'_, PyAny>>,
     threads: Option<i64>,
     progress: Option<Py<PyAny>>,
@@ -220,6 +224,15 @@ pub fn pull_off(
             let value = toml_value("snapshots", &value)?;
             tack::scene::Snapshots::try_from(value)
                 .map_err(|e| value_error_named(e, PULL_OFF_NAMES))?
+        }
+    };
+    let model = match model {
+        "jkr_limit" => tack::AdhesionModel::JkrLimit,
+        "dugdale" => tack::AdhesionModel::Dugdale,
+        other => {
+            return Err(value_error(format!(
+                "model = {other:?} is invalid: must be \"jkr_limit\" or \"dugdale\""
+            )));
         }
     };
     let spec = tack::heights::PullOffSpec {
@@ -236,6 +249,7 @@ pub fn pull_off(
         unload_step,
         coarse_unload_step,
         kappa,
+        adhesion: tack::AdhesionSpec { model, sigma0 },
         snapshots,
     };
     let heights = heights.as_array().to_owned();

@@ -123,6 +123,8 @@ pub struct PathRule {
     pub fitted: bool,
     /// The rule's numbers.
     pub path: crate::pull_off_path::PullOffPath,
+    /// Loaded in retraction steps from out of range (a finite-range law), not in one step.
+    pub stepped_load: bool,
 }
 
 impl std::fmt::Display for PathRule {
@@ -131,11 +133,16 @@ impl std::fmt::Display for PathRule {
         let p = &self.path;
         write!(
             f,
-            "default pull-off path of R = {} ({}), d_s = {}: one load step to d = {}, retraction \
-             by {} while compressive, then by {}",
+            "default pull-off path of R = {} ({}), d_s = {}: {} to d = {}, retraction by {} while \
+             compressive, then by {}",
             num(self.radius),
             if self.fitted { "fitted" } else { "given" },
             num(p.d_s),
+            if self.stepped_load {
+                "loaded in retraction steps from out of range"
+            } else {
+                "one load step"
+            },
             num(p.max_approach),
             num(p.coarse_unload_step),
             num(p.unload_step)
@@ -741,6 +748,7 @@ fn approach_path(
                         coarse_unload_step: coarse,
                         ..rule.path
                     },
+                    stepped_load: matches!(body.law, AdhesionLaw::Dugdale { .. }),
                     ..rule
                 };
                 return Ok((path, Some(rule)));
@@ -830,6 +838,7 @@ fn default_path(body: &PathBody<'_>) -> Result<PathRule, SceneError> {
         }
     };
     Ok(PathRule {
+        stepped_load: false,
         radius,
         fitted,
         path: crate::pull_off_path::default_pull_off_path(
@@ -880,6 +889,7 @@ fn finish_default_path(
         )?;
     }
     Ok(PathRule {
+        stepped_load: false,
         radius,
         fitted,
         path,

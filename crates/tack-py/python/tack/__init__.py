@@ -218,6 +218,15 @@ def read(path: PathLike) -> Result:
     return _tack.read(_check.path("path", path))
 
 
+def _model(model: Any) -> str:
+    """``model`` of :func:`pull_off`: ``"jkr_limit"`` or ``"dugdale"``."""
+    if not isinstance(model, str):
+        raise TypeError(f"model: expected a str, got {_check.describe(model)}")
+    if model not in ("jkr_limit", "dugdale"):
+        raise _check.invalid("model", model, '"jkr_limit" or "dugdale"')
+    return model
+
+
 def pull_off(
     heights: Any,
     *,
@@ -230,6 +239,8 @@ def pull_off(
     unload_step: Optional[float] = None,
     coarse_unload_step: Optional[float] = None,
     kappa: Optional[float] = None,
+    model: str = "jkr_limit",
+    sigma0: Optional[float] = None,
     snapshots: Union[str, int, Sequence[int]] = "pull_off",
     threads: Optional[int] = None,
     progress: Progress = False,
@@ -254,7 +265,14 @@ def pull_off(
             half the roughness range.
         max_approach, unload_step, coarse_unload_step: the path, instead of the default rule
             (``max_approach`` finite, the steps > 0).
-        kappa: the Pohrt-Popov constant (> 0; default 0.473201, curved crack fronts).
+        kappa: the Pohrt-Popov constant (> 0; default 0.473201, curved crack fronts); the
+            zero-range model only.
+        model: the adhesion law: ``"jkr_limit"`` (default; the zero-range Pohrt-Popov
+            criterion) or ``"dugdale"`` (a cohesive zone of tension ``sigma0`` and range
+            gamma/sigma0, Maugis 1992). The Dugdale path approaches from out of range in
+            retraction steps, so the curve has both branches; the summary then holds
+            ``maugis_lambda`` (spheres), ``dissipated_energy`` and the jumps in and out.
+        sigma0: the cohesive tension (> 0), required with ``model="dugdale"`` only.
         snapshots: which steps keep pressure and bonded fields: ``"pull_off"`` (the pull-off
             step and the last contact), ``"all"``, ``"none"``, every k-th step (an int) or a
             list of step indices.
@@ -300,6 +318,8 @@ def pull_off(
             _check.positive, "coarse_unload_step", coarse_unload_step
         ),
         kappa=_check.optional(_check.positive, "kappa", kappa),
+        model=_model(model),
+        sigma0=_check.optional(_check.positive, "sigma0", sigma0),
         snapshots=_snapshots(snapshots),
         threads=_threads(threads),
     )
