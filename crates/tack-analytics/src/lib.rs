@@ -7,7 +7,10 @@
 //!
 //! Besides the closed forms: the inverses of the adhesion parameters (waviness amplitude from
 //! Johnson's α, Eq. 3; rms height from α*, Eq. 11) and a least-squares fit of the Gaussian form
-//! of Eq. 12 ([`fit_gaussian`]), as used for the paper's Fig. 7.
+//! of Eq. 12 ([`fit_gaussian`]), as used for the paper's Fig. 7. Beyond the paper: the Maugis
+//! (1992) Dugdale model of the adhesive sphere, the JKR–DMT transition in one parameter λ, with
+//! its stable branches, pull-off and jumps under approach control ([`maugis_pull_off_hat`],
+//! [`maugis_force_at_hat`]), for comparisons with a finite interaction range.
 //!
 //! ```
 //! use std::f64::consts::PI;
@@ -37,6 +40,7 @@ mod hertz;
 mod jkr;
 mod johnson;
 mod kendall;
+mod maugis;
 mod pohrt_popov;
 #[cfg(test)]
 mod quad;
@@ -58,6 +62,12 @@ pub use johnson::{
     waviness_amplitude_from_alpha,
 };
 pub use kendall::kendall_pull_off;
+pub use maugis::{
+    MaugisBranch, MaugisPoint, MaugisScales, maugis_force_at, maugis_force_at_hat,
+    maugis_jump_in_hat, maugis_jump_out_hat, maugis_lambda, maugis_lambda_critical, maugis_point,
+    maugis_pull_off, maugis_pull_off_hat, maugis_scales, maugis_separated_jump_out_hat,
+    maugis_separated_point,
+};
 pub use pohrt_popov::{KAPPA_CENTRE, KAPPA_MEAN, critical_stress, kappa_centre, kappa_mean};
 pub use westergaard::{
     westergaard_half_width, westergaard_mean_pressure, westergaard_p_star, westergaard_pressure,
