@@ -17,9 +17,9 @@ use tack_geometry::{Boundary, Surface, Window};
 use tack_kernels::{ElasticOperator, FreeOperator, padded_size};
 
 use crate::base::SolverBase;
-use crate::dugdale::{Cohesive, ZoneScratch};
 use crate::cg::{PcgWork, Work, pcg};
 use crate::clusters::count_clusters;
+use crate::dugdale::{Cohesive, ZoneScratch};
 use crate::state::Convergence;
 use crate::subgrid::{SubgridCache, free_operator};
 use crate::{AdhesionLaw, SolverError, SolverOptions, StepRecord, validate};

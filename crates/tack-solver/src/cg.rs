@@ -88,6 +88,36 @@ pub(crate) fn pcg(
     heights: ArrayView2<f64>,
     bonded: ArrayView2<bool>,
     d: f64,
+    pressure: ArrayViewMut2<f64>,
+    w: &mut Work,
+    pw: &mut PcgWork,
+    options: &SolverOptions,
+    preconditioned: bool,
+) -> Convergence {
+    pcg_holding(
+        op,
+        heights,
+        bonded,
+        None,
+        d,
+        pressure,
+        w,
+        pw,
+        options,
+        preconditioned,
+    )
+}
+
+/// [`pcg`] with the pressure of the `held` elements off the bonded set kept as it is (the
+/// Dugdale law's cohesive zone): the solve is then `K_CC p_C = (d − f − K_CH p_H)_C` and
+/// `work.disp = K p` includes the held pressure.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn pcg_holding(
+    op: &mut dyn ElasticOperator,
+    heights: ArrayView2<f64>,
+    bonded: ArrayView2<bool>,
+    held: Option<ArrayView2<bool>>,
+    d: f64,
     mut pressure: ArrayViewMut2<f64>,
     w: &mut Work,
     pw: &mut PcgWork,
@@ -99,11 +129,21 @@ pub(crate) fn pcg(
     let c = bonded.as_slice().expect("contiguous mask");
     {
         let p = pressure.as_slice_mut().expect("contiguous pressure");
-        p.iter_mut().zip(c).for_each(|(p, &b)| {
-            if !b {
-                *p = 0.0
-            }
-        });
+        match held
+            .as_ref()
+            .map(|h| h.as_slice().expect("contiguous mask"))
+        {
+            None => p.iter_mut().zip(c).for_each(|(p, &b)| {
+                if !b {
+                    *p = 0.0
+                }
+            }),
+            Some(h) => p.iter_mut().zip(c).zip(h).for_each(|((p, &b), &h)| {
+                if !b && !h {
+                    *p = 0.0
+                }
+            }),
+        }
     }
     let (mut n_c, mut fmax, mut fmin) = (0usize, f64::NEG_INFINITY, f64::INFINITY);
     for (&f, &b) in f.iter().zip(c) {

@@ -109,7 +109,11 @@ mod tests {
 
     #[test]
     fn an_open_curve_has_no_loop() {
-        let steps = [step(1.0, 1.0, true), step(0.5, -1.0, false), step(0.0, 0.0, false)];
+        let steps = [
+            step(1.0, 1.0, true),
+            step(0.5, -1.0, false),
+            step(0.0, 0.0, false),
+        ];
         let c = cycle(&steps);
         assert_eq!(c.dissipated_energy, None);
         assert_eq!(c.jump_in, None);

@@ -3,8 +3,8 @@
 //!
 //! At approach `d` every element is in one of three sets: **contact** `C` (`g = 0`, `p ≥ −σ0`),
 //! the **cohesive zone** `Z` (`p = −σ0`, `0 < g < h0`) or **free** `F` (`p = 0`, `g ≥ h0`).
-//! A round solves `K_CC p_C = (d − f − K p_Z)_C` with `p_Z = −σ0` (the zone's displacement
-//! enters as a shift of the heights, so the bonded-set CG is reused unchanged), brings the gap up
+//! A round solves `K_CC p_C = (d − f − K p_Z)_C` with `p_Z = −σ0` (the bonded-set CG with the
+//! zone's pressure held, so `K p` of both comes from the products CG makes anyway), brings the gap up
 //! to date everywhere and applies every transition the one solution calls for, together:
 //! `C → Z` where `p < −σ0`, `Z → C` where `g < 0`, `Z → F` where `g > h0`, `F → C` where
 //! `g < 0`, `F → Z` where `g < h0`. It repeats until no set changes; a revisited pair of sets
@@ -21,7 +21,7 @@ use tack_geometry::Surface;
 use tack_kernels::ElasticOperator;
 
 use crate::adhesive::{SubProblem, hash_masks};
-use crate::cg::{PcgWork, Work, pcg};
+use crate::cg::{PcgWork, Work, pcg_holding};
 use crate::state::Convergence;
 use crate::{AdhesiveSolver, SolverError, SolverOptions, StepRecord};
 
@@ -73,7 +73,10 @@ impl Cohesive {
             });
         }
         let range = gamma / sigma0;
-        let top = surface.heights().iter().fold(0.0f64, |m, &f| m.max(f.abs()));
+        let top = surface
+            .heights()
+            .iter()
+            .fold(0.0f64, |m, &f| m.max(f.abs()));
         if !(range > RANGE_ROUND_OFF * top) {
             return Err(SolverError::OutOfRange {
                 field: fields::ADHESION_SIGMA0,
@@ -91,22 +94,15 @@ impl Cohesive {
     }
 }
 
-/// The zone's tension field, its displacement and the shifted heights on one (sub-)grid.
+/// The zone on one (sub-)grid.
 pub(crate) struct ZoneScratch {
     zone: Array2<bool>,
-    tension: Array2<f64>,
-    uz: Array2<f64>,
-    shifted: Array2<f64>,
 }
 
 impl ZoneScratch {
     pub(crate) fn new(shape: (usize, usize)) -> Self {
-        let z = Array2::zeros(shape);
         Self {
             zone: Array2::from_elem(shape, false),
-            tension: z.clone(),
-            uz: z.clone(),
-            shifted: z,
         }
     }
 }
@@ -292,23 +288,22 @@ fn solve_with_zone(
     cg: &SolverOptions,
     preconditioned: bool,
 ) -> Convergence {
-    Zip::from(&mut scratch.tension)
+    Zip::from(&mut pressure)
+        .and(&bonded)
         .and(&scratch.zone)
-        .for_each(|t, &z| *t = if z { -sigma0 } else { 0.0 });
-    if scratch.zone.iter().any(|&z| z) {
-        op.apply(scratch.tension.view(), scratch.uz.view_mut());
-    } else {
-        scratch.uz.fill(0.0);
-    }
-    let c = if bonded.iter().any(|&b| b) {
-        Zip::from(&mut scratch.shifted)
-            .and(&heights)
-            .and(&scratch.uz)
-            .for_each(|s, &f, &u| *s = f + u);
-        pcg(
+        .for_each(|p, &b, &z| {
+            if z {
+                *p = -sigma0;
+            } else if !b {
+                *p = 0.0;
+            }
+        });
+    if bonded.iter().any(|&b| b) {
+        pcg_holding(
             op,
-            scratch.shifted.view(),
+            heights,
             bonded,
+            Some(scratch.zone.view()),
             d,
             pressure.view_mut(),
             work,
@@ -317,19 +312,7 @@ fn solve_with_zone(
             preconditioned,
         )
     } else {
-        pressure.fill(0.0);
-        work.disp.fill(0.0);
+        op.apply(pressure.view(), work.disp.view_mut());
         Convergence::EXACT
-    };
-    Zip::from(&mut pressure)
-        .and(&scratch.tension)
-        .for_each(|p, &t| {
-            if t != 0.0 {
-                *p = t;
-            }
-        });
-    Zip::from(&mut work.disp)
-        .and(&scratch.uz)
-        .for_each(|u, &z| *u += z);
-    c
+    }
 }

@@ -103,9 +103,9 @@ pub use adhesive::{
 };
 pub use clusters::count_clusters;
 pub use contact::{ContactMethod, ContactSolver};
+pub use crop::{adhesive_reach, contact_window, touches_edge};
 pub use cycle::{Cycle, CycleStep, cycle};
 pub use dugdale::{AdhesionLaw, RANGE_ROUND_OFF};
-pub use crop::{adhesive_reach, contact_window, touches_edge};
 pub use extrapolate::{
     CRITERION_ERROR_COEFFICIENT, observed_order, pull_off_error_estimate, richardson_first_order,
 };

@@ -41,8 +41,8 @@ pub use crate::pull_off_path::{
     UNLOAD_STEP_PER_ELEMENT, fit_paraboloid,
 };
 use crate::scene::{
-    AdhesionModel, AdhesionSpec, BoundaryKind, Geometry, GridSpec, Material, OutputSpec, Protocol, SCENE_VERSION, Scene,
-    SceneError, SceneSchema, Snapshots, SolverSpec,
+    AdhesionModel, AdhesionSpec, BoundaryKind, Geometry, GridSpec, Material, OutputSpec, Protocol,
+    SCENE_VERSION, Scene, SceneError, SceneSchema, Snapshots, SolverSpec,
 };
 
 /// The former name of [`HeightBody`] (its field `heights` made `Heights { heights }` read
@@ -254,10 +254,9 @@ pub fn pull_off_scene(
 
     // A finite range approaches from out of contact (as a scene's default path does).
     let (start, load_step) = match (spec.adhesion.model, spec.adhesion.sigma0) {
-        (AdhesionModel::Dugdale, Some(sigma0)) if sigma0 > 0.0 => (
-            first_touch - spec.gamma / sigma0 - unload_step,
-            unload_step,
-        ),
+        (AdhesionModel::Dugdale, Some(sigma0)) if sigma0 > 0.0 => {
+            (first_touch - spec.gamma / sigma0 - unload_step, unload_step)
+        }
         _ => (max_approach, (max_approach - first_touch).max(unload_step)),
     };
     let file = SceneSchema {

@@ -21,8 +21,8 @@ use tack_solver::{
 };
 
 use crate::scene::{
-    AdhesionModel, BoundaryKind, DEFAULT_MAX_STEPS, Geometry, GridSpec, Protocol, PunchKind, Roughness, Scene,
-    SceneError, SceneSchema, num,
+    AdhesionModel, BoundaryKind, DEFAULT_MAX_STEPS, Geometry, GridSpec, Protocol, PunchKind,
+    Roughness, Scene, SceneError, SceneSchema, num,
 };
 
 /// Relative tolerance on a height map's `dx` against `grid.dx`.
@@ -468,7 +468,8 @@ pub fn cohesive_zone_length(e_star: f64, gamma: f64, sigma0: f64) -> f64 {
     std::f64::consts::PI * e_star * gamma / (4.0 * sigma0 * sigma0)
 }
 
-/// The Dugdale law's references and warnings: λ of a sphere (its radius read back from F_JKR),
+/// The Dugdale law's references and warnings: λ and the Maugis–Dugdale pull-off of a sphere
+/// (its radius read back from F_JKR),
 /// and a zone narrower than [`MIN_COHESIVE_ZONE_ELEMENTS`].
 fn dugdale_references(
     references: &mut References,
@@ -480,10 +481,11 @@ fn dugdale_references(
 ) {
     if let Some(f_jkr) = references.f_jkr {
         let radius = -f_jkr / (1.5 * std::f64::consts::PI * gamma);
-        let k = 4.0 * e_star / 3.0;
-        let lambda =
-            2.0 * sigma0 * (radius / (std::f64::consts::PI * gamma * k * k)).powf(1.0 / 3.0);
-        references.maugis_lambda = Some(lambda);
+        references.maugis_lambda =
+            Some(tack_analytics::maugis_lambda(e_star, gamma, radius, sigma0));
+        references.f_maugis = Some(tack_analytics::maugis_pull_off(
+            e_star, gamma, radius, sigma0,
+        ));
     }
     let zone = cohesive_zone_length(e_star, gamma, sigma0);
     let elements = zone / grid.dx();
@@ -542,7 +544,10 @@ fn adhesion_law(f: &SceneSchema, kappa: f64, surface: &Surface) -> Result<Adhesi
                     gamma_field = fields::MATERIAL_GAMMA,
                 )));
             }
-            let top = surface.heights().iter().fold(0.0f64, |m, &h| m.max(h.abs()));
+            let top = surface
+                .heights()
+                .iter()
+                .fold(0.0f64, |m, &h| m.max(h.abs()));
             let range = gamma / sigma0;
             if range <= RANGE_ROUND_OFF * top {
                 return Err(SceneError::out_of_range(
