@@ -10,7 +10,8 @@ use std::process::Command;
 use common::{Scratch, examples_dir, files_with_extension, have_h5py, run, text};
 
 /// The examples this file tests, one `#[test]` each (see `example!`).
-const EXAMPLES: [&str; 5] = [
+const EXAMPLES: [&str; 6] = [
+    "dugdale_sphere",
     "flat_punch",
     "smooth_jkr_sphere",
     "sphere_random_roughness",
@@ -126,6 +127,26 @@ macro_rules! example {
         }
     };
 }
+
+example!(dugdale_sphere, |r, info| {
+    let s = &r.summary;
+    assert_eq!(s.adhesion_model.as_deref(), Some("dugdale"));
+    assert!(info.contains("adhesion_model = dugdale"), "{info}");
+    // λ = 1 with 6.7 elements per zone: about +12% beyond Maugis' −1.601 πγR at this mesh
+    // (first order in Δx, docs/theory.md §3.7).
+    let ratio = s.pull_off_force / s.extra["f_maugis"];
+    assert!((1.0..1.2).contains(&ratio), "F/F_MD = {ratio}");
+    assert!((s.extra["maugis_lambda"] - 1.0).abs() < 1e-3);
+    // Both branches: out of range first, the jump in with tension, a loop that dissipates.
+    assert_eq!(r.curve.force[0], 0.0);
+    assert!(s.extra["jump_in_force"] < 0.0 && s.extra["dissipated_energy"] > 0.0);
+    assert!(
+        r.curve
+            .n_cohesive
+            .as_ref()
+            .is_some_and(|z| z.iter().any(|&n| n > 0))
+    );
+});
 
 example!(smooth_jkr_sphere, |r, _| {
     let s = &r.summary;

@@ -268,3 +268,43 @@ def test_a_stopped_run_says_so(repo):
     )
     assert result.summary["status"] == "stopped at protocol.max_steps"
     assert any("protocol.max_steps = 30" in w for w in result.summary["warnings"])
+
+
+def test_dugdale_pull_off_of_a_sphere_matches_maugis_and_has_both_branches():
+    # R = E* = gamma = 1 at Maugis lambda = 1 (sigma0 = 0.887): the zone l = 1.0 spans 10
+    # elements of 0.1; the pull-off lies +7.5% beyond Maugis' -1.601 pi gamma R at this mesh
+    # (docs/theory.md §3.7), so 15% bounds it.
+    dx, n = 0.1, 69
+    x = (np.arange(n) - n // 2) * dx
+    heights = (x[:, None] ** 2 + x[None, :] ** 2) / 2.0
+    sigma0 = 0.8871133596609792  # lambda = 2 sigma0 (R/(pi gamma K^2))^(1/3) = 1, K = 4/3
+    r = tack.pull_off(
+        heights, dx=dx, e_star=1.0, gamma=1.0, radius=1.0, model="dugdale", sigma0=sigma0
+    )
+    s = r.summary
+    assert s["adhesion_model"] == "dugdale"
+    assert abs(s["maugis_lambda"] - 1.0) < 1e-9
+    assert abs(s["f_maugis"] / (-1.6007349 * np.pi) - 1) < 1e-6
+    assert 1.0 < r.pull_off_force / s["f_maugis"] < 1.15
+    # Both branches: the approach starts out of range and jumps in with tension.
+    assert r.curve["force"][0] == 0 and s["jump_in_force"] < 0 and s["dissipated_energy"] > 0
+    assert "n_cohesive" in r.curve
+
+
+def test_dugdale_arguments_are_checked():
+    heights = np.zeros((8, 8))
+    with pytest.raises(TypeError, match="model"):
+        tack.pull_off(heights, dx=0.1, e_star=1.0, gamma=1.0, max_approach=0.1,
+                      unload_step=0.01, model=1)
+    with pytest.raises(ValueError, match="model = 'dmt' is invalid"):
+        tack.pull_off(heights, dx=0.1, e_star=1.0, gamma=1.0, max_approach=0.1,
+                      unload_step=0.01, model="dmt")
+    with pytest.raises(ValueError, match="sigma0 = -1 is invalid"):
+        tack.pull_off(heights, dx=0.1, e_star=1.0, gamma=1.0, max_approach=0.1,
+                      unload_step=0.01, model="dugdale", sigma0=-1.0)
+    with pytest.raises(ValueError, match="sigma0 is required"):
+        tack.pull_off(heights, dx=0.1, e_star=1.0, gamma=1.0, max_approach=0.1,
+                      unload_step=0.01, model="dugdale")
+    with pytest.raises(ValueError, match="sigma0 = 1 is read by the Dugdale law only"):
+        tack.pull_off(heights, dx=0.1, e_star=1.0, gamma=1.0, max_approach=0.1,
+                      unload_step=0.01, sigma0=1.0)

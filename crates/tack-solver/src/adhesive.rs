@@ -19,7 +19,7 @@ use tack_kernels::{ElasticOperator, FreeOperator, padded_size};
 use crate::base::SolverBase;
 use crate::cg::{PcgWork, Work, pcg};
 use crate::clusters::count_clusters;
-use crate::dugdale::{Cohesive, ZoneScratch};
+use crate::law::{Cohesive, ZoneScratch};
 use crate::state::Convergence;
 use crate::subgrid::{SubgridCache, free_operator};
 use crate::{AdhesionLaw, SolverError, SolverOptions, StepRecord, validate};

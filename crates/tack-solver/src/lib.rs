@@ -92,6 +92,7 @@ mod crop;
 mod cycle;
 mod dugdale;
 mod extrapolate;
+mod law;
 mod options;
 mod path;
 mod state;
@@ -105,10 +106,10 @@ pub use clusters::count_clusters;
 pub use contact::{ContactMethod, ContactSolver};
 pub use crop::{adhesive_reach, contact_window, touches_edge};
 pub use cycle::{Cycle, CycleStep, cycle};
-pub use dugdale::{AdhesionLaw, RANGE_ROUND_OFF};
 pub use extrapolate::{
     CRITERION_ERROR_COEFFICIENT, observed_order, pull_off_error_estimate, richardson_first_order,
 };
+pub use law::{AdhesionLaw, RANGE_ROUND_OFF};
 pub use options::{SolverError, SolverOptions};
 pub use path::{
     ApproachPath, Observer, PathResult, Phase, SnapshotRequest, StepFields, pull_off_step,

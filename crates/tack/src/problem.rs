@@ -553,8 +553,8 @@ fn adhesion_law(f: &SceneSchema, kappa: f64, surface: &Surface) -> Result<Adhesi
                 return Err(SceneError::out_of_range(
                     fields::ADHESION_SIGMA0,
                     sigma0,
-                    "small enough that the range material.gamma/sigma0 exceeds 1e-12 of the \
-                     largest height (below it the gap test is round-off)",
+                    "small enough that the range γ/σ0 exceeds 1e-12 of the largest height \
+                     (below it the gap test is round-off)",
                 ));
             }
             Ok(AdhesionLaw::Dugdale { sigma0 })
@@ -1963,5 +1963,83 @@ load_step = 0.001
             .unwrap_err()
             .to_string();
         assert!(e.contains("does not fit the periodic grid"), "{e}");
+    }
+}
+
+#[cfg(test)]
+mod adhesion_tests {
+    use super::*;
+
+    fn build(sets: &[&str]) -> Result<Problem, SceneError> {
+        let text = "version = 1\n[material]\ne_star = 1.0\ngamma = 0.1\n[geometry]\nshape = \
+                    \"sphere\"\nradius = 1.0\n[grid]\nn = 64\ndx = 0.02\n";
+        let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        Problem::from_scene(&Scene::parse(text, ".", &sets)?)
+    }
+
+    fn err(sets: &[&str]) -> String {
+        build(sets).unwrap_err().to_string()
+    }
+
+    #[test]
+    fn the_dugdale_law_is_read_and_its_inputs_are_checked() {
+        let p = build(&["adhesion.model=\"dugdale\"", "adhesion.sigma0=1.0"]).unwrap();
+        assert_eq!(p.law, AdhesionLaw::Dugdale { sigma0: 1.0 });
+        // The default path approaches from out of range (h0 = γ/σ0 = 0.1) in its fine step.
+        assert!(p.path.start < -0.1 && p.path.load_step == p.path.unload_step);
+        let lambda = p.references.maugis_lambda.unwrap();
+        assert!((lambda - tack_analytics::maugis_lambda(1.0, 0.1, 1.0, 1.0)).abs() < 1e-12);
+        assert!(p.references.f_maugis.unwrap() < 0.0);
+        assert!(build(&[]).unwrap().law == AdhesionLaw::JkrLimit { kappa: KAPPA });
+        assert!(
+            err(&["adhesion.sigma0=1.0"])
+                .contains("adhesion.sigma0 = 1 is read by the Dugdale law only")
+        );
+        assert!(err(&["adhesion.model=\"dugdale\""]).contains("adhesion.sigma0 is required with"));
+        for bad in ["0.0", "-1.0", "nan", "inf"] {
+            let message = err(&[
+                "adhesion.model=\"dugdale\"",
+                &format!("adhesion.sigma0={bad}"),
+            ]);
+            assert!(message.starts_with("adhesion.sigma0 = "), "{message}");
+            assert!(message.contains("a finite number > 0"), "{message}");
+        }
+        assert!(
+            err(&["adhesion.model=\"dugdale\"", "adhesion.sigma0=1e20"])
+                .contains("exceeds 1e-12 of the largest height")
+        );
+        assert!(
+            err(&[
+                "adhesion.model=\"dugdale\"",
+                "adhesion.sigma0=1",
+                "solver.kappa=0.5"
+            ])
+            .contains("solver.kappa is the zero-range criterion's constant")
+        );
+        assert!(
+            err(&[
+                "adhesion.model=\"dugdale\"",
+                "adhesion.sigma0=1",
+                "material.gamma=0"
+            ])
+            .contains("needs material.gamma > 0")
+        );
+        assert!(err(&["adhesion.model=\"dmt\""]).contains("adhesion.model"));
+    }
+
+    #[test]
+    fn an_unresolved_cohesive_zone_warns() {
+        // l = πE*γ/(4σ0²) = 0.0785 at σ0 = 1: 3.9 elements of 0.02; at σ0 = 2: 0.98.
+        let fine = build(&["adhesion.model=\"dugdale\"", "adhesion.sigma0=1.0"]).unwrap();
+        assert!(!fine.warnings.iter().any(|w| w.contains("cohesive zone")));
+        let coarse = build(&["adhesion.model=\"dugdale\"", "adhesion.sigma0=2.0"]).unwrap();
+        assert!(
+            coarse
+                .warnings
+                .iter()
+                .any(|w| w.starts_with("under-resolved cohesive zone") && w.contains("0.98")),
+            "{:?}",
+            coarse.warnings
+        );
     }
 }

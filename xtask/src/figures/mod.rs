@@ -291,6 +291,7 @@ pub fn write_figure(
             seed: None,
         },
         curve: tack_io::Curve {
+            n_cohesive: None,
             approach: table.x.clone(),
             force: table.y.clone(),
             area: table.spread.clone(),
