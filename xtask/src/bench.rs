@@ -733,3 +733,141 @@ fn thread_speed_up(rows: &mut Vec<Row>) -> Result<()> {
     }
     Ok(())
 }
+
+/// One Dugdale smooth-sphere cycle for `cargo xtask bench-dugdale`: R = E* = γ = 1 at Maugis
+/// λ = 3.48 (Tabor μ = λ/1.16 = 3) on an `n²` free grid of half-width 3, from out of range to
+/// d = 1 and back in steps of 0.02 until the zone lets go. Returns (seconds, steps, CG, rounds,
+/// F/F_MD − 1).
+fn dugdale_sphere(n: usize) -> Result<(f64, usize, usize, usize, f64)> {
+    use tack_geometry::{Sphere, Surface};
+    use tack_solver::{
+        AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, SnapshotRequest,
+    };
+    let lambda = 3.0 * 1.16;
+    let sigma0 = lambda / tack_analytics::maugis_lambda(1.0, 1.0, 1.0, 1.0);
+    let grid = Grid::square(n, 6.0 / n as f64, Boundary::Free)?;
+    let surface = Surface::from_shape(grid, &Sphere::new(1.0)?);
+    let t = Instant::now();
+    let op = operator_for(grid, 1.0)?;
+    let law = AdhesionLaw::Dugdale { sigma0 };
+    let mut solver = AdhesiveSolver::with_law(op, &surface, 1.0, law, AdhesiveOptions::default())?;
+    let step = 0.02;
+    let path = ApproachPath {
+        start: -1.0 / sigma0 - step,
+        max_approach: 1.0,
+        load_step: step,
+        unload_step: step,
+        coarse_unload_step: None,
+        retract_to: None,
+        max_steps: 100_000,
+    };
+    let r = solver.run_path(&path, &SnapshotRequest::None, &mut ())?;
+    let seconds = t.elapsed().as_secs_f64();
+    anyhow::ensure!(r.completed && r.all_converged(), "{n}²: not converged");
+    let f_md = std::f64::consts::PI * tack_analytics::maugis_pull_off_hat(lambda);
+    let rounds = r.records.iter().map(|s| s.active_set_iterations).sum();
+    Ok((
+        seconds,
+        r.records.len(),
+        r.cg_iterations(),
+        rounds,
+        r.pull_off_force() / f_md - 1.0,
+    ))
+}
+
+/// The bench's rough-sphere scene (`rough_sphere_scene`) under the Dugdale law at λ = 3 of
+/// R = 1, on the JKR-limit run's own path (one load step, the same retraction).
+fn dugdale_rough(n: usize) -> Result<PullOffRun> {
+    let gamma = 1.44868e-4;
+    let sigma0 = 3.0 / tack_analytics::maugis_lambda(1.0, gamma, 1.0, 1.0);
+    let scene = rough_sphere_scene(n, false)?;
+    let sets = [
+        "adhesion.model=\"dugdale\"".to_owned(),
+        format!("adhesion.sigma0={sigma0}"),
+    ];
+    let scene = tack::Scene::parse(&scene.text, ".", &sets)?;
+    let t = Instant::now();
+    let out = tack::run(&scene, &tack::RunOptions::default(), &mut ())?;
+    let seconds = t.elapsed().as_secs_f64();
+    anyhow::ensure!(out.path.completed, "{n}²: incomplete");
+    Ok(PullOffRun {
+        seconds,
+        cg: out.path.cg_iterations(),
+        rounds: out
+            .path
+            .records
+            .iter()
+            .map(|r| r.active_set_iterations)
+            .sum(),
+        steps: out.path.records.len(),
+        force: out.path.pull_off_force(),
+    })
+}
+
+/// `cargo xtask bench-dugdale [N...]`: the Dugdale smooth-sphere cycle at Tabor μ = 3 on each
+/// `N²` (default 128 256 512) against the bare FFT pair of its padded size, and the Dugdale
+/// rough-sphere pull-off at 256² against the JKR-limit run of the same scene and path.
+pub fn dugdale(args: &[String]) -> Result<()> {
+    let mut rows = Vec::new();
+    dugdale_tables(args, &mut rows)
+}
+
+fn dugdale_tables(args: &[String], rows: &mut Vec<Row>) -> Result<()> {
+    let sizes: Vec<usize> = if args.is_empty() {
+        vec![128, 256, 512]
+    } else {
+        args.iter().map(|a| a.parse()).collect::<Result<_, _>>()?
+    };
+    println!("D1. Dugdale smooth sphere, Tabor μ = 3 (λ = 3.48), cycle in steps of 0.02 d̂");
+    println!(
+        "   {:>5} {:>9} {:>6} {:>7} {:>7} {:>11} {:>10}",
+        "n", "time [s]", "steps", "CG", "rounds", "FFT pairs", "F/F_MD − 1"
+    );
+    for &n in &sizes {
+        let (seconds, steps, cg, rounds, err) = dugdale_sphere(n)?;
+        let m = tack_kernels::padded_size(n);
+        let t_pair = median_time(bare_fft_pair(m, m));
+        println!(
+            "   {n:>5} {seconds:>9.2} {steps:>6} {cg:>7} {rounds:>7} {:>11.0} {err:>+10.4}",
+            seconds / t_pair
+        );
+        rows.push(Row {
+            table: "dugdale_sphere",
+            label: format!("{n}²"),
+            fields: vec![
+                ("n", n as f64),
+                ("seconds", seconds),
+                ("steps", steps as f64),
+                ("cg_iterations", cg as f64),
+                ("rounds", rounds as f64),
+                ("fft_pairs", seconds / t_pair),
+                ("pull_off_error", err),
+            ],
+        });
+    }
+    println!("D2. rough sphere 256² (bench scene, seed 1): Dugdale λ = 3 vs the zero-range run");
+    let jkr = rough_sphere_pull_off(256, rayon::current_num_threads(), false)?;
+    let dug = dugdale_rough(256)?;
+    for (label, r) in [("jkr_limit", &jkr), ("dugdale", &dug)] {
+        println!(
+            "   {label:<10} {:7.2} s  {:6} CG  {:5} rounds  {:4} steps  F = {:+.5e}",
+            r.seconds, r.cg, r.rounds, r.steps, r.force
+        );
+        rows.push(Row {
+            table: "dugdale_rough",
+            label: label.into(),
+            fields: vec![
+                ("seconds", r.seconds),
+                ("cg_iterations", r.cg as f64),
+                ("rounds", r.rounds as f64),
+                ("steps", r.steps as f64),
+                ("pull_off_force", r.force),
+            ],
+        });
+    }
+    println!(
+        "   Dugdale / zero-range time: {:.2}",
+        dug.seconds / jkr.seconds
+    );
+    Ok(())
+}

@@ -31,6 +31,8 @@ commands:
                           pull-off error at a_c/dx = 5 10 20 40 80 (or the ratios given)
   bench-contact [N]        non-adhesive contact: N² periodic rough surface (H = 0.8, ~7%
                           contact) and N² free Hertz, plain / coarse-to-fine / cropped
+  bench-dugdale [N...]     Dugdale smooth sphere at Tabor mu = 3 on N² (default 128 256 512)
+                           against the FFT floor; Dugdale vs zero-range rough sphere at 256²
   bench-rough [N]          sphere + H = 0.5 roughness pull-off on an N² L = R grid (default
                           512): plain, cropped, sub-grid CG, both
   bench [--full]          every speed table (operator, CG iteration, JKR path, rough sphere
@@ -58,6 +60,7 @@ fn main() -> Result<()> {
         Some("bench-jkr") => pool()?.install(|| bench::jkr(&args[1..])),
         Some("bench-contact") => pool()?.install(|| bench::contact(&args[1..]).map(|_| ())),
         Some("bench-rough") => pool()?.install(|| bench::rough(&args[1..])),
+        Some("bench-dugdale") => pool()?.install(|| bench::dugdale(&args[1..])),
         Some("bench") => pool()?.install(|| bench::all(&args[1..])),
         Some("convergence") => pool()?.install(|| convergence::run(&args[1..])),
         Some("tidy") => tidy::run(&args[1..]),

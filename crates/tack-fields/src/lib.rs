@@ -372,7 +372,7 @@ mod tests {
             );
             assert!(!f.meaning.is_empty(), "{}", f.name);
         }
-        assert_eq!(FIELDS.len(), 37);
+        assert_eq!(FIELDS.len(), 39);
     }
 
     #[test]

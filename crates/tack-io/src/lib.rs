@@ -60,6 +60,7 @@
 //!     converged: vec![true; 4],
 //!     mean_pressure: None,
 //!     full_contact: None,
+//!     n_cohesive: None,
 //! };
 //! let result = RunResult {
 //!     provenance: Provenance {

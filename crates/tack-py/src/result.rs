@@ -50,7 +50,8 @@ fn counts<'py>(py: Python<'py>, v: &[u64]) -> Bound<'py, PyArray1<i64>> {
 impl Result {
     /// The force–approach curve, one entry per step: a dict of 1-D arrays `approach`, `force`,
     /// `area`, `n_bonded`, `n_clusters`, `iterations`, `active_set_iterations` (int64),
-    /// `converged` (bool), and `mean_pressure`, `full_contact` where the file has them.
+    /// `converged` (bool), and `mean_pressure`, `full_contact`, `n_cohesive` (Dugdale law: the
+    /// cohesive zone's elements) where the file has them.
     #[getter]
     fn curve(&self, py: Python<'_>) -> PyResult<Py<PyDict>> {
         let dict = self.curve.get_or_try_init(py, || -> PyResult<Py<PyDict>> {
@@ -69,6 +70,9 @@ impl Result {
             d.set_item("converged", c.converged.clone().into_pyarray(py))?;
             if let Some(p) = &c.mean_pressure {
                 d.set_item("mean_pressure", p.clone().into_pyarray(py))?;
+            }
+            if let Some(z) = &c.n_cohesive {
+                d.set_item("n_cohesive", z.clone().into_pyarray(py))?;
             }
             if let Some(f) = &c.full_contact {
                 d.set_item("full_contact", f.clone().into_pyarray(py))?;

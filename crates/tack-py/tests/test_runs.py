@@ -296,7 +296,7 @@ def test_dugdale_arguments_are_checked():
     with pytest.raises(TypeError, match="model"):
         tack.pull_off(heights, dx=0.1, e_star=1.0, gamma=1.0, max_approach=0.1,
                       unload_step=0.01, model=1)
-    with pytest.raises(ValueError, match="model = 'dmt' is invalid"):
+    with pytest.raises(ValueError, match='model = dmt is invalid: must be "jkr_limit" or "dugdale"'):
         tack.pull_off(heights, dx=0.1, e_star=1.0, gamma=1.0, max_approach=0.1,
                       unload_step=0.01, model="dmt")
     with pytest.raises(ValueError, match="sigma0 = -1 is invalid"):

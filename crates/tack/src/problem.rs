@@ -1972,7 +1972,7 @@ mod adhesion_tests {
 
     fn build(sets: &[&str]) -> Result<Problem, SceneError> {
         let text = "version = 1\n[material]\ne_star = 1.0\ngamma = 0.1\n[geometry]\nshape = \
-                    \"sphere\"\nradius = 1.0\n[grid]\nn = 64\ndx = 0.02\n";
+                    \"sphere\"\nradius = 1.0\n[grid]\nn = 128\ndx = 0.02\n";
         let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
         Problem::from_scene(&Scene::parse(text, ".", &sets)?)
     }
