@@ -151,3 +151,21 @@ fn pull_off_converges_to_maugis_from_dmt_to_jkr_side() {
         }
     }
 }
+
+#[test]
+fn same_bits_on_one_and_two_threads() {
+    // 141² elements: the CG's vectors exceed 128² and split into chunks run in parallel.
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| cycle(1.0, 0.05, 3.5, 0.1))
+    };
+    let (one, two) = (run(1), run(2));
+    assert_eq!(one.records.len(), two.records.len());
+    for (a, b) in one.records.iter().zip(&two.records) {
+        assert_eq!(a.force.to_bits(), b.force.to_bits());
+        assert_eq!((a.n_bonded, a.n_cohesive), (b.n_bonded, b.n_cohesive));
+    }
+}
