@@ -782,8 +782,8 @@ fn dugdale_rough(n: usize) -> Result<PullOffRun> {
     let sigma0 = 3.0 / tack_analytics::maugis_lambda(1.0, gamma, 1.0, 1.0);
     let scene = rough_sphere_scene(n, false)?;
     let sets = [
-        "adhesion.model=\"dugdale\"".to_owned(),
-        format!("adhesion.sigma0={sigma0}"),
+        format!("{}=\"dugdale\"", tack_fields::ADHESION_MODEL),
+        format!("{}={sigma0}", tack_fields::ADHESION_SIGMA0),
     ];
     let scene = tack::Scene::parse(&scene.text, ".", &sets)?;
     let t = Instant::now();
