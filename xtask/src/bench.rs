@@ -524,17 +524,22 @@ struct PullOffRun {
 }
 
 fn rough_sphere_pull_off(n: usize, threads: usize, exact_rounds: bool) -> Result<PullOffRun> {
-    let scene = rough_sphere_scene(n, exact_rounds)?;
+    timed_pull_off(&rough_sphere_scene(n, exact_rounds)?, threads)
+}
+
+/// Runs `scene` on `threads` and times it; the path must complete with every step converged.
+fn timed_pull_off(scene: &tack::Scene, threads: usize) -> Result<PullOffRun> {
     let options = tack::RunOptions {
         threads: Some(threads),
         ..tack::RunOptions::default()
     };
     let t = Instant::now();
-    let out = tack::run(&scene, &options, &mut ())?;
+    let out = tack::run(scene, &options, &mut ())?;
     let seconds = t.elapsed().as_secs_f64();
     anyhow::ensure!(
         out.path.completed && out.path.all_converged(),
-        "{n}²: not converged"
+        "{}²: not converged",
+        scene.file.grid.n.unwrap_or(0)
     );
     Ok(PullOffRun {
         seconds,
@@ -786,22 +791,7 @@ fn dugdale_rough(n: usize) -> Result<PullOffRun> {
         format!("{}={sigma0}", tack_fields::ADHESION_SIGMA0),
     ];
     let scene = tack::Scene::parse(&scene.text, ".", &sets)?;
-    let t = Instant::now();
-    let out = tack::run(&scene, &tack::RunOptions::default(), &mut ())?;
-    let seconds = t.elapsed().as_secs_f64();
-    anyhow::ensure!(out.path.completed, "{n}²: incomplete");
-    Ok(PullOffRun {
-        seconds,
-        cg: out.path.cg_iterations(),
-        rounds: out
-            .path
-            .records
-            .iter()
-            .map(|r| r.active_set_iterations)
-            .sum(),
-        steps: out.path.records.len(),
-        force: out.path.pull_off_force(),
-    })
+    timed_pull_off(&scene, rayon::current_num_threads())
 }
 
 /// `cargo xtask bench-dugdale [N...]`: the Dugdale smooth-sphere cycle at Tabor μ = 3 on each

@@ -19,7 +19,7 @@ use tack_kernels::{ElasticOperator, FreeOperator, padded_size};
 use crate::base::SolverBase;
 use crate::cg::{PcgWork, Work, pcg};
 use crate::clusters::count_clusters;
-use crate::law::{Cohesive, ZoneScratch};
+use crate::law::Cohesive;
 use crate::state::Convergence;
 use crate::subgrid::{SubgridCache, free_operator};
 use crate::{AdhesionLaw, SolverError, SolverOptions, StepRecord, validate};
@@ -243,13 +243,10 @@ impl AdhesiveSolver {
         }
         let periodic = self.base.periodic();
         let n = self.base.heights().len();
-        let fmean = self.base.fmean;
         let (mut cg_total, mut worst, mut converged, mut full) = (0, 0.0f64, true, false);
         let mut visited = HashSet::new();
         let mut rounds = 0;
-        // The mean gap f̄ − d is closed: every gap is zero and the only admissible state is full
-        // contact (testing it element by element would cycle on round-off).
-        let closed = periodic && d >= fmean - 1e-12 * (fmean.abs() + d.abs());
+        let closed = self.base.closed(d);
         if closed {
             self.bonded.fill(true);
         } else if self.sigma_c == 0.0
@@ -282,22 +279,16 @@ impl AdhesiveSolver {
             rounds += 1;
             let n_bonded = self.bonded.iter().filter(|&&b| b).count();
             if periodic && n_bonded == n {
-                let p_min = self.base.full_contact_field();
-                if closed {
-                    self.base.pressure.mapv_inplace(|p| p - p_min - sigma_c);
-                    self.base.gap.fill(0.0);
-                    full = true;
-                    break;
+                match self.base.full_contact_or_weakest(closed, sigma_c) {
+                    None => {
+                        full = true;
+                        break;
+                    }
+                    Some(weakest) => {
+                        self.bonded[weakest] = false;
+                        continue;
+                    }
                 }
-                let ncols = self.bonded.ncols();
-                let weakest = self
-                    .base
-                    .pressure
-                    .iter()
-                    .position(|&p| p == p_min)
-                    .unwrap_or(0);
-                self.bonded[(weakest / ncols, weakest % ncols)] = false;
-                continue;
             }
             let fingerprint = hash_mask(&self.bonded);
             if !exact && just_changed && !inexact_visited.insert(fingerprint) {
@@ -611,8 +602,8 @@ pub(crate) struct SubProblem {
     pub(crate) pressure: Array2<f64>,
     pub(crate) heights: Array2<f64>,
     pub(crate) bonded: Array2<bool>,
-    /// The Dugdale law's zone and scratch on this sub-grid, made on first use.
-    pub(crate) zone: Option<ZoneScratch>,
+    /// The Dugdale law's zone on this sub-grid, made on first use.
+    pub(crate) zone: Option<Array2<bool>>,
 }
 
 impl SubProblem {

@@ -97,6 +97,34 @@ impl SolverBase {
         self.pressure.iter().copied().fold(f64::INFINITY, f64::min)
     }
 
+    /// Periodic grids: whether the mean gap `f̄ − d` is closed at approach `d` (every gap zero,
+    /// full contact the only admissible state; testing it element by element would cycle on
+    /// round-off).
+    pub(crate) fn closed(&self, d: f64) -> bool {
+        self.periodic() && d >= self.fmean - 1e-12 * (self.fmean.abs() + d.abs())
+    }
+
+    /// Periodic grids with every element bonded. With the mean gap `closed`, sets the
+    /// full-contact state at the least mean pressure whose greatest tension is `tension` (σ_c
+    /// of the criterion, σ0 of the Dugdale law, 0 without adhesion) and returns `None`;
+    /// otherwise full contact cannot hold and the element to release is returned: the most
+    /// tensile of the full-contact field (first in row-major order on ties).
+    pub(crate) fn full_contact_or_weakest(
+        &mut self,
+        closed: bool,
+        tension: f64,
+    ) -> Option<(usize, usize)> {
+        let p_min = self.full_contact_field();
+        if closed {
+            self.pressure.mapv_inplace(|p| p - p_min - tension);
+            self.gap.fill(0.0);
+            return None;
+        }
+        let ncols = self.pressure.ncols();
+        let weakest = self.pressure.iter().position(|&p| p == p_min).unwrap_or(0);
+        Some((weakest / ncols, weakest % ncols))
+    }
+
     /// The problem on the grid coarsened 2 × 2 (heights averaged) with its operator, or `None`
     /// when a side is odd or below `2 × COARSEST`: the coarse-to-fine starts of both solvers.
     pub(crate) fn coarsened(&self) -> Option<(Surface, Box<dyn ElasticOperator>)> {

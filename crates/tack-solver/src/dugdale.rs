@@ -20,7 +20,6 @@ use tack_kernels::ElasticOperator;
 
 use crate::adhesive::{SubProblem, hash_masks};
 use crate::cg::{PcgWork, Work, pcg_holding};
-use crate::law::ZoneScratch;
 use crate::state::Convergence;
 use crate::{AdhesiveSolver, SolverOptions, StepRecord};
 
@@ -29,7 +28,6 @@ impl AdhesiveSolver {
     pub(crate) fn step_dugdale(&mut self, d: f64) -> StepRecord {
         let periodic = self.base.periodic();
         let n = self.base.heights().len();
-        let fmean = self.base.fmean;
         let (sigma0, range) = {
             let c = self.cohesive.as_ref().expect("the Dugdale law");
             (c.sigma0, c.range)
@@ -38,7 +36,7 @@ impl AdhesiveSolver {
         let (mut cg_total, mut worst, mut converged, mut full) = (0, 0.0f64, true, false);
         let mut visited = HashSet::new();
         let mut rounds = 0;
-        let closed = periodic && d >= fmean - 1e-12 * (fmean.abs() + d.abs());
+        let closed = self.base.closed(d);
         if closed {
             self.bonded.fill(true);
             self.zone_mut().fill(false);
@@ -51,25 +49,19 @@ impl AdhesiveSolver {
             rounds += 1;
             let n_bonded = self.bonded.iter().filter(|&&b| b).count();
             if periodic && n_bonded == n {
-                // Full contact: as under the criterion, with σ0 the greatest tension.
-                let p_min = self.base.full_contact_field();
-                if closed {
-                    self.base.pressure.mapv_inplace(|p| p - p_min - sigma0);
-                    self.base.gap.fill(0.0);
-                    full = true;
-                    break;
+                // Full contact: as under the criterion, with σ0 the greatest tension; the
+                // released element joins the zone.
+                match self.base.full_contact_or_weakest(closed, sigma0) {
+                    None => {
+                        full = true;
+                        break;
+                    }
+                    Some(weakest) => {
+                        self.bonded[weakest] = false;
+                        self.zone_mut()[weakest] = true;
+                        continue;
+                    }
                 }
-                let ncols = self.bonded.ncols();
-                let weakest = self
-                    .base
-                    .pressure
-                    .iter()
-                    .position(|&p| p == p_min)
-                    .unwrap_or(0);
-                let at = (weakest / ncols, weakest % ncols);
-                self.bonded[at] = false;
-                self.zone_mut()[at] = true;
-                continue;
             }
             let zone = &self.cohesive.as_ref().expect("the Dugdale law").zone;
             let cycle = !visited.insert(hash_masks(&[&self.bonded, zone]));
@@ -139,20 +131,19 @@ impl AdhesiveSolver {
             let coh = self.cohesive.as_ref().expect("the Dugdale law");
             self.subgrid_of(&coh.loaded)
         };
-        let coh = self.cohesive.as_mut().expect("the Dugdale law");
+        let coh = self.cohesive.as_ref().expect("the Dugdale law");
         let base = &mut self.base;
         let Some(window) = window else {
-            coh.scratch.zone.assign(&coh.zone);
             return solve_with_zone(
                 base.op.as_mut(),
                 base.surface.heights().view(),
                 self.bonded.view(),
+                coh.zone.view(),
                 coh.sigma0,
                 d,
                 base.pressure.view_mut(),
                 &mut base.work,
                 &mut self.pcg,
-                &mut coh.scratch,
                 &cg,
                 pre,
             );
@@ -163,21 +154,23 @@ impl AdhesiveSolver {
             .boxes
             .get_or_insert_with(shape, || SubProblem::new(shape, dx, e_star));
         let block = ndarray::s![window.i0..window.i1, window.j0..window.j1];
-        let scratch = sub.zone.get_or_insert_with(|| ZoneScratch::new(shape));
+        let zone = sub
+            .zone
+            .get_or_insert_with(|| Array2::from_elem(shape, false));
+        zone.assign(&coh.zone.slice(block));
         sub.pressure.assign(&base.pressure.slice(block));
         sub.heights.assign(&base.surface.heights().slice(block));
         sub.bonded.assign(&self.bonded.slice(block));
-        scratch.zone.assign(&coh.zone.slice(block));
         let out = solve_with_zone(
             &mut sub.op,
             sub.heights.view(),
             sub.bonded.view(),
+            zone.view(),
             coh.sigma0,
             d,
             sub.pressure.view_mut(),
             &mut sub.work,
             &mut sub.pcg,
-            scratch,
             &cg,
             pre,
         );
@@ -189,25 +182,25 @@ impl AdhesiveSolver {
     }
 }
 
-/// `K_CC p_C = (d − f − K p_Z)_C` on one grid with `p_Z = −σ0` on `scratch.zone`; leaves the
+/// `K_CC p_C = (d − f − K p_Z)_C` on one grid with `p_Z = −σ0` on `zone`; leaves the
 /// whole pressure in `pressure` and `work.disp = K p`.
 #[allow(clippy::too_many_arguments)]
 fn solve_with_zone(
     op: &mut dyn ElasticOperator,
     heights: ArrayView2<f64>,
     bonded: ArrayView2<bool>,
+    zone: ArrayView2<bool>,
     sigma0: f64,
     d: f64,
     mut pressure: ArrayViewMut2<f64>,
     work: &mut Work,
     pcg_work: &mut PcgWork,
-    scratch: &mut ZoneScratch,
     cg: &SolverOptions,
     preconditioned: bool,
 ) -> Convergence {
     Zip::from(&mut pressure)
         .and(&bonded)
-        .and(&scratch.zone)
+        .and(&zone)
         .for_each(|p, &b, &z| {
             if z {
                 *p = -sigma0;
@@ -220,7 +213,7 @@ fn solve_with_zone(
             op,
             heights,
             bonded,
-            Some(scratch.zone.view()),
+            Some(zone),
             d,
             pressure.view_mut(),
             work,

@@ -28,24 +28,17 @@ pub enum AdhesionLaw {
 /// `g < h0` is decided by the round-off of `f − d + u`.
 pub const RANGE_ROUND_OFF: f64 = 1e-12;
 
-/// The Dugdale law's state on the solver's grid: σ0, the range, the cohesive zone and scratch.
-pub(crate) struct Cohesive {
-    pub(crate) sigma0: f64,
-    pub(crate) range: f64,
-    pub(crate) zone: Array2<bool>,
-    /// Contact or zone: the loaded elements that fix the sub-grid.
-    pub(crate) loaded: Array2<bool>,
-    pub(crate) scratch: ZoneScratch,
-}
-
-impl Cohesive {
-    /// Checks `σ0 > 0`, `γ > 0` and a range above the round-off of the heights.
-    pub(crate) fn new(
-        gamma: f64,
-        sigma0: f64,
-        surface: &Surface,
-        shape: (usize, usize),
-    ) -> Result<Self, SolverError> {
+impl AdhesionLaw {
+    /// Checks the law's own inputs for work of adhesion `gamma` on `surface`: κ > 0 for the
+    /// criterion; for the Dugdale law σ0 > 0, γ > 0 and a range γ/σ0 above the round-off of
+    /// the heights ([`RANGE_ROUND_OFF`]). Errors name the field.
+    pub fn check(&self, gamma: f64, surface: &Surface) -> Result<(), SolverError> {
+        let sigma0 = match *self {
+            AdhesionLaw::JkrLimit { kappa } => {
+                return crate::validate::positive(fields::SOLVER_KAPPA, kappa).map(|_| ());
+            }
+            AdhesionLaw::Dugdale { sigma0 } => sigma0,
+        };
         crate::validate::positive(fields::ADHESION_SIGMA0, sigma0)?;
         if gamma <= 0.0 {
             return Err(SolverError::OutOfRange {
@@ -63,28 +56,37 @@ impl Cohesive {
             return Err(SolverError::OutOfRange {
                 field: fields::ADHESION_SIGMA0,
                 value: sigma0,
-                allowed: "small enough that the range γ/σ0 exceeds 1e-12 of the largest height",
+                allowed: "small enough that the range γ/σ0 exceeds 1e-12 of the largest height \
+                          (below it the gap test is round-off)",
             });
         }
-        Ok(Self {
-            sigma0,
-            range,
-            zone: Array2::from_elem(shape, false),
-            loaded: Array2::from_elem(shape, false),
-            scratch: ZoneScratch::new(shape),
-        })
+        Ok(())
     }
 }
 
-/// The zone on one (sub-)grid.
-pub(crate) struct ZoneScratch {
+/// The Dugdale law's state on the solver's grid: σ0, the range and the cohesive zone.
+pub(crate) struct Cohesive {
+    pub(crate) sigma0: f64,
+    pub(crate) range: f64,
     pub(crate) zone: Array2<bool>,
+    /// Contact or zone: the loaded elements that fix the sub-grid.
+    pub(crate) loaded: Array2<bool>,
 }
 
-impl ZoneScratch {
-    pub(crate) fn new(shape: (usize, usize)) -> Self {
-        Self {
+impl Cohesive {
+    /// Checks the law ([`AdhesionLaw::check`]) and makes the empty zone.
+    pub(crate) fn new(
+        gamma: f64,
+        sigma0: f64,
+        surface: &Surface,
+        shape: (usize, usize),
+    ) -> Result<Self, SolverError> {
+        AdhesionLaw::Dugdale { sigma0 }.check(gamma, surface)?;
+        Ok(Self {
+            sigma0,
+            range: gamma / sigma0,
             zone: Array2::from_elem(shape, false),
-        }
+            loaded: Array2::from_elem(shape, false),
+        })
     }
 }

@@ -253,12 +253,12 @@ pub fn pull_off_scene(
     }
 
     // A finite range approaches from out of contact (as a scene's default path does).
-    let (start, load_step) = match (spec.adhesion.model, spec.adhesion.sigma0) {
-        (AdhesionModel::Dugdale, Some(sigma0)) if sigma0 > 0.0 => {
-            (first_touch - spec.gamma / sigma0 - unload_step, unload_step)
-        }
-        _ => (max_approach, (max_approach - first_touch).max(unload_step)),
+    let range = match (spec.adhesion.model, spec.adhesion.sigma0) {
+        (AdhesionModel::Dugdale, Some(sigma0)) if sigma0 > 0.0 => Some(spec.gamma / sigma0),
+        _ => None,
     };
+    let (start, load_step) =
+        crate::pull_off_path::load_plan(first_touch, max_approach, unload_step, range);
     let file = SceneSchema {
         adhesion: spec.adhesion,
         version: SCENE_VERSION,

@@ -16,8 +16,8 @@ use tack_geometry::{
     rough_surface,
 };
 use tack_solver::{
-    AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, KAPPA, RANGE_ROUND_OFF,
-    SnapshotRequest, contact_window,
+    AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, KAPPA, SnapshotRequest,
+    contact_window,
 };
 
 use crate::scene::{
@@ -522,13 +522,6 @@ fn adhesion_law(f: &SceneSchema, kappa: f64, surface: &Surface) -> Result<Adhesi
             gamma = fields::MATERIAL_GAMMA,
         ))),
         (AdhesionModel::Dugdale, Some(sigma0)) => {
-            if !(sigma0.is_finite() && sigma0 > 0.0) {
-                return Err(SceneError::out_of_range(
-                    fields::ADHESION_SIGMA0,
-                    sigma0,
-                    "a finite number > 0",
-                ));
-            }
             if f.solver.kappa.is_some() {
                 return Err(SceneError::Inconsistent(format!(
                     "{kappa} is the zero-range criterion's constant; {model} = \"dugdale\" does \
@@ -544,19 +537,8 @@ fn adhesion_law(f: &SceneSchema, kappa: f64, surface: &Surface) -> Result<Adhesi
                     gamma_field = fields::MATERIAL_GAMMA,
                 )));
             }
-            let top = surface
-                .heights()
-                .iter()
-                .fold(0.0f64, |m, &h| m.max(h.abs()));
-            let range = gamma / sigma0;
-            if range <= RANGE_ROUND_OFF * top {
-                return Err(SceneError::out_of_range(
-                    fields::ADHESION_SIGMA0,
-                    sigma0,
-                    "small enough that the range γ/σ0 exceeds 1e-12 of the largest height \
-                     (below it the gap test is round-off)",
-                ));
-            }
+            // σ0 > 0 and a range above the round-off of the heights: the solver's own check.
+            AdhesionLaw::Dugdale { sigma0 }.check(gamma, surface)?;
             Ok(AdhesionLaw::Dugdale { sigma0 })
         }
     }
@@ -727,17 +709,12 @@ fn approach_path(
                 let unload = p.unload_step.unwrap_or(rule.path.unload_step);
                 let coarse = p.coarse_unload_step.unwrap_or(rule.path.coarse_unload_step);
                 let max_approach = rule.path.max_approach;
-                let (start, load) = match body.law {
-                    // One load step straight to the deepest approach.
-                    AdhesionLaw::JkrLimit { .. } => {
-                        (max_approach, (max_approach - first_touch).max(unload))
-                    }
-                    // A finite range makes the approach physical: from just before the first
-                    // element comes within the range, in retraction steps (quasi-static).
-                    AdhesionLaw::Dugdale { sigma0 } => {
-                        (first_touch - body.gamma / sigma0 - unload, unload)
-                    }
+                let range = match body.law {
+                    AdhesionLaw::JkrLimit { .. } => None,
+                    AdhesionLaw::Dugdale { sigma0 } => Some(body.gamma / sigma0),
                 };
+                let (start, load) =
+                    crate::pull_off_path::load_plan(first_touch, max_approach, unload, range);
                 let path = ApproachPath {
                     start,
                     max_approach,

@@ -247,6 +247,18 @@ pub(crate) fn check_contact_fits(
     Ok(())
 }
 
+/// How the default path loads, as `(start, load_step)`: under the zero-range law one step from
+/// the first touch straight to `max_approach` (at least `step`); with a finite `range` (the
+/// Dugdale law's γ/σ0) from just before the first element comes within range,
+/// `first_touch − range − step`, in steps of `step` (quasi-static: the approach branch is
+/// physical).
+pub fn load_plan(first_touch: f64, max_approach: f64, step: f64, range: Option<f64>) -> (f64, f64) {
+    match range {
+        None => (max_approach, (max_approach - first_touch).max(step)),
+        Some(range) => (first_touch - range - step, step),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
