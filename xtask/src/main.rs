@@ -8,6 +8,7 @@ mod figures;
 mod plot;
 mod reproduce;
 mod spec;
+mod study;
 mod sweeps;
 mod tidy;
 mod validation;
@@ -43,6 +44,12 @@ commands:
                           the N given): Richardson, observed order, error estimate against the
                           distance to the finest Richardson value, time per level; writes
                           results/convergence.json
+  study <loading|dissipation> [--n N] [--seeds S] [--lambdas L,..] [--steps K,..]
+                          finite-range studies of the rough sphere (H = 0.5, R = L, N² default
+                          256, seeds 1..S default 4): |F/F_JKR| against the number of load
+                          steps (K default 1,5,20,80) under the zero-range law and the Dugdale
+                          law at each Maugis λ (default 1,2,3); the loop's dissipated energy
+                          against α* = 0.2..0.7; writes results/study-<name>.md
   tidy                    source checks beyond clippy: every .rs file opens with a //! line,
                           every scene field of tack_fields::FIELDS is documented in
                           docs/scenes.md, no scene field spelled as a string literal outside
@@ -63,6 +70,7 @@ fn main() -> Result<()> {
         Some("bench-dugdale") => pool()?.install(|| bench::dugdale(&args[1..])),
         Some("bench") => pool()?.install(|| bench::all(&args[1..])),
         Some("convergence") => pool()?.install(|| convergence::run(&args[1..])),
+        Some("study") => pool()?.install(|| study::run(&args[1..])),
         Some("tidy") => tidy::run(&args[1..]),
         Some("-h" | "--help") | None => {
             println!("{USAGE}");

@@ -33,6 +33,7 @@
 //! assert!((alpha_star(e_star, gamma, h, 0.5, q0, q1) - 0.36).abs() < 1e-12);
 //! ```
 
+mod apparent;
 mod const_math;
 mod fits;
 mod gaussian_fit;
@@ -46,6 +47,7 @@ mod pohrt_popov;
 mod quad;
 mod westergaard;
 
+pub use apparent::{CycleBranch, apparent_work_of_adhesion, jkr_branch_force};
 pub use fits::{alpha_star, lambda_fit, lambda_star, rms_height_from_alpha_star};
 pub use gaussian_fit::{FitError, GaussianFit, fit_gaussian};
 pub use hertz::{hertz_contact_radius, hertz_force, hertz_max_pressure, hertz_pressure};

@@ -349,6 +349,66 @@ unload_step = 0.002
 "#;
 
     #[test]
+    fn apparent_work_of_adhesion_per_branch() {
+        // Smooth sphere R = E* = γ = 1, a_c/Δx = 10, on the default path of each law.
+        let text = "version = 1\n[material]\ne_star = 1.0\ngamma = 1.0\n[geometry]\n\
+                    shape = \"sphere\"\nradius = 1.0\n[grid]\nn = 81\ndx = 0.0732\n";
+        let zero_range = run(&scene(text), &RunOptions::default(), &mut ()).unwrap();
+        let dugdale = run(
+            &Scene::parse(
+                text,
+                Path::new("."),
+                &[
+                    "adhesion.model=\"dugdale\"".into(),
+                    "adhesion.sigma0=0.887".into(),
+                ],
+            )
+            .unwrap(),
+            &RunOptions::default(),
+            &mut (),
+        )
+        .unwrap();
+        let stepped = run(
+            &Scene::parse(
+                text,
+                Path::new("."),
+                &[
+                    "protocol.start=-0.05".into(),
+                    "protocol.max_approach=3.0".into(),
+                    "protocol.load_step=0.05".into(),
+                    "protocol.unload_step=0.01".into(),
+                ],
+            )
+            .unwrap(),
+            &RunOptions::default(),
+            &mut (),
+        )
+        .unwrap();
+        let g = |o: &RunOutcome, key: &str| o.result.summary.extra.get(key).copied();
+        // One load step: no approach branch to fit. The retraction is JKR's with the
+        // criterion's +14% at a_c/Δx = 10 (measured 1.103).
+        assert_eq!(g(&zero_range, "apparent_gamma_approach"), None);
+        let r = g(&zero_range, "apparent_gamma_retraction").unwrap();
+        assert!((1.0..1.2).contains(&r), "{r}");
+        // Loaded in steps, the zero-range approach is Hertz's (measured γ_app = 0: the fit sits
+        // at the bottom of its range), and the retraction from the Hertz contact is not JKR's
+        // curve (0.726), though its pull-off is.
+        assert_eq!(g(&stepped, "apparent_gamma_approach"), Some(0.0));
+        let r = g(&stepped, "apparent_gamma_retraction").unwrap();
+        assert!((0.6..0.85).contains(&r), "{r}");
+        // Dugdale at λ = 1 (13.7 elements per zone): both branches adhesive (1.004 and 1.170;
+        // Maugis' pull-off is 1.067 F_JKR, and +7% the mesh's), the retraction more so.
+        let (a, r) = (
+            g(&dugdale, "apparent_gamma_approach").unwrap(),
+            g(&dugdale, "apparent_gamma_retraction").unwrap(),
+        );
+        assert!(
+            (0.85..1.15).contains(&a) && (1.05..1.3).contains(&r) && r > a,
+            "{a} {r}"
+        );
+    }
+
+    #[test]
     fn richardson_runs_the_scene_at_twice_the_element_size() {
         let fine = scene(SPHERE);
         let problem = Problem::from_scene(&fine).unwrap();

@@ -80,6 +80,28 @@ pub fn summary(problem: &Problem, path: &PathResult) -> tack_io::Summary {
         extra.insert("jump_out_approach".to_owned(), d);
         extra.insert("jump_out_force".to_owned(), f);
     }
+    if let Some(f_jkr) = r.f_jkr
+        && problem.gamma > 0.0
+        && !problem.path.is_indentation()
+    {
+        let radius = f_jkr / (-1.5 * std::f64::consts::PI * problem.gamma);
+        for (phase, branch, key) in [
+            (
+                Phase::Load,
+                tack_analytics::CycleBranch::Approach,
+                "apparent_gamma_approach",
+            ),
+            (
+                Phase::Unload,
+                tack_analytics::CycleBranch::Retraction,
+                "apparent_gamma_retraction",
+            ),
+        ] {
+            if let Some(g) = apparent_gamma(problem, path, radius, phase, branch) {
+                extra.insert(key.to_owned(), g);
+            }
+        }
+    }
     extra.insert("first_touch".to_owned(), problem.first_touch);
     let bad = path.records.iter().filter(|r| !r.converged).count();
     extra.insert("non_converged_steps".to_owned(), bad as f64);
@@ -210,6 +232,39 @@ pub fn warnings(problem: &Problem, path: &PathResult) -> Vec<String> {
     out
 }
 
+/// Searched range of the apparent work of adhesion, as factors of the scene's γ: a fit at the
+/// lower end means the branch shows no adhesion and is recorded as 0.
+const APPARENT_GAMMA_RANGE: (f64, f64) = (1e-3, 1e3);
+
+/// The apparent work of adhesion of the path's `phase` branch: the γ whose JKR sphere of
+/// `radius` fits its (approach, force) points best under approach control
+/// ([`tack_analytics::apparent_work_of_adhesion`]); approaches from the sphere's vertex, as
+/// the JKR reference of `tack plot`. `None` when fewer than [`MIN_TENSILE_STEPS`] steps of
+/// the branch carry load.
+fn apparent_gamma(
+    problem: &Problem,
+    path: &PathResult,
+    radius: f64,
+    phase: Phase,
+    branch: tack_analytics::CycleBranch,
+) -> Option<f64> {
+    let points: Vec<(f64, f64)> = path
+        .records
+        .iter()
+        .zip(&path.phases)
+        .filter(|(_, p)| **p == phase)
+        .map(|(s, _)| (s.approach, s.force))
+        .collect();
+    if points.iter().filter(|p| p.1 != 0.0).count() < MIN_TENSILE_STEPS {
+        return None;
+    }
+    let (lo, hi) = APPARENT_GAMMA_RANGE;
+    let (lo, hi) = (lo * problem.gamma, hi * problem.gamma);
+    let g =
+        tack_analytics::apparent_work_of_adhesion(problem.e_star, radius, &points, branch, lo, hi)?;
+    Some(if g <= lo * (1.0 + 1e-6) { 0.0 } else { g })
+}
+
 /// Least number of retraction steps with contact and a tensile force for the path to bracket
 /// the pull-off (the least force) with steps on both sides.
 pub const MIN_TENSILE_STEPS: usize = 3;
@@ -217,7 +272,7 @@ pub const MIN_TENSILE_STEPS: usize = 3;
 /// Names of every scalar [`summary`] can record: the [`tack_io::Summary`] fields, then its
 /// `extra` keys. A run need not have all of them (`d_jkr` only for spheres, `crop_rows` only
 /// when cropped, ...). Parameter sweeps collect quantities by these names.
-pub const SUMMARY_QUANTITIES: [&str; 31] = [
+pub const SUMMARY_QUANTITIES: [&str; 33] = [
     "pull_off_force",
     "f_jkr",
     "pull_off_ratio",
@@ -239,6 +294,8 @@ pub const SUMMARY_QUANTITIES: [&str; 31] = [
     "jump_in_force",
     "jump_out_approach",
     "jump_out_force",
+    "apparent_gamma_approach",
+    "apparent_gamma_retraction",
     "first_touch",
     "non_converged_steps",
     "edge_contact_steps",

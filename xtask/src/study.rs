@@ -1,0 +1,362 @@
+//! `cargo xtask study`: the finite-range studies of `results/study-*.md`: how the loading
+//! history moves a rough sphere's pull-off under both adhesion laws, and how much energy a
+//! load–retract cycle of a rough sphere dissipates as the roughness grows.
+
+use anyhow::{Result, bail};
+use std::fmt::Write as _;
+use std::time::Instant;
+use tack::problem::Problem;
+
+/// The rough sphere of the loading study: R = 1 on a free L = R grid of `n²`, E* = 1,
+/// γ = 1.44868e-4 (a_c ≈ 0.078 R), random roughness of Hurst exponent 0.5 and rms height `h`
+/// (0.0052: the speed-bar scene of `cargo xtask bench`), seed `seed`, the bench's retraction
+/// steps (5.5e-4 while compressive, 5.5e-5 once tensile); the Dugdale law at Maugis parameter
+/// `lambda` (of R = 1) when given.
+fn rough_scene(n: usize, seed: u64, h: f64, lambda: Option<f64>) -> Result<tack::Scene> {
+    let gamma = 1.44868e-4;
+    // Seed 0: the smooth sphere, the reference of the same law, mesh and path.
+    let roughness = if seed == 0 {
+        String::new()
+    } else {
+        format!("[roughness]\nkind = \"random\"\nh = {h}\nhurst = 0.5\nseed = {seed}\n")
+    };
+    let text = format!(
+        "version = 1\n[material]\ne_star = 1.0\ngamma = {gamma}\n[geometry]\nshape = \"sphere\"\n\
+         radius = 1.0\n{roughness}[grid]\nn = {n}\ndx = {}\nboundary = \"free\"\n[protocol]\nstart = 0.02255\n\
+         max_approach = 0.02255\nload_step = 0.02255\ncoarse_unload_step = 5.5e-4\n\
+         unload_step = 5.5e-5\n[output]\nsnapshots = \"none\"\n",
+        1.0 / n as f64
+    );
+    let sets = match lambda {
+        None => vec![],
+        Some(lambda) => vec![
+            format!("{}=\"dugdale\"", tack_fields::ADHESION_MODEL),
+            format!(
+                "{}={}",
+                tack_fields::ADHESION_SIGMA0,
+                lambda / tack_analytics::maugis_lambda(1.0, gamma, 1.0, 1.0)
+            ),
+        ],
+    };
+    Ok(tack::Scene::parse(&text, ".", &sets)?)
+}
+
+/// What one run of a study gives.
+struct StudyRun {
+    /// Pull-off force over F_JKR = −1.5πγR.
+    ratio: f64,
+    /// Contact area at the deepest approach over πa_c².
+    area: f64,
+    /// The loop's ∮F dd over πγR·d_s (d_s = (Rγ²/E*²)^(1/3)), when the path is a closed loop.
+    dissipated: Option<f64>,
+    seconds: f64,
+    converged: bool,
+}
+
+/// Runs `scene` loading in `load_steps` equal steps to its deepest approach from just out of
+/// reach: from the first touch (zero-range law) or from the first touch less the range
+/// (Dugdale); `load_steps = 1` jumps there in one step from out of reach.
+fn run_loaded(scene: &tack::Scene, load_steps: usize) -> Result<StudyRun> {
+    let mut problem = Problem::from_scene(scene)?;
+    let range = match problem.law {
+        tack_solver::AdhesionLaw::Dugdale { sigma0 } => problem.gamma / sigma0,
+        tack_solver::AdhesionLaw::JkrLimit { .. } => 0.0,
+    };
+    let reach = problem.first_touch - range;
+    let depth = problem.path.max_approach - reach;
+    let step = depth / load_steps as f64;
+    // The step before the first lies out of reach, so the path is a closed loop.
+    problem.path.start = reach - step.min(problem.path.unload_step);
+    problem.path.load_step = step;
+    if load_steps == 1 {
+        problem.path.start = problem.path.max_approach;
+        problem.path.load_step = depth;
+    }
+    let radius = 1.0;
+    let (gamma, e_star) = (problem.gamma, problem.e_star);
+    let a_c = tack_analytics::jkr_pull_off_radius(e_star, gamma, radius);
+    let d_s = tack_analytics::jkr_approach_scale(e_star, gamma, radius);
+    let t = Instant::now();
+    let out = tack::engine::execute(scene, problem, &tack::RunOptions::default(), &mut ())?;
+    let seconds = t.elapsed().as_secs_f64();
+    let deepest = out
+        .path
+        .records
+        .iter()
+        .max_by(|a, b| a.approach.total_cmp(&b.approach))
+        .map_or(0.0, |r| r.area);
+    Ok(StudyRun {
+        ratio: out.pull_off_ratio(),
+        area: deepest / (std::f64::consts::PI * a_c * a_c),
+        dissipated: out
+            .path
+            .cycle()
+            .dissipated_energy
+            .map(|w| w / (std::f64::consts::PI * gamma * radius * d_s)),
+        seconds,
+        converged: out.path.completed && out.path.all_converged(),
+    })
+}
+
+/// `cargo xtask study loading [--seeds N] [--n N] [--lambdas L,L] [--steps K,K]`: the rough
+/// sphere's |F/F_JKR| against the number of load steps, zero-range and Dugdale.
+fn loading(opts: &Opts) -> Result<String> {
+    let mut s = format!(
+        "## Loading history: rough sphere (H = 0.5, h = 0.0052, R = L, {n}²)\n\n\
+         |F/F_JKR| (contact area at the deepest approach / πa_c²) against the number of equal \
+         load steps from out of reach to d = 0.02255; `1` jumps there in one step.\n\n\
+         | law | seed | {} |\n|---|---|{}\n",
+        opts.steps
+            .iter()
+            .map(|k| k.to_string())
+            .collect::<Vec<_>>()
+            .join(" | "),
+        "---|".repeat(opts.steps.len()),
+        n = opts.n
+    );
+    let laws: Vec<Option<f64>> = std::iter::once(None)
+        .chain(opts.lambdas.iter().map(|&l| Some(l)))
+        .collect();
+    for law in &laws {
+        for seed in opts.first_seed..=opts.seeds {
+            let scene = rough_scene(opts.n, seed, 0.0052, *law)?;
+            let name = law.map_or("zero-range".to_string(), |l| format!("Dugdale λ = {l}"));
+            let label = if seed == 0 {
+                "smooth".to_string()
+            } else {
+                seed.to_string()
+            };
+            let mut row = format!("| {name} | {label} |");
+            for &k in &opts.steps {
+                let r = run_loaded(&scene, k)?;
+                let flag = if r.converged { "" } else { " (not converged)" };
+                write!(row, " {:.3} ({:.2}){flag} |", r.ratio.abs(), r.area)?;
+                eprintln!(
+                    "{name} seed {seed} steps {k}: |F/F_JKR| = {:.4}, area {:.3}, {:.1} s",
+                    r.ratio.abs(),
+                    r.area,
+                    r.seconds
+                );
+            }
+            s += &row;
+            s += "\n";
+        }
+    }
+    Ok(s)
+}
+
+/// `cargo xtask study dissipation`: the loop's dissipated energy of the rough sphere against α*
+/// (H = 0.5, the rms height set by α*), zero-range quasi-static and Dugdale.
+fn dissipation(opts: &Opts) -> Result<String> {
+    let (gamma, n) = (1.44868e-4, opts.n);
+    let q0 = 2.0 * std::f64::consts::PI;
+    let q1 = std::f64::consts::PI * n as f64;
+    let mut s = format!(
+        "## Dissipation of a load–retract cycle: rough sphere (H = 0.5, R = L, {n}²)\n\n\
+         ∮F dd / (πγR d_s), mean over seeds 1–{} (and the spread), loading in {} steps.\n\n\
+         | α* | h | zero-range | {} |\n|---|---|---|{}\n",
+        opts.seeds,
+        opts.steps.last().copied().unwrap_or(20),
+        opts.lambdas
+            .iter()
+            .map(|l| format!("Dugdale λ = {l}"))
+            .collect::<Vec<_>>()
+            .join(" | "),
+        "---|".repeat(opts.lambdas.len())
+    );
+    let k = opts.steps.last().copied().unwrap_or(20);
+    for alpha in [0.2, 0.3, 0.4, 0.5, 0.7] {
+        let h = tack_analytics::rms_height_from_alpha_star(1.0, gamma, alpha, 0.5, q0, q1);
+        let mut row = format!("| {alpha} | {h:.3e} |");
+        let laws: Vec<Option<f64>> = std::iter::once(None)
+            .chain(opts.lambdas.iter().map(|&l| Some(l)))
+            .collect();
+        for law in &laws {
+            let mut w = Vec::new();
+            for seed in 1..=opts.seeds {
+                let r = run_loaded(&rough_scene(n, seed, h, *law)?, k)?;
+                eprintln!(
+                    "α* {alpha} {law:?} seed {seed}: W = {:?}, |F/F_JKR| = {:.3}, {:.1} s",
+                    r.dissipated,
+                    r.ratio.abs(),
+                    r.seconds
+                );
+                w.extend(r.dissipated);
+            }
+            let mean = w.iter().sum::<f64>() / w.len().max(1) as f64;
+            let (lo, hi) = w
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+                    (a.min(x), b.max(x))
+                });
+            write!(row, " {mean:.3} ({lo:.3}–{hi:.3}) |")?;
+        }
+        s += &row;
+        s += "\n";
+    }
+    Ok(s)
+}
+
+/// A smooth sphere R = E* = γ = 1 resolved by `ratio` elements per JKR pull-off radius a_c, on
+/// the default pull-off path of its law: zero-range when `lambda` is `None`, else Dugdale at
+/// Maugis parameter `lambda`. Returns F/F_JKR and the elements per cohesive zone.
+fn smooth_pull_off(ratio: f64, lambda: Option<f64>) -> Result<(f64, Option<f64>, bool)> {
+    let a_c = tack_analytics::jkr_pull_off_radius(1.0, 1.0, 1.0);
+    let dx = a_c / ratio;
+    // Zero-range: one step to d = 1 (a Hertz disc of 1.37 a_c bonded). Dugdale: in steps from
+    // out of range to d = −0.5, where the JKR disc is 2.1 a_c wide. A half-width of 2.6 a_c
+    // holds either with its zone; retraction in the default rule's steps.
+    let n = 2 * (2.6 * ratio).ceil() as usize + 1;
+    let unload = 0.2 / ratio;
+    let protocol = match lambda {
+        None => "start = 1.0\nmax_approach = 1.0\nload_step = 1.0\n".to_string(),
+        Some(lambda) => {
+            let h0 = tack_analytics::maugis_lambda(1.0, 1.0, 1.0, 1.0) / lambda;
+            format!(
+                "start = {}\nmax_approach = -0.5\nload_step = {unload}\n",
+                -h0 - unload
+            )
+        }
+    };
+    let text = format!(
+        "version = 1\n[material]\ne_star = 1.0\ngamma = 1.0\n[geometry]\nshape = \"sphere\"\n\
+         radius = 1.0\n[grid]\nn = {n}\ndx = {dx}\nboundary = \"free\"\n[protocol]\n{protocol}\
+         coarse_unload_step = 0.1\nunload_step = {unload}\n[output]\nsnapshots = \"none\"\n"
+    );
+    let sets = match lambda {
+        None => vec![],
+        Some(lambda) => vec![
+            format!("{}=\"dugdale\"", tack_fields::ADHESION_MODEL),
+            format!(
+                "{}={}",
+                tack_fields::ADHESION_SIGMA0,
+                lambda / tack_analytics::maugis_lambda(1.0, 1.0, 1.0, 1.0)
+            ),
+        ],
+    };
+    let scene = tack::Scene::parse(&text, ".", &sets)?;
+    let out = tack::run(&scene, &tack::RunOptions::default(), &mut ())?;
+    let zone = out
+        .result
+        .summary
+        .extra
+        .get("cohesive_zone_elements")
+        .copied();
+    Ok((
+        out.pull_off_ratio(),
+        zone,
+        out.path.completed && out.path.all_converged(),
+    ))
+}
+
+/// `cargo xtask study jkr-limit [--lambdas L,..] [--ratios N,..]`: the Dugdale pull-off of a
+/// smooth sphere at growing λ beside the zero-range criterion at the same a_c/Δx, each with
+/// its first-order Richardson value from the two finest meshes, and Maugis' closed form.
+fn jkr_limit(opts: &Opts) -> Result<String> {
+    let ratios = &opts.ratios;
+    let head: Vec<String> = ratios.iter().map(|r| format!("a_c/Δx = {r}")).collect();
+    let mut s = format!(
+        "## The JKR limit: smooth sphere, F/F_JKR\n\n\
+         Dugdale at Maugis λ (l/Δx: elements per cohesive zone) and the zero-range criterion \
+         (κ = 1.0) at the same meshes; Richardson: 2F(finest) − F(next), first order. \
+         F_JKR = −1.5πγR.\n\n| law | {} | Richardson | closed form |\n|---|{}---|---|\n",
+        head.join(" | "),
+        "---|".repeat(ratios.len())
+    );
+    let richardson = |f: &[f64]| match f {
+        [.., a, b] => 2.0 * b - a,
+        _ => f64::NAN,
+    };
+    let mut criterion = Vec::new();
+    let mut row = String::from("| zero-range criterion |");
+    for &r in ratios {
+        let (f, _, ok) = smooth_pull_off(r, None)?;
+        eprintln!("criterion a_c/Δx = {r}: {f:.5}");
+        criterion.push(f);
+        write!(row, " {f:.4}{} |", if ok { "" } else { " (not converged)" })?;
+    }
+    writeln!(row, " {:.4} | 1 (JKR) |", richardson(&criterion))?;
+    for &lambda in &opts.lambdas {
+        let mut fs = Vec::new();
+        write!(s, "| Dugdale λ = {lambda} |")?;
+        for &r in ratios {
+            let (f, zone, ok) = smooth_pull_off(r, Some(lambda))?;
+            eprintln!("λ = {lambda} a_c/Δx = {r}: {f:.5} (l/Δx = {zone:?})");
+            fs.push(f);
+            write!(
+                s,
+                " {f:.4} (l/Δx {:.1}){} |",
+                zone.unwrap_or(f64::NAN),
+                if ok { "" } else { " (not converged)" }
+            )?;
+        }
+        writeln!(
+            s,
+            " {:.4} | {:.4} (Maugis) |",
+            richardson(&fs),
+            tack_analytics::maugis_pull_off_hat(lambda) / -1.5
+        )?;
+    }
+    s += &row;
+    Ok(s)
+}
+
+struct Opts {
+    /// Seed 0 is the smooth sphere.
+    first_seed: u64,
+    ratios: Vec<f64>,
+    n: usize,
+    seeds: u64,
+    lambdas: Vec<f64>,
+    steps: Vec<usize>,
+}
+
+fn list<T: std::str::FromStr>(v: &str) -> Result<Vec<T>>
+where
+    T::Err: std::error::Error + Send + Sync + 'static,
+{
+    Ok(v.split(',').map(str::parse).collect::<Result<_, _>>()?)
+}
+
+/// `cargo xtask study <loading|dissipation|jkr-limit> [--n N] [--seeds S] [--lambdas L,..] [--steps K,..]`.
+pub fn run(args: &[String]) -> Result<()> {
+    let mut opts = Opts {
+        n: 256,
+        seeds: 4,
+        lambdas: vec![1.0, 2.0, 3.0],
+        steps: vec![1, 5, 20, 80],
+        ratios: vec![20.0, 40.0, 80.0],
+        first_seed: 0,
+    };
+    let Some(what) = args.first() else {
+        bail!(
+            "usage: cargo xtask study <loading|dissipation|jkr-limit> [--n N] [--seeds S] [--lambdas L,..] [--steps K,..]"
+        );
+    };
+    let mut it = args[1..].iter();
+    while let Some(flag) = it.next() {
+        let Some(value) = it.next() else {
+            bail!("{flag} needs a value");
+        };
+        match flag.as_str() {
+            "--n" => opts.n = value.parse()?,
+            "--seeds" => opts.seeds = value.parse()?,
+            "--first-seed" => opts.first_seed = value.parse()?,
+            "--lambdas" => opts.lambdas = list(value)?,
+            "--steps" => opts.steps = list(value)?,
+            "--ratios" => opts.ratios = list(value)?,
+            _ => bail!("unknown option {flag}"),
+        }
+    }
+    let report = match what.as_str() {
+        "loading" => loading(&opts)?,
+        "dissipation" => dissipation(&opts)?,
+        "jkr-limit" => jkr_limit(&opts)?,
+        other => bail!("unknown study `{other}` (loading, dissipation, jkr-limit)"),
+    };
+    std::fs::create_dir_all("results")?;
+    let out = format!("results/study-{what}.md");
+    std::fs::write(&out, &report)?;
+    println!("{report}\nwritten to {out}");
+    Ok(())
+}
