@@ -45,6 +45,7 @@ mod maugis;
 mod pohrt_popov;
 #[cfg(test)]
 mod quad;
+mod wavy_dugdale;
 mod westergaard;
 
 pub use apparent::{CycleBranch, apparent_work_of_adhesion, jkr_branch_force};
@@ -71,6 +72,11 @@ pub use maugis::{
     maugis_separated_point,
 };
 pub use pohrt_popov::{KAPPA_CENTRE, KAPPA_MEAN, critical_stress, kappa_centre, kappa_mean};
+pub use wavy_dugdale::{
+    WavyDugdalePoint, wavy_dugdale_lambda, wavy_dugdale_mean_pressure,
+    wavy_dugdale_mean_pressure_ratio, wavy_dugdale_point, wavy_dugdale_pull_off_ratio,
+    wavy_dugdale_stress_ratio,
+};
 pub use westergaard::{
     westergaard_half_width, westergaard_mean_pressure, westergaard_p_star, westergaard_pressure,
 };
