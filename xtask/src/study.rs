@@ -204,16 +204,16 @@ fn smooth_pull_off(ratio: f64, lambda: Option<f64>) -> Result<(f64, Option<f64>,
     let a_c = tack_analytics::jkr_pull_off_radius(1.0, 1.0, 1.0);
     let dx = a_c / ratio;
     // Zero-range: one step to d = 1 (a Hertz disc of 1.37 a_c bonded). Dugdale: in steps from
-    // out of range to d = −0.5, where the JKR disc is 2.1 a_c wide. A half-width of 2.6 a_c
+    // out of range to d = 0.05, where the JKR disc is 2.6 a_c wide. A half-width of 3.2 a_c
     // holds either with its zone; retraction in the default rule's steps.
-    let n = 2 * (2.6 * ratio).ceil() as usize + 1;
+    let n = 2 * (3.2 * ratio).ceil() as usize + 1;
     let unload = 0.2 / ratio;
     let protocol = match lambda {
         None => "start = 1.0\nmax_approach = 1.0\nload_step = 1.0\n".to_string(),
         Some(lambda) => {
             let h0 = tack_analytics::maugis_lambda(1.0, 1.0, 1.0, 1.0) / lambda;
             format!(
-                "start = {}\nmax_approach = -0.5\nload_step = {unload}\n",
+                "start = {}\nmax_approach = 0.05\nload_step = {unload}\n",
                 -h0 - unload
             )
         }
