@@ -49,6 +49,9 @@ struct StudyRun {
     area: f64,
     /// The loop's ∮F dd over πγR·d_s (d_s = (Rγ²/E*²)^(1/3)), when the path is a closed loop.
     dissipated: Option<f64>,
+    /// Apparent work of adhesion of the approach and retraction branches (summary extras).
+    gamma_approach: Option<f64>,
+    gamma_retraction: Option<f64>,
     seconds: f64,
     converged: bool,
 }
@@ -93,6 +96,18 @@ fn run_loaded(scene: &tack::Scene, load_steps: usize) -> Result<StudyRun> {
             .cycle()
             .dissipated_energy
             .map(|w| w / (std::f64::consts::PI * gamma * radius * d_s)),
+        gamma_approach: out
+            .result
+            .summary
+            .extra
+            .get("apparent_gamma_approach")
+            .copied(),
+        gamma_retraction: out
+            .result
+            .summary
+            .extra
+            .get("apparent_gamma_retraction")
+            .copied(),
         seconds,
         converged: out.path.completed && out.path.all_converged(),
     })
@@ -146,54 +161,130 @@ fn loading(opts: &Opts) -> Result<String> {
 }
 
 /// `cargo xtask study dissipation`: the loop's dissipated energy of the rough sphere against α*
-/// (H = 0.5, the rms height set by α*), zero-range quasi-static and Dugdale.
+/// (H = 0.5, the rms height set by α*) with the apparent work of adhesion of both branches,
+/// zero-range and Dugdale, each loaded in the last of `--steps` equal steps (default 20); the
+/// smooth sphere (seed 0) as the reference. Writes the table and `results/study-dissipation.svg`.
 fn dissipation(opts: &Opts) -> Result<String> {
     let (gamma, n) = (1.44868e-4, opts.n);
     let q0 = 2.0 * std::f64::consts::PI;
     let q1 = std::f64::consts::PI * n as f64;
+    let k = if opts.steps == Opts::default().steps {
+        20
+    } else {
+        opts.steps.last().copied().unwrap_or(20)
+    };
+    let laws: Vec<Option<f64>> = std::iter::once(None)
+        .chain(opts.lambdas.iter().map(|&l| Some(l)))
+        .collect();
+    let name =
+        |law: &Option<f64>| law.map_or("zero-range".to_string(), |l| format!("Dugdale λ = {l}"));
     let mut s = format!(
         "## Dissipation of a load–retract cycle: rough sphere (H = 0.5, R = L, {n}²)\n\n\
-         ∮F dd / (πγR d_s), mean over seeds 1–{} (and the spread), loading in {} steps.\n\n\
-         | α* | h | zero-range | {} |\n|---|---|---|{}\n",
+         Loaded in {k} equal steps from out of reach to d = 0.02255 and retracted until \
+         detached. W = ∮F dd / (πγR d_s) (d_s = (Rγ²/E*²)^(1/3)), mean over seeds 1–{} with \
+         the range; γ_app/γ of the approach and retraction branches (JKR fits, means).\n\n\
+         | α* | h | {} |\n|---|---|{}\n",
         opts.seeds,
-        opts.steps.last().copied().unwrap_or(20),
-        opts.lambdas
-            .iter()
-            .map(|l| format!("Dugdale λ = {l}"))
+        laws.iter()
+            .map(|l| format!("{}: W (range) · γ_app approach/retraction", name(l)))
             .collect::<Vec<_>>()
             .join(" | "),
-        "---|".repeat(opts.lambdas.len())
+        "---|".repeat(laws.len())
     );
-    let k = opts.steps.last().copied().unwrap_or(20);
-    for alpha in [0.2, 0.3, 0.4, 0.5, 0.7] {
+    let alphas = [0.2, 0.3, 0.4, 0.5, 0.7];
+    // Per law: (α*, mean W, lo, hi) and the smooth sphere's W.
+    let mut curves: Vec<Vec<(f64, f64, f64, f64)>> = vec![Vec::new(); laws.len()];
+    let mut smooth = Vec::new();
+    for law in &laws {
+        let r = run_loaded(&rough_scene(n, 0, 0.0, *law)?, k)?;
+        eprintln!("smooth {}: W = {:?}", name(law), r.dissipated);
+        smooth.push(r.dissipated.unwrap_or(f64::NAN));
+    }
+    writeln!(
+        s,
+        "| smooth | 0 | {} |",
+        smooth
+            .iter()
+            .map(|w| format!("{w:.3}"))
+            .collect::<Vec<_>>()
+            .join(" | ")
+    )?;
+    for alpha in alphas {
         let h = tack_analytics::rms_height_from_alpha_star(1.0, gamma, alpha, 0.5, q0, q1);
         let mut row = format!("| {alpha} | {h:.3e} |");
-        let laws: Vec<Option<f64>> = std::iter::once(None)
-            .chain(opts.lambdas.iter().map(|&l| Some(l)))
-            .collect();
-        for law in &laws {
-            let mut w = Vec::new();
+        for (li, law) in laws.iter().enumerate() {
+            let (mut w, mut ga, mut gr) = (Vec::new(), Vec::new(), Vec::new());
             for seed in 1..=opts.seeds {
                 let r = run_loaded(&rough_scene(n, seed, h, *law)?, k)?;
                 eprintln!(
-                    "α* {alpha} {law:?} seed {seed}: W = {:?}, |F/F_JKR| = {:.3}, {:.1} s",
+                    "α* {alpha} {} seed {seed}: W = {:?}, |F/F_JKR| = {:.3}, γ_app {:?}/{:?}, {:.1} s",
+                    name(law),
                     r.dissipated,
                     r.ratio.abs(),
+                    r.gamma_approach,
+                    r.gamma_retraction,
                     r.seconds
                 );
                 w.extend(r.dissipated);
+                ga.extend(r.gamma_approach.map(|g| g / gamma));
+                gr.extend(r.gamma_retraction.map(|g| g / gamma));
             }
-            let mean = w.iter().sum::<f64>() / w.len().max(1) as f64;
+            let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
             let (lo, hi) = w
                 .iter()
                 .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
                     (a.min(x), b.max(x))
                 });
-            write!(row, " {mean:.3} ({lo:.3}–{hi:.3}) |")?;
+            write!(
+                row,
+                " {:.3} ({lo:.3}–{hi:.3}) · {:.2}/{:.2} |",
+                mean(&w),
+                mean(&ga),
+                mean(&gr)
+            )?;
+            curves[li].push((alpha, mean(&w), lo, hi));
         }
         s += &row;
         s += "\n";
     }
+    let series = laws
+        .iter()
+        .enumerate()
+        .flat_map(|(li, law)| {
+            let c = &curves[li];
+            [
+                crate::plot::Series::new(
+                    name(law),
+                    c.iter().map(|p| (p.0, p.1)).collect(),
+                    crate::plot::Style::ErrorBars(c.iter().map(|p| 0.5 * (p.3 - p.2)).collect()),
+                    li,
+                ),
+                crate::plot::Series::new(
+                    if li == 0 {
+                        "smooth sphere (dashed)"
+                    } else {
+                        ""
+                    },
+                    vec![(0.15, smooth[li]), (0.75, smooth[li])],
+                    crate::plot::Style::Dashed,
+                    li,
+                ),
+            ]
+        })
+        .collect();
+    let chart = crate::plot::Chart {
+        title: format!("Dissipation of a load–retract cycle, rough sphere H = 0.5, {n}²"),
+        x_label: "α*".into(),
+        y_label: "W / (πγR d_s)".into(),
+        series,
+        x_range: Some((0.15, 0.75)),
+        y_range: None,
+    };
+    crate::plot::svg(
+        std::path::Path::new("results/study-dissipation.svg"),
+        (800, 520),
+        |area| crate::plot::draw_chart(area, &chart),
+    )?;
     Ok(s)
 }
 
@@ -301,6 +392,7 @@ fn jkr_limit(opts: &Opts) -> Result<String> {
     Ok(s)
 }
 
+#[derive(Debug, Clone, PartialEq)]
 struct Opts {
     /// Seed 0 is the smooth sphere.
     first_seed: u64,
@@ -318,16 +410,22 @@ where
     Ok(v.split(',').map(str::parse).collect::<Result<_, _>>()?)
 }
 
+impl Default for Opts {
+    fn default() -> Self {
+        Self {
+            n: 256,
+            seeds: 4,
+            lambdas: vec![1.0, 2.0, 3.0],
+            steps: vec![1, 5, 20, 80],
+            ratios: vec![20.0, 40.0, 80.0],
+            first_seed: 0,
+        }
+    }
+}
+
 /// `cargo xtask study <loading|dissipation|jkr-limit> [--n N] [--seeds S] [--lambdas L,..] [--steps K,..]`.
 pub fn run(args: &[String]) -> Result<()> {
-    let mut opts = Opts {
-        n: 256,
-        seeds: 4,
-        lambdas: vec![1.0, 2.0, 3.0],
-        steps: vec![1, 5, 20, 80],
-        ratios: vec![20.0, 40.0, 80.0],
-        first_seed: 0,
-    };
+    let mut opts = Opts::default();
     let Some(what) = args.first() else {
         bail!(
             "usage: cargo xtask study <loading|dissipation|jkr-limit> [--n N] [--seeds S] [--lambdas L,..] [--steps K,..]"
@@ -348,13 +446,13 @@ pub fn run(args: &[String]) -> Result<()> {
             _ => bail!("unknown option {flag}"),
         }
     }
+    std::fs::create_dir_all("results")?;
     let report = match what.as_str() {
         "loading" => loading(&opts)?,
         "dissipation" => dissipation(&opts)?,
         "jkr-limit" => jkr_limit(&opts)?,
         other => bail!("unknown study `{other}` (loading, dissipation, jkr-limit)"),
     };
-    std::fs::create_dir_all("results")?;
     let out = format!("results/study-{what}.md");
     std::fs::write(&out, &report)?;
     println!("{report}\nwritten to {out}");

@@ -155,6 +155,7 @@ fn render_png(_result: &RunResult, path: &Path, _size: (u32, u32)) -> anyhow::Re
 /// Registers the first TrueType font found (`TACK_FONT`, then [`FONT_PATHS`]) as sans-serif.
 #[cfg(feature = "png")]
 fn register_font() -> anyhow::Result<()> {
+    use std::path::PathBuf;
     use std::sync::OnceLock;
     static REGISTERED: OnceLock<Result<(), String>> = OnceLock::new();
     REGISTERED
@@ -239,6 +240,14 @@ fn draw_curve<DB: DrawingBackend>(
     } else {
         Vec::new()
     };
+    // A Dugdale sphere: Maugis' whole equilibrium curve at its λ, dashed.
+    let maugis = match fig.result.summary.extra.get("maugis_lambda") {
+        Some(&lambda) if fig.normalised && lambda.is_finite() && lambda > 0.0 => {
+            let d_max = d.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            maugis_curve(lambda, d_max)
+        }
+        _ => Vec::new(),
+    };
     let (x0, x1) = bounds(d.iter().copied());
     let (y0, y1) = bounds(
         f.iter().copied().chain(
@@ -303,6 +312,21 @@ fn draw_curve<DB: DrawingBackend>(
                 )
             });
     }
+    if !maugis.is_empty() {
+        let lambda = fig.result.summary.extra["maugis_lambda"];
+        let purple = RGBColor(148, 103, 189);
+        chart
+            .draw_series(DashedLineSeries::new(
+                maugis
+                    .into_iter()
+                    .filter(|&(x, y)| (x0..=x1).contains(&x) && (y0..=y1).contains(&y)),
+                6,
+                4,
+                purple.stroke_width(2),
+            ))?
+            .label(format!("Maugis–Dugdale λ = {} (equilibria)", short(lambda)))
+            .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], purple.stroke_width(2)));
+    }
     let blue = RGBColor(31, 119, 180);
     let red = RGBColor(214, 39, 40);
     chart
@@ -328,6 +352,27 @@ fn draw_curve<DB: DrawingBackend>(
             )))?
             .label("pull-off (minimum force)")
             .legend(|(x, y)| Circle::new((x + 10, y), 4, BLACK.filled()));
+    }
+    // The jumps of the cycle (tack_solver::cycle), where the result has them.
+    let extra = &fig.result.summary.extra;
+    let jumps: Vec<(f64, f64)> = [
+        ("jump_in_approach", "jump_in_force"),
+        ("jump_out_approach", "jump_out_force"),
+    ]
+    .iter()
+    .filter_map(|(a, f)| Some((extra.get(*a)? / fig.d_scale, extra.get(*f)? / fig.f_scale)))
+    .filter(|_| fig.p_star.is_none())
+    .collect();
+    if !jumps.is_empty() {
+        let orange = RGBColor(255, 127, 14);
+        chart
+            .draw_series(
+                jumps
+                    .into_iter()
+                    .map(move |p| Cross::new(p, 7, orange.stroke_width(3))),
+            )?
+            .label("jump in / out")
+            .legend(move |(x, y)| Cross::new((x + 10, y), 5, orange.stroke_width(3)));
     }
     let snaps: Vec<(f64, f64)> = chosen_snapshots(fig.result)
         .iter()
@@ -391,6 +436,33 @@ fn tick_format(lo: f64, hi: f64) -> impl Fn(&f64) -> String {
 fn jkr_curve(d: &[f64]) -> Vec<(f64, f64)> {
     let d_max = d.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     tack::analytics::jkr_curve_normalised(d_max, 0.01)
+}
+
+/// Maugis' (1992) equilibrium curve at `lambda` in the units of [`jkr_curve`] (F/|F_JKR|,
+/// d/|d_JKR|), unstable parts included: the separated branch from C = 0 to its junction, then
+/// the contact branch by m from 10⁴ down towards 1, up to the first point beyond `d_max`.
+/// With P̄ = F/(πγR) and Δ̄ = d/D, D = (π²γ²R/K²)^(1/3), K = 4E*/3: F/|F_JKR| = P̄/1.5 and
+/// d/|d_JKR| = Δ̄·D/|d_JKR|.
+fn maugis_curve(lambda: f64, d_max: f64) -> Vec<(f64, f64)> {
+    use tack::analytics::{maugis_point, maugis_separated_point};
+    // D and |d_JKR| for R = E* = γ = 1 (the ratio is the same for every body).
+    let d_maugis = (9.0 * std::f64::consts::PI.powi(2) / 16.0).cbrt();
+    let x_scale = d_maugis / tack::analytics::jkr_pull_off_approach(1.0, 1.0, 1.0).abs();
+    let to_plot = |p: tack::analytics::MaugisPoint| (p.approach_hat * x_scale, p.force_hat / 1.5);
+    let c0 = maugis_point(lambda, 1e4).c_hat;
+    let mut out: Vec<(f64, f64)> = (0..=100)
+        .map(|k| to_plot(maugis_separated_point(lambda, c0 * k as f64 / 100.0)))
+        .collect();
+    // m = 1 + 10^t for t from 4 down to −8.
+    for k in 0..=1200 {
+        let m = 1.0 + 10f64.powf(4.0 - k as f64 / 100.0);
+        let p = to_plot(maugis_point(lambda, m));
+        out.push(p);
+        if p.0 > d_max {
+            break;
+        }
+    }
+    out
 }
 
 /// At most [`MAX_PANELS`] snapshots, evenly spread over the stored ones.
@@ -486,6 +558,39 @@ mod tests {
         assert_eq!(d.dim(), (64, 1));
         assert_eq!(d[[0, 0]], 1.0);
         assert_eq!(d[[1, 0]], 0.0);
+    }
+
+    #[test]
+    fn maugis_curve_has_its_pull_off_and_tends_to_jkr() {
+        // The least force of the curve is Maugis' pull-off over 1.5 (units of |F_JKR|).
+        for lambda in [0.3, 1.0, 5.0] {
+            let c = maugis_curve(lambda, 3.0);
+            let least = c.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
+            let expected = tack::analytics::maugis_pull_off_hat(lambda) / 1.5;
+            assert!(
+                (least - expected).abs() < 2e-3,
+                "λ = {lambda}: {least} vs {expected}"
+            );
+            assert!(c.last().unwrap().0 > 3.0);
+        }
+        // At large λ the curve lies on JKR's: the pull-off (−1, −1) in these units (the
+        // minimum is flat, so its sampled abscissa is loose), and the force at d = 2|d_JKR|.
+        let c = maugis_curve(1e3, 2.5);
+        let lowest = c.iter().min_by(|a, b| a.1.total_cmp(&b.1)).unwrap();
+        assert!(
+            (lowest.0 + 1.0).abs() < 0.05 && (lowest.1 + 1.0).abs() < 1e-3,
+            "{lowest:?}"
+        );
+        let at = |curve: &[(f64, f64)], x: f64| {
+            let k = curve
+                .windows(2)
+                .position(|w| w[0].0 <= x && x < w[1].0)
+                .unwrap();
+            let (a, b) = (curve[k], curve[k + 1]);
+            a.1 + (b.1 - a.1) * (x - a.0) / (b.0 - a.0)
+        };
+        let jkr = tack::analytics::jkr_curve_normalised(2.5, 0.001);
+        assert!((at(&c, 2.0) - at(&jkr, 2.0)).abs() < 2e-3);
     }
 
     #[test]
