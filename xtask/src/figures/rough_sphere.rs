@@ -498,6 +498,39 @@ mod tests {
     use tack_analytics::{alpha_star, rms_height_from_alpha_star};
     use tack_geometry::RoughSpec;
 
+    /// The Dugdale variant of Figure 7 (`data/figures/dugdale/fig7.toml`) is Figure 7's spec
+    /// with the Dugdale law at Maugis' λ = 1, and its scenes build.
+    #[test]
+    fn fig7_dugdale_spec_is_fig7_at_maugis_lambda_one() {
+        let dir = crate::reproduce::default_specs().join("dugdale");
+        let spec = crate::spec::FigureSpec::load(&dir, 7, false).expect("dugdale/fig7.toml");
+        let base = spec.scene().expect("the scene");
+        let plain = crate::spec::FigureSpec::load(&crate::reproduce::default_specs(), 7, false)
+            .unwrap()
+            .scene()
+            .unwrap();
+        let tack::scene::AdhesionSpec {
+            model: tack::scene::AdhesionModel::Dugdale,
+            sigma0: Some(sigma0),
+        } = base.adhesion
+        else {
+            panic!("{:?}", base.adhesion)
+        };
+        let lambda = tack_analytics::maugis_lambda(1.0, base.material.gamma, 1.0, sigma0);
+        assert!((lambda - 1.0).abs() < 1e-4, "λ = {lambda}");
+        assert_eq!(base.material, plain.material);
+        assert_eq!(base.geometry, plain.geometry);
+        let p: Fig7 = spec.params().unwrap();
+        let (file, _) =
+            rough_scene(&base, &p, &PullOff::for_mode(false), 0.5, 0.3, p.seeds[0]).unwrap();
+        let scene = tack::Scene::from_file(file, ".").unwrap();
+        let problem = tack::problem::Problem::from_scene(&scene).unwrap();
+        assert!(matches!(
+            problem.law,
+            tack_solver::AdhesionLaw::Dugdale { .. }
+        ));
+    }
+
     /// Figure 7's roughness in both modes: every (H, α*) gets the rms height of Eq. 11 inverted
     /// on the paper's band of its grid (q0 = 2π/L, q1 = π/Δx), bit for bit (the datasets depend
     /// on it), which gives the α* back.
