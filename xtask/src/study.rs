@@ -349,7 +349,7 @@ fn jkr_limit(opts: &Opts) -> Result<String> {
     let mut s = format!(
         "## The JKR limit: smooth sphere, F/F_JKR\n\n\
          Dugdale at Maugis λ (l/Δx: elements per cohesive zone) and the zero-range criterion \
-         (κ = 1.0) at the same meshes; Richardson: 2F(finest) − F(next), first order. \
+         (κ = 0.4732) at the same meshes; Richardson: 2F(finest) − F(next), first order. \
          F_JKR = −1.5πγR.\n\n| law | {} | Richardson | closed form |\n|---|{}---|---|\n",
         head.join(" | "),
         "---|".repeat(ratios.len())
