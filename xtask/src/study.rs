@@ -257,9 +257,7 @@ fn dissipation(opts: &Opts) -> Result<String> {
             crate::plot::Series::new(
                 name(law),
                 c.iter().map(|p| (p.0, p.1 / w0)).collect(),
-                crate::plot::Style::ErrorBars(
-                    c.iter().map(|p| 0.5 * (p.3 - p.2) / w0).collect(),
-                ),
+                crate::plot::Style::ErrorBars(c.iter().map(|p| 0.5 * (p.3 - p.2) / w0).collect()),
                 li,
             )
         })

@@ -66,10 +66,10 @@ pub use johnson::{
 };
 pub use kendall::kendall_pull_off;
 pub use maugis::{
-    MaugisBranch, MaugisPoint, MaugisScales, maugis_dissipated_energy, maugis_dissipated_energy_hat, maugis_force_at, maugis_force_at_hat,
-    maugis_jump_in_hat, maugis_jump_out_hat, maugis_lambda, maugis_lambda_critical, maugis_point,
-    maugis_pull_off, maugis_pull_off_hat, maugis_scales, maugis_separated_jump_out_hat,
-    maugis_separated_point,
+    MaugisBranch, MaugisPoint, MaugisScales, maugis_dissipated_energy,
+    maugis_dissipated_energy_hat, maugis_force_at, maugis_force_at_hat, maugis_jump_in_hat,
+    maugis_jump_out_hat, maugis_lambda, maugis_lambda_critical, maugis_point, maugis_pull_off,
+    maugis_pull_off_hat, maugis_scales, maugis_separated_jump_out_hat, maugis_separated_point,
 };
 pub use pohrt_popov::{KAPPA_CENTRE, KAPPA_MEAN, critical_stress, kappa_centre, kappa_mean};
 pub use wavy_dugdale::{

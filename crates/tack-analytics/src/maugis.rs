@@ -716,7 +716,11 @@ mod tests {
                 .windows(2)
                 .map(|w| 0.5 * (w[0].1 + w[1].1) * (w[1].0 - w[0].0))
                 .sum();
-            assert!((w / -trap - 1.0).abs() < 2e-3, "λ = {lambda}: {w} vs {}", -trap);
+            assert!(
+                (w / -trap - 1.0).abs() < 2e-3,
+                "λ = {lambda}: {w} vs {}",
+                -trap
+            );
         }
         // JKR limit: W̄ tends to the JKR loop (the contact branch from the jump-off to d = 0).
         let (w100, w1000) = (

@@ -279,7 +279,10 @@ fn hysteresis_loop_converges_to_maugis() {
     for (dx, step) in [(0.1, 0.04), (0.05, 0.02)] {
         let c = cycle(1.0, dx, 3.4, step).cycle();
         let (d_out, _) = c.jump_out.unwrap();
-        assert!((d_out - d_out_md).abs() < 2.0 * step, "jump-out at {d_out} vs {d_out_md}");
+        assert!(
+            (d_out - d_out_md).abs() < 2.0 * step,
+            "jump-out at {d_out} vs {d_out_md}"
+        );
         w.push(c.dissipated_energy.unwrap());
     }
     let order = ((w[0] - w_md) / (w[1] - w_md)).log2();
@@ -287,5 +290,8 @@ fn hysteresis_loop_converges_to_maugis() {
     println!("W = {w:?}, W_MD = {w_md}, order {order:.2}, Richardson {richardson}");
     assert!(w[0] > w[1] && w[1] > w_md, "{w:?} vs {w_md}");
     assert!((0.8..1.2).contains(&order), "order {order}");
-    assert!((richardson / w_md - 1.0).abs() < 0.02, "{richardson} vs {w_md}");
+    assert!(
+        (richardson / w_md - 1.0).abs() < 0.02,
+        "{richardson} vs {w_md}"
+    );
 }
