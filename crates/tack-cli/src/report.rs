@@ -149,6 +149,36 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
             s.pull_off_ratio
         ));
     }
+    if let (Some(&fm), Some(&lambda)) = (s.extra.get("f_maugis"), s.extra.get("maugis_lambda")) {
+        lines.push(format!(
+            "            F_Maugis = {}, F/F_Maugis = {:.4} (Dugdale, λ = {:.4})",
+            rounded(fm),
+            s.pull_off_force / fm,
+            lambda
+        ));
+    }
+    if let Some(&w) = s.extra.get("dissipated_energy").filter(|_| adhesive) {
+        let jump = |a: &str, f: &str| match (s.extra.get(a), s.extra.get(f)) {
+            (Some(&d), Some(&f)) => format!("d = {}, F = {}", rounded(d), rounded(f)),
+            _ => "none".to_owned(),
+        };
+        lines.push(format!(
+            "cycle       dissipated ∮F dd = {}; jump in at {}, out at {}",
+            rounded(w),
+            jump("jump_in_approach", "jump_in_force"),
+            jump("jump_out_approach", "jump_out_force")
+        ));
+    }
+    if let Some(&gr) = s.extra.get("apparent_gamma_retraction") {
+        let approach = s
+            .extra
+            .get("apparent_gamma_approach")
+            .map_or("no approach branch".to_owned(), |&g| format!("approach {}", rounded(g)));
+        lines.push(format!(
+            "            apparent gamma (best JKR fit): {approach}, retraction {}",
+            rounded(gr)
+        ));
+    }
     if let Some(&fk) = s.extra.get("f_kendall").filter(|_| adhesive) {
         lines.push(format!(
             "            F_Kendall = {}, F/F_Kendall = {:.4}",

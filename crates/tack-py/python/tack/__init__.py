@@ -271,7 +271,9 @@ def pull_off(
             criterion) or ``"dugdale"`` (a cohesive zone of tension ``sigma0`` and range
             gamma/sigma0, Maugis 1992). The Dugdale path approaches from out of range in
             retraction steps, so the curve has both branches; the summary then holds
-            ``maugis_lambda`` (spheres), ``dissipated_energy`` and the jumps in and out.
+            ``maugis_lambda`` (spheres), ``dissipated_energy``, the jumps in and out, and the
+            apparent work of adhesion of each branch (``apparent_gamma_approach``,
+            ``apparent_gamma_retraction``: the gamma of the best-fitting JKR sphere).
         sigma0: the cohesive tension (> 0), required with ``model="dugdale"`` only.
         snapshots: which steps keep pressure and bonded fields: ``"pull_off"`` (the pull-off
             step and the last contact), ``"all"``, ``"none"``, every k-th step (an int) or a
