@@ -173,7 +173,9 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
         let approach = s
             .extra
             .get("apparent_gamma_approach")
-            .map_or("no approach branch".to_owned(), |&g| format!("approach {}", rounded(g)));
+            .map_or("no approach branch".to_owned(), |&g| {
+                format!("approach {}", rounded(g))
+            });
         lines.push(format!(
             "            apparent gamma (best JKR fit): {approach}, retraction {}",
             rounded(gr)

@@ -124,6 +124,7 @@ fn smooth_sphere_follows_maugis_on_both_branches() {
 fn pull_off_converges_to_maugis_from_dmt_to_jkr_side() {
     // Per λ: the pull-off on two meshes, Δx halved (and the step with it); F_MD from Maugis
     // (1992) under approach control. Measured F/F_MD − 1 (l/Δx elements per cohesive zone):
+    //   λ = 0.1 (F_MD = −1.951 πγR): l/Δx = 501, 1002 → +0.68%, +0.13% (the zone disc's edge)
     //   λ = 0.3 (F_MD = −1.816 πγR): l/Δx = 56, 113  →  +1.22%, +0.83% (order 0.55)
     //   λ = 1   (−1.601 πγR):        l/Δx = 10, 20   →  +7.49%, +3.52% (order 1.09)
     //   λ = 3   (−1.517 πγR):        l/Δx = 2.8, 5.6 → +18.4%, +9.00% (order 1.03)
@@ -131,6 +132,7 @@ fn pull_off_converges_to_maugis_from_dmt_to_jkr_side() {
     // front's elements let go late). Tolerances: the coarse error +35%, the fine one below it,
     // the order within [0.7, 1.5] where the error is well above the path's own (λ ≥ 1).
     for (lambda, dx, half, step, coarse_err) in [
+        (0.1, 0.2, 6.5, 0.1, 0.009),
         (0.3, 0.2, 8.0, 0.1, 0.0165),
         (1.0, 0.1, 3.4, 0.02, 0.10),
         (3.0, 0.04, 2.4, 0.01, 0.25),
@@ -138,6 +140,21 @@ fn pull_off_converges_to_maugis_from_dmt_to_jkr_side() {
         let f_md = PI * maugis_pull_off_hat(lambda);
         let e_coarse = cycle(lambda, dx, half, step).pull_off_force() / f_md - 1.0;
         let e_fine = cycle(lambda, dx / 2.0, half, step / 2.0).pull_off_force() / f_md - 1.0;
+        if lambda == 3.0 {
+            // The JKR limit judged by the finite range: the Dugdale pull-off extrapolated
+            // (Richardson, first order) beside the zero-range criterion on the finer mesh
+            // (a_c/Δx = 37). Measured: 1.0068 F_JKR against 1.0003 (Maugis at λ = 3 is 1.0112;
+            // the criterion's own error at this mesh is about +1%, docs/theory.md §9).
+            // Tolerance 2%.
+            let f_jkr = -1.5 * PI;
+            let dugdale = (1.0 + 2.0 * e_fine - e_coarse) * f_md / f_jkr;
+            let criterion = criterion_pull_off(dx / 2.0, half, step / 2.0) / f_jkr;
+            println!("λ = 3: Dugdale (Richardson) {dugdale:.4}, criterion {criterion:.4} F_JKR");
+            assert!(
+                (dugdale - criterion).abs() < 0.02,
+                "{dugdale} vs {criterion}"
+            );
+        }
         let order = (e_coarse / e_fine).abs().log2();
         println!("λ = {lambda}: F/F_MD − 1 = {e_coarse:+.4}, {e_fine:+.4}, order {order:.2}");
         assert!(
@@ -152,6 +169,37 @@ fn pull_off_converges_to_maugis_from_dmt_to_jkr_side() {
             assert!((0.7..1.5).contains(&order), "λ = {lambda}: order {order}");
         }
     }
+}
+
+/// The zero-range criterion's pull-off of the smooth sphere (R = E* = γ = 1) on the same free
+/// grid as [`cycle`]: one step to d = 1, then retraction by `step` until detached.
+fn criterion_pull_off(dx: f64, half: f64, step: f64) -> f64 {
+    let n = 2 * (half / dx).round() as usize + 1;
+    let grid = Grid::square(n, dx, Boundary::Free).unwrap();
+    let surface = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
+    let op = operator_for(grid, 1.0).unwrap();
+    let mut solver = AdhesiveSolver::new(
+        op,
+        &surface,
+        1.0,
+        tack_solver::KAPPA,
+        AdhesiveOptions::default(),
+    )
+    .unwrap();
+    let path = ApproachPath {
+        start: 1.0,
+        max_approach: 1.0,
+        load_step: 1.0,
+        unload_step: step,
+        coarse_unload_step: None,
+        retract_to: None,
+        max_steps: 100_000,
+    };
+    let r = solver
+        .run_path(&path, &SnapshotRequest::None, &mut ())
+        .unwrap();
+    assert!(r.completed && r.all_converged());
+    r.pull_off_force()
 }
 
 #[test]
