@@ -124,7 +124,7 @@ fn smooth_sphere_follows_maugis_on_both_branches() {
 fn pull_off_converges_to_maugis_from_dmt_to_jkr_side() {
     // Per λ: the pull-off on two meshes, Δx halved (and the step with it); F_MD from Maugis
     // (1992) under approach control. Measured F/F_MD − 1 (l/Δx elements per cohesive zone):
-    //   λ = 0.1 (F_MD = −1.951 πγR): l/Δx = 501, 1002 → +0.68%, +0.13% (the zone disc's edge)
+    //   λ = 0.1 (F_MD = −1.951 πγR): l/Δx = 499, 998 → +0.68%, +0.13% (the zone disc's edge)
     //   λ = 0.3 (F_MD = −1.816 πγR): l/Δx = 56, 113  →  +1.22%, +0.83% (order 0.55)
     //   λ = 1   (−1.601 πγR):        l/Δx = 10, 20   →  +7.49%, +3.52% (order 1.09)
     //   λ = 3   (−1.517 πγR):        l/Δx = 2.8, 5.6 → +18.4%, +9.00% (order 1.03)
