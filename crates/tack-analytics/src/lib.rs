@@ -43,6 +43,7 @@ mod johnson;
 mod kendall;
 mod maugis;
 mod pohrt_popov;
+mod power_law;
 #[cfg(test)]
 mod quad;
 mod wavy_dugdale;
@@ -72,6 +73,10 @@ pub use maugis::{
     maugis_pull_off_hat, maugis_scales, maugis_separated_jump_out_hat, maugis_separated_point,
 };
 pub use pohrt_popov::{KAPPA_CENTRE, KAPPA_MEAN, critical_stress, kappa_centre, kappa_mean};
+pub use power_law::{
+    mdr_shape_factor, power_law_jkr_approach, power_law_jkr_force, power_law_pull_off_force,
+    power_law_pull_off_radius,
+};
 pub use wavy_dugdale::{
     WavyDugdalePoint, wavy_dugdale_lambda, wavy_dugdale_mean_pressure,
     wavy_dugdale_mean_pressure_ratio, wavy_dugdale_point, wavy_dugdale_pull_off_ratio,

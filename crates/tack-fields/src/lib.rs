@@ -124,6 +124,8 @@ scene_fields! {
     GEOMETRY_RADIUS = geometry.radius,
     GEOMETRY_PUNCH = geometry.punch,
     GEOMETRY_HALF_SIDE = geometry.half_side,
+    GEOMETRY_C = geometry.c,
+    GEOMETRY_EXPONENT = geometry.exponent,
     ROUGHNESS_KIND = roughness.kind,
     ROUGHNESS_H = roughness.h,
     ROUGHNESS_LAMBDA = roughness.lambda,
@@ -206,7 +208,7 @@ pub const FIELDS: &[Field] = &[
     ),
     f(
         GEOMETRY_SHAPE,
-        Kind::Choice(&["sphere", "flat_punch", "none"]),
+        Kind::Choice(&["sphere", "flat_punch", "power_law", "none"]),
         "the macroscopic body",
     ),
     f(
@@ -223,6 +225,16 @@ pub const FIELDS: &[Field] = &[
         GEOMETRY_HALF_SIDE,
         Kind::Number,
         "half the side of a square punch face",
+    ),
+    f(
+        GEOMETRY_C,
+        Kind::Number,
+        "power law z = c·r^m: the coefficient c",
+    ),
+    f(
+        GEOMETRY_EXPONENT,
+        Kind::Number,
+        "power law z = c·r^m: the exponent m (1 = cone, 2 = paraboloid)",
     ),
     f(
         ROUGHNESS_KIND,
@@ -372,7 +384,7 @@ mod tests {
             );
             assert!(!f.meaning.is_empty(), "{}", f.name);
         }
-        assert_eq!(FIELDS.len(), 39);
+        assert_eq!(FIELDS.len(), 41);
     }
 
     #[test]

@@ -52,5 +52,8 @@ pub use grid::{Boundary, Grid, MAX_ELEMENTS_PER_AXIS};
 pub use heightmap::{height_map_surface, read_height_map_file, read_height_map_text};
 pub use resample::{BAND_LIMIT_TOLERANCE, coarsen_band_limited, share_above_coarse_nyquist};
 pub use rough::{RoughSpec, rough_surface};
-pub use shapes::{DEFAULT_PUNCH_LIFT, FlatPunch, PunchFace, Shape, Sphere, Waviness1d, Waviness2d};
+pub use shapes::{
+    DEFAULT_PUNCH_LIFT, FlatPunch, MAX_POWER_LAW_EXPONENT, PowerLaw, PunchFace, Shape, Sphere,
+    Waviness1d, Waviness2d,
+};
 pub use surface::{Surface, Window};

@@ -1,4 +1,4 @@
-//! Analytic shapes (sphere, 1D/2D waviness, flat punch) as height functions `f(x, y)` sampled on a grid.
+//! Analytic shapes (sphere, power law, 1D/2D waviness, flat punch) as height functions `f(x, y)` sampled on a grid.
 //!
 //! Shapes compose by adding surfaces: the sphere with 2D waviness of Eq. 6 is
 //! `Surface::from_shape(grid, &sphere)` followed by `add_shape(&waviness)`.
@@ -37,6 +37,48 @@ impl Sphere {
 impl Shape for Sphere {
     fn height(&self, x: f64, y: f64) -> f64 {
         (x * x + y * y) / (2.0 * self.radius)
+    }
+}
+
+/// Largest exponent of a [`PowerLaw`] body: far beyond the flat-tipped bodies of experiments,
+/// and below the overflow of `c·r^m` on any grid a run can hold.
+pub const MAX_POWER_LAW_EXPONENT: f64 = 16.0;
+
+/// An axisymmetric power-law body `f = c·r^m`, `r² = x² + y²`: a cone for `m = 1` (tip
+/// included), the paraboloid of a sphere of radius `1/(2c)` for `m = 2`, flatter tips above.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PowerLaw {
+    c: f64,
+    exponent: f64,
+}
+
+impl PowerLaw {
+    /// A power law with `c > 0` (field `geometry.c`) and `1 ≤ m ≤`
+    /// [`MAX_POWER_LAW_EXPONENT`] (field `geometry.exponent`).
+    pub fn new(c: f64, exponent: f64) -> Result<Self, GeometryError> {
+        let c = positive(fields::GEOMETRY_C, c)?;
+        if !(exponent.is_finite() && (1.0..=MAX_POWER_LAW_EXPONENT).contains(&exponent)) {
+            return Err(GeometryError::OutOfRange {
+                field: fields::GEOMETRY_EXPONENT,
+                value: exponent,
+                allowed: "a number in [1, 16]",
+            });
+        }
+        Ok(Self { c, exponent })
+    }
+    /// The coefficient `c`.
+    pub fn c(&self) -> f64 {
+        self.c
+    }
+    /// The exponent `m`.
+    pub fn exponent(&self) -> f64 {
+        self.exponent
+    }
+}
+
+impl Shape for PowerLaw {
+    fn height(&self, x: f64, y: f64) -> f64 {
+        self.c * x.hypot(y).powf(self.exponent)
     }
 }
 
@@ -195,6 +237,27 @@ impl Shape for FlatPunch {
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn power_law_heights_and_checks() {
+        let cone = PowerLaw::new(0.5, 1.0).unwrap();
+        assert_eq!(cone.height(3.0, 4.0), 2.5);
+        assert_eq!(cone.height(0.0, 0.0), 0.0);
+        let sphere = PowerLaw::new(0.25, 2.0).unwrap();
+        let r2 = Sphere::new(2.0).unwrap();
+        assert!((sphere.height(0.3, -0.7) - r2.height(0.3, -0.7)).abs() < 1e-15);
+        for (c, m, field) in [
+            (0.0, 2.0, "geometry.c"),
+            (f64::NAN, 2.0, "geometry.c"),
+            (1.0, 0.5, "geometry.exponent"),
+            (1.0, 17.0, "geometry.exponent"),
+            (1.0, f64::INFINITY, "geometry.exponent"),
+        ] {
+            let e = PowerLaw::new(c, m).unwrap_err().to_string();
+            assert!(e.starts_with(field), "{e}");
+        }
+    }
+
     use super::*;
 
     #[test]
