@@ -44,12 +44,18 @@ commands:
                           the N given): Richardson, observed order, error estimate against the
                           distance to the finest Richardson value, time per level; writes
                           results/convergence.json
-  study <loading|dissipation> [--n N] [--seeds S] [--lambdas L,..] [--steps K,..]
-                          finite-range studies of the rough sphere (H = 0.5, R = L, N² default
-                          256, seeds 1..S default 4): |F/F_JKR| against the number of load
-                          steps (K default 1,5,20,80) under the zero-range law and the Dugdale
-                          law at each Maugis λ (default 1,2,3); the loop's dissipated energy
-                          against α* = 0.2..0.7; writes results/study-<name>.md
+  study <loading|dissipation|jkr-limit> [--n N] [--first-seed F] [--seeds S]
+        [--lambdas L,..|none] [--steps K,..] [--ratios R,..]
+                          finite-range studies. loading: a rough sphere (H = 0.5, R = L, N²
+                          default 256, seeds F..S default 0..4, seed 0 the smooth sphere),
+                          |F/F_JKR| against the number of load steps (K default 1,5,20,80)
+                          under the zero-range law and the Dugdale law at each Maugis λ (default
+                          1,2,3); dissipation: the loop's dissipated energy against
+                          α* = 0.2..0.7 (loaded in 20 steps unless --steps), and
+                          results/study-dissipation.svg; jkr-limit: the smooth sphere's
+                          Dugdale pull-off at each λ beside the criterion at a_c/dx = R
+                          (default 20,40,80, each double the last); writes
+                          results/study-<name>.md
   tidy                    source checks beyond clippy: every .rs file opens with a //! line,
                           every scene field of tack_fields::FIELDS is documented in
                           docs/scenes.md, no scene field spelled as a string literal outside

@@ -75,6 +75,7 @@ fn run_loaded(scene: &tack::Scene, load_steps: usize) -> Result<StudyRun> {
         problem.path.start = problem.path.max_approach;
         problem.path.load_step = depth;
     }
+    problem.path.validate()?;
     let radius = 1.0;
     let (gamma, e_star) = (problem.gamma, problem.e_star);
     let a_c = tack_analytics::jkr_pull_off_radius(e_star, gamma, radius);
@@ -168,10 +169,11 @@ fn dissipation(opts: &Opts) -> Result<String> {
     let (gamma, n) = (1.44868e-4, opts.n);
     let q0 = 2.0 * std::f64::consts::PI;
     let q1 = std::f64::consts::PI * n as f64;
-    let k = if opts.steps == Opts::default().steps {
-        20
-    } else {
+    // The loading study's default step counts are not this study's: 20 unless given.
+    let k = if opts.steps_given {
         opts.steps.last().copied().unwrap_or(20)
+    } else {
+        20
     };
     let laws: Vec<Option<f64>> = std::iter::once(None)
         .chain(opts.lambdas.iter().map(|&l| Some(l)))
@@ -290,13 +292,14 @@ fn dissipation(opts: &Opts) -> Result<String> {
 fn smooth_pull_off(ratio: f64, lambda: Option<f64>) -> Result<(f64, Option<f64>, bool)> {
     let a_c = tack_analytics::jkr_pull_off_radius(1.0, 1.0, 1.0);
     let dx = a_c / ratio;
-    // Zero-range: one step to d = 1 (a Hertz disc of 1.37 a_c bonded). Dugdale: in steps from
-    // out of range to d = 0.05, where the JKR disc is 2.6 a_c wide. A half-width of 3.2 a_c
-    // holds either with its zone; retraction in the default rule's steps.
+    // Zero-range: one step to d = 3 d_s, the default pull-off path's depth (it bonds a disc of
+    // √6 = 1.6 a_c: a contact pinned below a_c would pull off early). Dugdale: in steps from out
+    // of range to d = 0.05, where the equilibrium (JKR-like) disc is about 1.25 a_c. A
+    // half-width of 3.2 a_c holds either with its zone; retraction in the default rule's steps.
     let n = 2 * (3.2 * ratio).ceil() as usize + 1;
     let unload = 0.2 / ratio;
     let protocol = match lambda {
-        None => "start = 1.0\nmax_approach = 1.0\nload_step = 1.0\n".to_string(),
+        None => "start = 3.0\nmax_approach = 3.0\nload_step = 3.0\n".to_string(),
         Some(lambda) => {
             let h0 = tack_analytics::maugis_lambda(1.0, 1.0, 1.0, 1.0) / lambda;
             format!(
@@ -350,8 +353,9 @@ fn jkr_limit(opts: &Opts) -> Result<String> {
         head.join(" | "),
         "---|".repeat(ratios.len())
     );
+    // Successive `--ratios` are expected to double (first-order Richardson of the last two).
     let richardson = |f: &[f64]| match f {
-        [.., a, b] => 2.0 * b - a,
+        [.., a, b] => tack_solver::richardson_first_order(*b, *a),
         _ => f64::NAN,
     };
     let mut criterion = Vec::new();
@@ -392,6 +396,8 @@ fn jkr_limit(opts: &Opts) -> Result<String> {
 struct Opts {
     /// Seed 0 is the smooth sphere.
     first_seed: u64,
+    /// Whether `--steps` was given.
+    steps_given: bool,
     ratios: Vec<f64>,
     n: usize,
     seeds: u64,
@@ -415,6 +421,7 @@ impl Default for Opts {
             steps: vec![1, 5, 20, 80],
             ratios: vec![20.0, 40.0, 80.0],
             first_seed: 0,
+            steps_given: false,
         }
     }
 }
@@ -436,8 +443,9 @@ pub fn run(args: &[String]) -> Result<()> {
             "--n" => opts.n = value.parse()?,
             "--seeds" => opts.seeds = value.parse()?,
             "--first-seed" => opts.first_seed = value.parse()?,
+            "--lambdas" if value == "none" => opts.lambdas = Vec::new(),
             "--lambdas" => opts.lambdas = list(value)?,
-            "--steps" => opts.steps = list(value)?,
+            "--steps" => (opts.steps, opts.steps_given) = (list(value)?, true),
             "--ratios" => opts.ratios = list(value)?,
             _ => bail!("unknown option {flag}"),
         }

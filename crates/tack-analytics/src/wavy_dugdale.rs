@@ -56,7 +56,7 @@
 //! # Limits
 //!
 //! As λ_w → ∞, θ ≈ πα√(tanψ)/(2s0) → 0 and M ≈ θ²/S, so (2s0/π)θ → α√(tanψ): Johnson's
-//! p̄/p* = sin²ψ − α√(tanψ), with an error falling like λ_w⁻². For α → 0 at fixed ψ (small
+//! p̄/p* = sin²ψ − α√(tanψ), with an error falling like λ_w⁻². For α → 0 at fixed ψ/α^(2/3) (small
 //! contacts at the crest) it is Baney & Hui's Maugis cylinder at radius R. As α → 0 at fixed σ0
 //! (γ → 0), or λ_w → 0 at fixed α, it is Westergaard's p̄/p* = sin²ψ.
 //!

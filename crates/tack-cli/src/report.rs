@@ -181,6 +181,13 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
             rounded(gr)
         ));
     }
+    if let Some(&fm) = s.extra.get("f_mdr").filter(|_| adhesive) {
+        lines.push(format!(
+            "            F_MDR = {}, F/F_MDR = {:.4} (power law, exact JKR limit)",
+            rounded(fm),
+            s.pull_off_force / fm
+        ));
+    }
     if let Some(&fk) = s.extra.get("f_kendall").filter(|_| adhesive) {
         lines.push(format!(
             "            F_Kendall = {}, F/F_Kendall = {:.4}",
@@ -305,6 +312,8 @@ fn describe_body(geometry: &Geometry, roughness: &Option<Roughness>) -> String {
             half_side: Some(s), ..
         } => format!("square flat punch half side {s}"),
         Geometry::FlatPunch { .. } => "flat punch".to_owned(),
+        Geometry::PowerLaw { c, exponent } if *exponent == 1.0 => format!("cone z = {c}·r"),
+        Geometry::PowerLaw { c, exponent } => format!("power law z = {c}·r^{exponent}"),
         Geometry::None => "flat".to_owned(),
     };
     let rough = match roughness {

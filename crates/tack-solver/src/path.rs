@@ -131,6 +131,22 @@ impl ApproachPath {
         self.start == self.max_approach && self.retract_to == Some(self.max_approach)
     }
 
+    /// The approaches of the load phase, in order: `start + k·load_step` below `max_approach`,
+    /// then `max_approach` itself, at most `max_steps` of them.
+    pub fn load_approaches(&self) -> impl Iterator<Item = f64> + '_ {
+        let mut k = 0usize;
+        let mut done = false;
+        std::iter::from_fn(move || {
+            if done || k >= self.max_steps {
+                return None;
+            }
+            let d = (self.start + k as f64 * self.load_step).min(self.max_approach);
+            done = d >= self.max_approach;
+            k += 1;
+            Some(d)
+        })
+    }
+
     /// The most steps the path can take: exact for the load phase; for the retraction, the
     /// steps down to `retract_to` when it is set (with a coarse step, as many as fine steps
     /// would take: an upper bound), else `max_steps` (retraction ends when contact is lost,
@@ -495,14 +511,8 @@ impl AdhesiveSolver {
         observer: &mut dyn Observer,
     ) -> Result<PathResult, SolverError> {
         let mut out = PathResult::default();
-        let mut k = 0usize;
-        loop {
-            let d = (path.start + k as f64 * path.load_step).min(path.max_approach);
+        for d in path.load_approaches() {
             self.record_step(d, Phase::Load, observer, &mut out)?;
-            if d >= path.max_approach || out.records.len() >= path.max_steps {
-                break;
-            }
-            k += 1;
         }
         // A load cut short by `max_steps` never retracts (and is not complete).
         if out

@@ -350,7 +350,7 @@ unload_step = 0.002
 
     #[test]
     fn apparent_work_of_adhesion_per_branch() {
-        // Smooth sphere R = E* = γ = 1, a_c/Δx = 10, on the default path of each law.
+        // Smooth sphere R = E* = γ = 1, a_c/Δx = 21, on the default path of each law.
         let text = "version = 1\n[material]\ne_star = 1.0\ngamma = 1.0\n[geometry]\n\
                     shape = \"sphere\"\nradius = 1.0\n[grid]\nn = 81\ndx = 0.0732\n";
         let zero_range = run(&scene(text), &RunOptions::default(), &mut ()).unwrap();
@@ -385,8 +385,9 @@ unload_step = 0.002
         )
         .unwrap();
         let g = |o: &RunOutcome, key: &str| o.result.summary.extra.get(key).copied();
-        // One load step: no approach branch to fit. The retraction is JKR's with the
-        // criterion's +14% at a_c/Δx = 10 (measured 1.103).
+        // One load step: no approach branch to fit. The retraction fits a γ above the scene's
+        // (measured 1.103: the criterion's mesh error, and a curve that is JKR's only near its
+        // minimum). Tolerance: [1, 1.2].
         assert_eq!(g(&zero_range, "apparent_gamma_approach"), None);
         let r = g(&zero_range, "apparent_gamma_retraction").unwrap();
         assert!((1.0..1.2).contains(&r), "{r}");

@@ -61,6 +61,9 @@ pub struct References {
     pub f_maugis: Option<f64>,
     /// Kendall's pull-off force −sqrt(8πa³E*γ) (signed: tensile) of a circular punch.
     pub f_kendall: Option<f64>,
+    /// The exact JKR-limit pull-off force of a power-law body c·r^m on a free grid (method of
+    /// dimensionality reduction; `tack_analytics::power_law_pull_off_force`).
+    pub f_mdr: Option<f64>,
     /// Mean pressure of complete non-adhesive contact of a waviness: p*_1D = πE*h/λ (Eq. 2)
     /// or p*_2D = √2πE*h/λ (Eq. 5).
     pub p_star: Option<f64>,
@@ -292,6 +295,20 @@ impl Problem {
                 references.f_kendall = Some(-tack_analytics::kendall_pull_off(e_star, gamma, a));
                 under_resolved(&mut warnings, "the punch radius a", a, dx);
             }
+            Geometry::PowerLaw { c, exponent } if gamma > 0.0 => {
+                let a_f = tack_analytics::power_law_pull_off_radius(e_star, gamma, c, exponent);
+                if grid.nx() > 1 && grid.ny() > 1 && grid.boundary() == Boundary::Free {
+                    references.f_mdr = Some(tack_analytics::power_law_pull_off_force(
+                        e_star, gamma, c, exponent,
+                    ));
+                }
+                under_resolved(
+                    &mut warnings,
+                    "the power law's pull-off radius a_F",
+                    a_f,
+                    dx,
+                );
+            }
             _ => {}
         }
         if let Some(r) = body_radius
@@ -348,10 +365,17 @@ impl Problem {
             path_rule.is_some(),
         )?;
         check_memory(scene, &grid, Some(path.step_bound()))?;
+        // Random roughness and height arrays (measured surfaces); not waviness, whose
+        // figures load in steps on purpose and whose contact is one patch per period.
+        let span = surface.max() - surface.min();
+        let random = matches!(
+            f.roughness,
+            Some(Roughness::Random { .. } | Roughness::File { .. })
+        ) || body.is_some_and(|b| b.roughness_range.is_none_or(|r| r > 1e-9 * span));
         warnings.extend(loading_history_warning(
             law,
             gamma,
-            roughness_range,
+            random,
             &path,
             first_touch,
         ));
@@ -922,19 +946,12 @@ fn check_memory(scene: &Scene, grid: &Grid, steps: Option<usize>) -> Result<(), 
 }
 
 /// Load steps of `path` that carry the body beyond its first touch (the deepest approach
-/// included).
-pub fn loaded_steps(path: &tack_solver::ApproachPath, first_touch: f64) -> usize {
-    if path.max_approach <= path.start {
-        return usize::from(path.max_approach > first_touch);
-    }
-    let (start, step) = (path.start, path.load_step);
-    let first = if first_touch < start {
-        0.0
-    } else {
-        ((first_touch - start) / step).floor() + 1.0
-    };
-    let last = ((path.max_approach - start) / step).ceil() - 1.0;
-    (last - first + 1.0).max(0.0) as usize + 1
+/// included), counted up to `limit` (the path's own steps, `ApproachPath::load_approaches`).
+pub fn loaded_steps(path: &tack_solver::ApproachPath, first_touch: f64, limit: usize) -> usize {
+    path.load_approaches()
+        .filter(|&d| d > first_touch)
+        .take(limit)
+        .count()
 }
 
 /// The zero-range law on a rough body loaded in more than one step from its first touch: the
@@ -944,16 +961,17 @@ pub fn loaded_steps(path: &tack_solver::ApproachPath, first_touch: f64) -> usize
 fn loading_history_warning(
     law: AdhesionLaw,
     gamma: f64,
-    roughness_range: f64,
+    random: bool,
     path: &tack_solver::ApproachPath,
     first_touch: f64,
 ) -> Option<String> {
     let zero_range = matches!(law, AdhesionLaw::JkrLimit { .. });
-    let steps = loaded_steps(path, first_touch);
-    (zero_range && gamma > 0.0 && roughness_range > 0.0 && steps > 1 && !path.is_indentation())
+    let stepped = loaded_steps(path, first_touch, 2) > 1;
+    (zero_range && gamma > 0.0 && random && stepped && !path.is_indentation())
         .then(|| {
             format!(
-                "loading history: a rough body loaded in {steps} steps under the zero-range \
+                "loading history: a randomly rough body loaded in several steps under the \
+                 zero-range \
                  law bonds only where it penetrates, so its pull-off can lie well below the \
                  finite-range (Dugdale) answer, which approaches the one-step load's as the \
                  range shrinks (one rough sphere, eight seeds: 0.46 … 0.96 F_JKR loaded in 20 \
@@ -1247,6 +1265,9 @@ fn base_surface(grid: Grid, geometry: &Geometry) -> Result<Surface, SceneError> 
             };
             Surface::from_shape(grid, &punch)
         }
+        Geometry::PowerLaw { c, exponent } => {
+            Surface::from_shape(grid, &tack_geometry::PowerLaw::new(c, exponent)?)
+        }
         Geometry::None => Surface::flat(grid),
     })
 }
@@ -1533,6 +1554,31 @@ fn check_fits(
                      least {n_needed} × {n_needed} elements at {dx_field} = {} (the grid is \
                      {nx} × {ny}); raise {size_field}",
                     num(size),
+                    num(grid.dx()),
+                    dx_field = fields::GRID_DX
+                )));
+            }
+        }
+        Geometry::PowerLaw { c, exponent } => {
+            // The disc the rigid body penetrates at the deepest approach, c·r^m < d, with the
+            // sphere's margin (for m = 2 the penetrated disc is √2 times the Hertz radius).
+            let depth = path.max_approach - first_touch;
+            let needed = SPHERE_FIT_MARGIN * (depth.max(0.0) / c).powf(1.0 / exponent);
+            if needed > half_extent {
+                let n_needed = count_text((2.0 * needed / grid.dx()).ceil());
+                return Err(SceneError::Inconsistent(format!(
+                    "{size_field} = {} is too small for the power-law body: at {depth_field} = \
+                     {} it penetrates a disc of radius (d/c)^(1/m) = {} that with a 30% margin \
+                     needs a free grid of at least {n_needed} × {n_needed} elements at \
+                     {dx_field} = {} (the grid is {nx} × {ny}); raise {size_field} or \
+                     {shallower}",
+                    if spec.n.is_some() {
+                        nx.to_string()
+                    } else {
+                        format!("{nx}/{ny}")
+                    },
+                    num(path.max_approach),
+                    num(needed / SPHERE_FIT_MARGIN),
                     num(grid.dx()),
                     dx_field = fields::GRID_DX
                 )));
@@ -2022,11 +2068,18 @@ mod adhesion_tests {
             max_steps: 1000,
         };
         // One step straight to the depth; loads 0.1, 0.2, …, 1.0 beyond a touch at 0.35.
-        assert_eq!(loaded_steps(&path(1.0, 1.0, 1.0), 0.0), 1);
-        assert_eq!(loaded_steps(&path(1.0, 1.0, 1.0), 2.0), 0);
-        assert_eq!(loaded_steps(&path(0.1, 1.0, 0.1), 0.35), 7);
-        assert_eq!(loaded_steps(&path(-0.5, 1.0, 0.5), 0.0), 2);
-        assert_eq!(loaded_steps(&path(0.5, 1.0, 0.5), -1.0), 2);
+        let all = usize::MAX;
+        assert_eq!(loaded_steps(&path(1.0, 1.0, 1.0), 0.0, all), 1);
+        assert_eq!(loaded_steps(&path(1.0, 1.0, 1.0), 2.0, all), 0);
+        assert_eq!(loaded_steps(&path(0.1, 1.0, 0.1), 0.35, all), 7);
+        assert_eq!(loaded_steps(&path(-0.5, 1.0, 0.5), 0.0, all), 2);
+        assert_eq!(loaded_steps(&path(0.5, 1.0, 0.5), -1.0, all), 2);
+        // Beyond the deepest approach nothing is loaded; the solver's own steps (0.88 + k·0.01
+        // below 1.04, then 1.04: 17); a tiny step is counted only up to the limit.
+        assert_eq!(loaded_steps(&path(0.0, 1.0, 0.5), 2.0, all), 0);
+        assert_eq!(loaded_steps(&path(0.88, 1.04, 0.01), 0.0, all), 17);
+        assert_eq!(loaded_steps(&path(-1.0, 1.0, 1e-20), 0.0, 2), 0);
+        assert_eq!(loaded_steps(&path(-1.0, 1.0, 1e-2), 0.0, 2), 2);
     }
 
     #[test]
@@ -2049,8 +2102,16 @@ mod adhesion_tests {
         ]);
         let p = build(&stepped).unwrap();
         assert!(warned(&p), "{:?}", p.warnings);
-        // Not for the smooth sphere, nor under the Dugdale law.
+        // Not for the smooth sphere, nor a waviness (its figures load in steps on purpose),
+        // nor under the Dugdale law.
         assert!(!warned(&build(&stepped[4..]).unwrap()));
+        let mut wavy = vec![
+            "roughness.kind=\"waviness2d\"",
+            "roughness.h=0.002",
+            "roughness.lambda=0.2",
+        ];
+        wavy.extend(&stepped[4..]);
+        assert!(!warned(&build(&wavy).unwrap()));
         let mut dugdale = stepped.clone();
         dugdale.extend(["adhesion.model=\"dugdale\"", "adhesion.sigma0=1.0"]);
         assert!(!warned(&build(&dugdale).unwrap()));

@@ -121,6 +121,13 @@ pub enum Geometry {
         #[serde(default, skip_serializing_if = "Option::is_none")]
         half_side: Option<f64>,
     },
+    /// `shape = "power_law"`: an axisymmetric body `c·r^m` (a cone for m = 1).
+    PowerLaw {
+        /// Coefficient `c` (> 0).
+        c: f64,
+        /// Exponent `m` (1 to 16).
+        exponent: f64,
+    },
     /// `shape = "none"`: a flat body (only the roughness, if any).
     None,
 }

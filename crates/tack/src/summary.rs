@@ -8,8 +8,10 @@ use tack_solver::{AdhesionLaw, PathResult, Phase};
 use crate::problem::Problem;
 
 /// The `/summary` of a run: pull-off force (the minimum force), F_JKR and the ratio (NaN for
-/// bodies other than spheres, or γ = 0), Johnson's α or α*, and extras (`d_jkr`, `f_kendall`,
-/// `sigma_c`, `kappa`, `first_touch`, `non_converged_steps`).
+/// bodies other than spheres, or γ = 0), Johnson's α or α*, and extras (every name of
+/// [`SUMMARY_QUANTITIES`] after the fields: `d_jkr`, `f_kendall`, `f_mdr`, the law's constants,
+/// the cycle's dissipated energy and jumps, the apparent work of adhesion per branch,
+/// `first_touch`, step counts, ...).
 pub fn summary(problem: &Problem, path: &PathResult) -> tack_io::Summary {
     let pull_off = path.pull_off_force();
     // An indentation is one state, not a pull-off.
@@ -31,6 +33,9 @@ pub fn summary(problem: &Problem, path: &PathResult) -> tack_io::Summary {
     }
     if let Some(f) = r.f_kendall {
         extra.insert("f_kendall".to_owned(), f);
+    }
+    if let Some(f) = r.f_mdr {
+        extra.insert("f_mdr".to_owned(), f);
     }
     if let Some(p) = r.p_star {
         extra.insert("p_star".to_owned(), p);
@@ -252,7 +257,7 @@ fn apparent_gamma(
         .records
         .iter()
         .zip(&path.phases)
-        .filter(|(_, p)| **p == phase)
+        .filter(|(s, p)| **p == phase && s.approach.is_finite() && s.force.is_finite())
         .map(|(s, _)| (s.approach, s.force))
         .collect();
     if points.iter().filter(|p| p.1 != 0.0).count() < MIN_TENSILE_STEPS {
@@ -272,7 +277,7 @@ pub const MIN_TENSILE_STEPS: usize = 3;
 /// Names of every scalar [`summary`] can record: the [`tack_io::Summary`] fields, then its
 /// `extra` keys. A run need not have all of them (`d_jkr` only for spheres, `crop_rows` only
 /// when cropped, ...). Parameter sweeps collect quantities by these names.
-pub const SUMMARY_QUANTITIES: [&str; 33] = [
+pub const SUMMARY_QUANTITIES: [&str; 34] = [
     "pull_off_force",
     "f_jkr",
     "pull_off_ratio",
@@ -280,6 +285,7 @@ pub const SUMMARY_QUANTITIES: [&str; 33] = [
     "alpha_star",
     "d_jkr",
     "f_kendall",
+    "f_mdr",
     "p_star",
     "min_mean_pressure",
     "sigma_c",
