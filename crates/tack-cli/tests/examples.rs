@@ -10,7 +10,8 @@ use std::process::Command;
 use common::{Scratch, examples_dir, files_with_extension, have_h5py, run, text};
 
 /// The examples this file tests, one `#[test]` each (see `example!`).
-const EXAMPLES: [&str; 6] = [
+const EXAMPLES: [&str; 7] = [
+    "cone",
     "dugdale_sphere",
     "flat_punch",
     "smooth_jkr_sphere",
@@ -146,6 +147,20 @@ example!(dugdale_sphere, |r, info| {
             .as_ref()
             .is_some_and(|z| z.iter().any(|&n| n > 0))
     );
+});
+
+example!(cone, |r, _| {
+    let s = &r.summary;
+    assert!(
+        s.f_jkr.is_nan() && s.pull_off_ratio.is_nan(),
+        "not a sphere"
+    );
+    // The exact MDR pull-off of the cone c·r (c = 0.5, E* = 1, γ = 0.05): −0.3438 N; the
+    // criterion is +25% above it at a_F/Δx = 11.5 (first order, power_law.rs).
+    let f_mdr = s.extra["f_mdr"];
+    assert!((f_mdr + 0.343775).abs() < 1e-6, "{f_mdr}");
+    let ratio = s.pull_off_force / f_mdr;
+    assert!((1.0..1.35).contains(&ratio), "F/F_MDR = {ratio}");
 });
 
 example!(smooth_jkr_sphere, |r, _| {

@@ -2057,6 +2057,37 @@ mod adhesion_tests {
     }
 
     #[test]
+    fn power_law_bodies_are_read_checked_and_referenced() {
+        let scene = |c: &str, m: &str| {
+            format!(
+                "version = 1\n[material]\ne_star = 1.0\ngamma = 0.05\n[geometry]\nshape = \
+                 \"power_law\"\nc = {c}\nexponent = {m}\n[grid]\nn = 80\ndx = 0.1\n\
+                 [protocol]\nmax_approach = 1.44\nload_step = 1.44\n"
+            )
+        };
+        let p =
+            Problem::from_scene(&Scene::parse(&scene("0.5", "1.0"), ".", &[]).unwrap()).unwrap();
+        let f = p.references.f_mdr.unwrap();
+        assert!((f + 0.343775).abs() < 1e-6, "{f}");
+        assert!(p.references.f_jkr.is_none());
+        for (c, m, field) in [
+            ("0.0", "1.0", "geometry.c"),
+            ("0.5", "0.5", "geometry.exponent"),
+        ] {
+            let e = Problem::from_scene(&Scene::parse(&scene(c, m), ".", &[]).unwrap())
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains(field), "{e}");
+        }
+        // A grid too small for the penetrated disc names the grid size.
+        let small = scene("0.5", "1.0").replace("n = 80", "n = 30");
+        let e = Problem::from_scene(&Scene::parse(&small, ".", &[]).unwrap())
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("grid.n") && e.contains("power-law"), "{e}");
+    }
+
+    #[test]
     fn loaded_steps_count_the_steps_beyond_the_first_touch() {
         let path = |start: f64, max: f64, step: f64| tack_solver::ApproachPath {
             start,
