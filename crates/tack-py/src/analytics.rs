@@ -32,6 +32,7 @@ closed_forms! {
     jkr_approach_from_radius(e_star, gamma, radius, a) => tack::analytics::jkr_approach_from_radius;
     jkr_force_from_approach(e_star, gamma, radius, d) => jkr_force_or_nan;
     kendall_pull_off(e_star, gamma, a) => tack::analytics::kendall_pull_off;
+    power_law_pull_off_force(e_star, gamma, c, exponent) => tack::analytics::power_law_pull_off_force;
     johnson_alpha(e_star, gamma, h, wavelength) => tack::analytics::johnson_alpha;
     westergaard_p_star(e_star, h, wavelength) => tack::analytics::westergaard_p_star;
     johnson_2d_p_star(e_star, h, wavelength) => tack::analytics::johnson_2d_p_star;

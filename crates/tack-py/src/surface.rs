@@ -80,6 +80,24 @@ fn sphere(
         .into_pyarray(py))
 }
 
+/// The axisymmetric power law `c·r^m` (a cone for m = 1) sampled at the element centres.
+#[pyfunction]
+#[pyo3(signature = (nx, ny, *, dx, c, exponent))]
+fn power_law(
+    py: Python<'_>,
+    nx: usize,
+    ny: usize,
+    dx: f64,
+    c: f64,
+    exponent: f64,
+) -> PyResult<Bound<'_, PyArray2<f64>>> {
+    let grid = grid(nx, ny, dx)?;
+    let shape = tack::geometry::PowerLaw::new(c, exponent).map_err(named)?;
+    Ok(Surface::from_shape(grid, &shape)
+        .into_heights()
+        .into_pyarray(py))
+}
+
 /// Element-centre coordinates `(x, y)`: `x[i] = (i − ⌊nx/2⌋)·dx`, `y[j] = (j − ⌊ny/2⌋)·dx`.
 #[pyfunction]
 #[pyo3(signature = (nx, ny, *, dx))]
@@ -108,6 +126,7 @@ fn band(nx: usize, ny: usize, dx: f64) -> PyResult<(f64, f64)> {
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(rough, m)?)?;
     m.add_function(wrap_pyfunction!(sphere, m)?)?;
+    m.add_function(wrap_pyfunction!(power_law, m)?)?;
     m.add_function(wrap_pyfunction!(coordinates, m)?)?;
     m.add_function(wrap_pyfunction!(band, m)?)?;
     Ok(())

@@ -51,6 +51,12 @@ def test_surfaces():
     s = tack.surface.sphere((5, 4), dx=0.5, radius=2.0)
     X, Y = np.meshgrid(x, y, indexing="ij")
     np.testing.assert_allclose(s, (X**2 + Y**2) / 4.0)
+    cone = tack.surface.power_law((5, 4), dx=0.5, c=0.5, exponent=1.0)
+    np.testing.assert_allclose(cone, 0.5 * np.hypot(X, Y))
+    with pytest.raises(ValueError, match="exponent"):
+        tack.surface.power_law(4, dx=0.5, c=0.5, exponent=0.5)
+    # The cone's exact pull-off (E* = 1, gamma = 0.05, c = 0.5): the example's F_MDR.
+    assert analytics.power_law_pull_off_force(1.0, 0.05, 0.5, 1.0) == pytest.approx(-0.343775, rel=1e-5)
     r = tack.surface.random(64, dx=1 / 64, rms=0.01, hurst=0.5, seed=7)
     assert r.shape == (64, 64)
     assert abs(r.mean()) < 1e-15 and r.std() == pytest.approx(0.01)

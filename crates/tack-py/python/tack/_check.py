@@ -331,6 +331,8 @@ _DOMAINS = {
     "alpha_star": (lambda x: np.isfinite(x) & (x >= 0), "a finite number ≥ 0"),
     "hurst": (lambda x: (x > 0) & (x < 1), "a number in the open interval (0, 1)"),
     "d": (lambda x: np.isfinite(x), "a finite number"),
+    "c": (lambda x: np.isfinite(x) & (x > 0), "a finite number > 0"),
+    "exponent": (lambda x: (x >= 1) & (x <= 16), "a number in [1, 16]"),
 }
 
 

@@ -41,6 +41,7 @@ __all__ = [
     "kendall_pull_off",
     "lambda_fit",
     "lambda_star",
+    "power_law_pull_off_force",
     "rms_height_from_alpha_star",
     "westergaard_p_star",
 ]
@@ -61,6 +62,7 @@ _ARGS = {
     "jkr_approach_from_radius": ("e_star", "gamma", "radius", "a"),
     "jkr_force_from_approach": ("e_star", "gamma", "radius", "d"),
     "kendall_pull_off": ("e_star", "gamma", "a"),
+    "power_law_pull_off_force": ("e_star", "gamma", "c", "exponent"),
     "johnson_alpha": ("e_star", "gamma", "h", "wavelength"),
     "westergaard_p_star": ("e_star", "h", "wavelength"),
     "johnson_2d_p_star": ("e_star", "h", "wavelength"),
@@ -142,6 +144,14 @@ def jkr_force_from_approach(
     """JKR force on the stable branch at approach d (approach control); NaN below the
     jump-off approach, where the sphere has detached."""
     return _apply(_tack.jkr_force_from_approach, e_star, gamma, radius, d)
+
+
+def power_law_pull_off_force(
+    e_star: ArrayLike, gamma: ArrayLike, c: ArrayLike, exponent: ArrayLike
+) -> Any:
+    """Exact JKR-limit pull-off force (negative: tensile) of the axisymmetric body c*r^m
+    (exponent m >= 1; a cone for m = 1), by the method of dimensionality reduction."""
+    return _apply(_tack.power_law_pull_off_force, e_star, gamma, c, exponent)
 
 
 def kendall_pull_off(e_star: ArrayLike, gamma: ArrayLike, a: ArrayLike) -> Any:

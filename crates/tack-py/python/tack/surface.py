@@ -17,7 +17,7 @@ import numpy as np
 from . import _check, _tack
 from . import analytics
 
-__all__ = ["band", "coordinates", "random", "sphere"]
+__all__ = ["band", "coordinates", "power_law", "random", "sphere"]
 
 Shape = Union[int, Tuple[int, int]]
 
@@ -94,6 +94,19 @@ def sphere(shape: Shape, *, dx: float, radius: float) -> np.ndarray:
     nx, ny = _shape(shape)
     dx_ = _check.positive("dx", dx)
     return _tack.sphere(nx, ny, dx=dx_, radius=_check.positive("radius", radius))
+
+
+def power_law(shape: Shape, *, dx: float, c: float, exponent: float) -> np.ndarray:
+    """The axisymmetric body ``c * r^m`` at the element centres, apex 0 at the origin: a cone
+    for ``exponent = 1`` (tip included), the paraboloid of R = 1/(2c) for 2 (exponent in
+    [1, 16])."""
+    nx, ny = _shape(shape)
+    dx_ = _check.positive("dx", dx)
+    c_ = _check.positive("c", c)
+    m = _check.positive("exponent", exponent)
+    if not 1.0 <= m <= 16.0:
+        raise _check.invalid("exponent", m, "a number in [1, 16]")
+    return _tack.power_law(nx, ny, dx=dx_, c=c_, exponent=m)
 
 
 def coordinates(shape: Shape, *, dx: float) -> Tuple[np.ndarray, np.ndarray]:
