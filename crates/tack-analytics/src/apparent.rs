@@ -7,6 +7,7 @@
 //! retraction, the stable branch down to the jump-off approach and no force below it.
 
 use crate::jkr::jkr_force_from_approach;
+use crate::minimize::golden_min;
 
 /// Which branch of an approach-controlled cycle the points come from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -72,25 +73,10 @@ pub fn apparent_work_of_adhesion(
         .min_by(|a, b| a.1.total_cmp(&b.1))?
         .0;
     // Golden section on the bracket of the best scan point.
-    let (mut a, mut b) = (
-        lo + h * best.saturating_sub(1) as f64,
-        lo + h * (best + 1).min(n - 1) as f64,
-    );
-    let r = 0.5 * (5f64.sqrt() - 1.0);
-    let (mut x1, mut x2) = (b - r * (b - a), a + r * (b - a));
-    let (mut f1, mut f2) = (cost(x1), cost(x2));
-    while b - a > 1e-10 {
-        if f1 <= f2 {
-            (b, x2, f2) = (x2, x1, f1);
-            x1 = b - r * (b - a);
-            f1 = cost(x1);
-        } else {
-            (a, x1, f1) = (x1, x2, f2);
-            x2 = a + r * (b - a);
-            f2 = cost(x2);
-        }
-    }
-    Some((0.5 * (a + b)).exp())
+    let lo_k = lo + h * best.saturating_sub(1) as f64;
+    let hi_k = lo + h * (best + 1).min(n - 1) as f64;
+    let (x, _) = golden_min(cost, lo_k, hi_k, 1e-10);
+    Some(x.exp())
 }
 
 #[cfg(test)]

@@ -42,6 +42,7 @@ mod jkr;
 mod johnson;
 mod kendall;
 mod maugis;
+mod minimize;
 mod pohrt_popov;
 mod power_law;
 #[cfg(test)]
