@@ -45,7 +45,7 @@ pub fn power_law_jkr_force(e_star: f64, gamma: f64, c: f64, m: f64, a: f64) -> f
 }
 
 /// Contact radius at the pull-off (the least force) of the power-law body c·r^m:
-/// `a_F = (3√(8πγE*)/(4 m E* κ_m c))^(1/(m − 1/2))`.
+/// `a_F = (3√(8πγE*)/(4 m E* κ_m c))^(1/(m − 1/2))`, for m > 1/2 (the scene allows m ≥ 1).
 pub fn power_law_pull_off_radius(e_star: f64, gamma: f64, c: f64, m: f64) -> f64 {
     let k = mdr_shape_factor(m);
     (3.0 * (8.0 * PI * gamma * e_star).sqrt() / (4.0 * m * e_star * k * c)).powf(1.0 / (m - 0.5))

@@ -156,11 +156,12 @@ example!(cone, |r, _| {
         "not a sphere"
     );
     // The exact MDR pull-off of the cone c·r (c = 0.5, E* = 1, γ = 0.05): −0.3438 N; the
-    // criterion is +25% above it at a_F/Δx = 11.5 (first order, power_law.rs).
+    // criterion is +25.4% above it at a_F/Δx = 11.5 (measured 1.2543; +21% at a_F/Δx = 10 in
+    // power_law.rs: the cone is not yet monotone in Δx at these meshes). Tolerance ±0.03.
     let f_mdr = s.extra["f_mdr"];
     assert!((f_mdr + 0.343775).abs() < 1e-6, "{f_mdr}");
     let ratio = s.pull_off_force / f_mdr;
-    assert!((1.0..1.35).contains(&ratio), "F/F_MDR = {ratio}");
+    assert!((1.2243..1.2843).contains(&ratio), "F/F_MDR = {ratio}");
 });
 
 example!(smooth_jkr_sphere, |r, _| {

@@ -40,8 +40,8 @@ impl Shape for Sphere {
     }
 }
 
-/// Largest exponent of a [`PowerLaw`] body: far beyond the flat-tipped bodies of experiments,
-/// and below the overflow of `c·r^m` on any grid a run can hold.
+/// Largest exponent of a [`PowerLaw`] body: far beyond the flat-tipped bodies of experiments
+/// (the scene checks that `c·r^m` stays finite on its grid).
 pub const MAX_POWER_LAW_EXPONENT: f64 = 16.0;
 
 /// An axisymmetric power-law body `f = c·r^m`, `r² = x² + y²`: a cone for `m = 1` (tip

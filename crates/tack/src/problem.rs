@@ -297,10 +297,16 @@ impl Problem {
             }
             Geometry::PowerLaw { c, exponent } if gamma > 0.0 => {
                 let a_f = tack_analytics::power_law_pull_off_radius(e_star, gamma, c, exponent);
-                if grid.nx() > 1 && grid.ny() > 1 && grid.boundary() == Boundary::Free {
-                    references.f_mdr = Some(tack_analytics::power_law_pull_off_force(
-                        e_star, gamma, c, exponent,
+                let f = tack_analytics::power_law_pull_off_force(e_star, gamma, c, exponent);
+                if grid.nx() == 1 || grid.ny() == 1 || grid.boundary() == Boundary::Periodic {
+                    warnings.push(format!(
+                        "no F_MDR reference: the power-law body's closed form is for one body on \
+                         a free {} × {} grid, not a strip or a periodic array",
+                        grid.nx(),
+                        grid.ny()
                     ));
+                } else if f.is_normal() && a_f.is_normal() {
+                    references.f_mdr = Some(f);
                 }
                 under_resolved(
                     &mut warnings,
@@ -822,8 +828,8 @@ fn default_path(body: &PathBody<'_>) -> Result<PathRule, SceneError> {
         None if !body.heights_only => {
             return Err(SceneError::Inconsistent(format!(
                 "{max} is required: the default pull-off path needs a sphere ({shape} = \
-                 \"sphere\") or a sphere-like height map on {shape} = \"none\"; a flat punch has \
-                 no radius to set its depth and steps; give {max} and {load}",
+                 \"sphere\") or a sphere-like height map on {shape} = \"none\"; a flat punch or a \
+                 power-law body has no radius to set its depth and steps; give {max} and {load}",
                 max = fields::PROTOCOL_MAX_APPROACH,
                 shape = fields::GEOMETRY_SHAPE,
                 load = fields::PROTOCOL_LOAD_STEP,
@@ -989,9 +995,9 @@ fn under_resolved(warnings: &mut Vec<String>, what: &str, radius: f64, dx: f64) 
     let elements = radius / dx;
     if elements < MIN_PULL_OFF_RADIUS_ELEMENTS {
         warnings.push(format!(
-            "under-resolved pull-off: {what} spans {elements:.3} elements (a_c/Δx < \
-             {MIN_PULL_OFF_RADIUS_ELEMENTS}), where the detachment criterion's error exceeds \
-             +33%; refine {dx}",
+            "under-resolved pull-off: {what} spans {elements:.3} elements (fewer than \
+             {MIN_PULL_OFF_RADIUS_ELEMENTS}), where the detachment criterion's error on a sphere \
+             exceeds +33%; refine {dx}",
             dx = fields::GRID_DX
         ));
     }
@@ -1266,7 +1272,17 @@ fn base_surface(grid: Grid, geometry: &Geometry) -> Result<Surface, SceneError> 
             Surface::from_shape(grid, &punch)
         }
         Geometry::PowerLaw { c, exponent } => {
-            Surface::from_shape(grid, &tack_geometry::PowerLaw::new(c, exponent)?)
+            let s = Surface::from_shape(grid, &tack_geometry::PowerLaw::new(c, exponent)?);
+            // c·r^m at the grid's corners must stay a normal number (1e300 leaves room for the
+            // approach and the roughness).
+            if !(s.max().is_finite() && s.max() < 1e300) {
+                return Err(SceneError::out_of_range(
+                    fields::GEOMETRY_C,
+                    c,
+                    "small enough that c·r^m stays below 1e300 on the grid",
+                ));
+            }
+            s
         }
         Geometry::None => Surface::flat(grid),
     })
@@ -2073,12 +2089,23 @@ mod adhesion_tests {
         for (c, m, field) in [
             ("0.0", "1.0", "geometry.c"),
             ("0.5", "0.5", "geometry.exponent"),
+            ("1e300", "16.0", "geometry.c"),
         ] {
             let e = Problem::from_scene(&Scene::parse(&scene(c, m), ".", &[]).unwrap())
                 .unwrap_err()
                 .to_string();
             assert!(e.contains(field), "{e}");
         }
+        // No reference on a periodic grid, with a warning.
+        let periodic =
+            scene("0.5", "1.0").replace("dx = 0.1\n", "dx = 0.1\nboundary = \"periodic\"\n");
+        let p = Problem::from_scene(&Scene::parse(&periodic, ".", &[]).unwrap()).unwrap();
+        assert!(p.references.f_mdr.is_none());
+        assert!(
+            p.warnings.iter().any(|w| w.contains("no F_MDR reference")),
+            "{:?}",
+            p.warnings
+        );
         // A grid too small for the penetrated disc names the grid size.
         let small = scene("0.5", "1.0").replace("n = 80", "n = 30");
         let e = Problem::from_scene(&Scene::parse(&small, ".", &[]).unwrap())
