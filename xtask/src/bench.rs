@@ -783,13 +783,8 @@ fn dugdale_sphere(n: usize) -> Result<(f64, usize, usize, usize, f64)> {
 /// The bench's rough-sphere scene (`rough_sphere_scene`) under the Dugdale law at λ = 3 of
 /// R = 1, on the JKR-limit run's own path (one load step, the same retraction).
 fn dugdale_rough(n: usize) -> Result<PullOffRun> {
-    let gamma = 1.44868e-4;
-    let sigma0 = 3.0 / tack_analytics::maugis_lambda(1.0, gamma, 1.0, 1.0);
     let scene = rough_sphere_scene(n, false)?;
-    let sets = [
-        format!("{}=\"dugdale\"", tack_fields::ADHESION_MODEL),
-        format!("{}={sigma0}", tack_fields::ADHESION_SIGMA0),
-    ];
+    let sets = crate::study::dugdale_sets(scene.file.material.gamma, Some(3.0));
     let scene = tack::Scene::parse(&scene.text, ".", &sets)?;
     timed_pull_off(&scene, rayon::current_num_threads())
 }

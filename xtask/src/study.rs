@@ -27,7 +27,15 @@ fn rough_scene(n: usize, seed: u64, h: f64, lambda: Option<f64>) -> Result<tack:
          unload_step = 5.5e-5\n[output]\nsnapshots = \"none\"\n",
         1.0 / n as f64
     );
-    let sets = match lambda {
+    let sets = dugdale_sets(gamma, lambda);
+    Ok(tack::Scene::parse(&text, ".", &sets)?)
+}
+
+/// The `--set` overrides that put a scene of R = E* = 1 and work of adhesion `gamma` under the
+/// Dugdale law at Maugis parameter `lambda` (σ0 = λ/maugis_lambda(E*, γ, R, 1)); none for
+/// `None` (the zero-range law).
+pub fn dugdale_sets(gamma: f64, lambda: Option<f64>) -> Vec<String> {
+    match lambda {
         None => vec![],
         Some(lambda) => vec![
             format!("{}=\"dugdale\"", tack_fields::ADHESION_MODEL),
@@ -37,8 +45,7 @@ fn rough_scene(n: usize, seed: u64, h: f64, lambda: Option<f64>) -> Result<tack:
                 lambda / tack_analytics::maugis_lambda(1.0, gamma, 1.0, 1.0)
             ),
         ],
-    };
-    Ok(tack::Scene::parse(&text, ".", &sets)?)
+    }
 }
 
 /// What one run of a study gives.
@@ -313,17 +320,7 @@ fn smooth_pull_off(ratio: f64, lambda: Option<f64>) -> Result<(f64, Option<f64>,
          radius = 1.0\n[grid]\nn = {n}\ndx = {dx}\nboundary = \"free\"\n[protocol]\n{protocol}\
          coarse_unload_step = 0.1\nunload_step = {unload}\n[output]\nsnapshots = \"none\"\n"
     );
-    let sets = match lambda {
-        None => vec![],
-        Some(lambda) => vec![
-            format!("{}=\"dugdale\"", tack_fields::ADHESION_MODEL),
-            format!(
-                "{}={}",
-                tack_fields::ADHESION_SIGMA0,
-                lambda / tack_analytics::maugis_lambda(1.0, 1.0, 1.0, 1.0)
-            ),
-        ],
-    };
+    let sets = dugdale_sets(1.0, lambda);
     let scene = tack::Scene::parse(&text, ".", &sets)?;
     let out = tack::run(&scene, &tack::RunOptions::default(), &mut ())?;
     let zone = out
