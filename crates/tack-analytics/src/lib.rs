@@ -43,6 +43,7 @@ mod johnson;
 mod kendall;
 mod maugis;
 mod minimize;
+mod patterned;
 mod pohrt_popov;
 mod power_law;
 #[cfg(test)]
@@ -72,6 +73,10 @@ pub use maugis::{
     maugis_dissipated_energy_hat, maugis_force_at, maugis_force_at_hat, maugis_jump_in_hat,
     maugis_jump_out_hat, maugis_lambda, maugis_lambda_critical, maugis_point, maugis_pull_off,
     maugis_pull_off_hat, maugis_scales, maugis_separated_jump_out_hat, maugis_separated_point,
+};
+pub use patterned::{
+    PatternedState, RECEDE_SCAN, axisymmetric_force, axisymmetric_release_rate,
+    axisymmetric_retraction, receding_front, strip_punch_release_tension,
 };
 pub use pohrt_popov::{KAPPA_CENTRE, KAPPA_MEAN, critical_stress, kappa_centre, kappa_mean};
 pub use power_law::{

@@ -120,6 +120,15 @@ scene_fields! {
     MATERIAL_GAMMA = material.gamma,
     ADHESION_MODEL = adhesion.model,
     ADHESION_SIGMA0 = adhesion.sigma0,
+    ADHESION_GAMMA_MAP = adhesion.gamma_map,
+    ADHESION_DATASET = adhesion.dataset,
+    ADHESION_PATTERN = adhesion.pattern,
+    ADHESION_GAMMA_B = adhesion.gamma_b,
+    ADHESION_PERIOD = adhesion.period,
+    ADHESION_FRACTION = adhesion.fraction,
+    ADHESION_CORRELATION_LENGTH = adhesion.correlation_length,
+    ADHESION_CONTRAST = adhesion.contrast,
+    ADHESION_SEED = adhesion.seed,
     GEOMETRY_SHAPE = geometry.shape,
     GEOMETRY_RADIUS = geometry.radius,
     GEOMETRY_PUNCH = geometry.punch,
@@ -205,6 +214,56 @@ pub const FIELDS: &[Field] = &[
         ADHESION_SIGMA0,
         Kind::Number,
         "Dugdale: cohesive tension σ0 (the range is γ/σ0)",
+    ),
+    f(
+        ADHESION_GAMMA_MAP,
+        Kind::Text,
+        "work of adhesion per element: a map file (text or HDF5, the grid's shape), relative to \
+         the scene file's directory",
+    ),
+    f(
+        ADHESION_DATASET,
+        Kind::Text,
+        "HDF5 dataset of a work-of-adhesion map",
+    ),
+    f(
+        ADHESION_PATTERN,
+        Kind::Choice(&["uniform", "stripes", "checkerboard", "random"]),
+        "a generated work-of-adhesion pattern (material.gamma is phase a)",
+    ),
+    f(
+        ADHESION_GAMMA_B,
+        Kind::Number,
+        "stripes, checkerboard: the work of adhesion of phase b (≥ 0)",
+    ),
+    f(
+        ADHESION_PERIOD,
+        Kind::Number,
+        "stripes, checkerboard: the period of the pattern",
+    ),
+    f(
+        ADHESION_FRACTION,
+        Kind::Number,
+        "stripes: the share of each period that is phase b (0 to 1, default 0.5)",
+    ),
+    f(
+        ADHESION_CORRELATION_LENGTH,
+        Kind::Number,
+        "random: the correlation length ℓ of the log-normal γ field",
+    ),
+    f(
+        ADHESION_CONTRAST,
+        Kind::Number,
+        "random: the coefficient of variation of γ (std/mean, ≥ 0)",
+    ),
+    f(
+        ADHESION_SEED,
+        Kind::Integer {
+            min: 0,
+            max: i64::MAX,
+            allowed: "an integer ≥ 0 (the seed of the random γ field)",
+        },
+        "random: the seed of the γ field (default 1)",
     ),
     f(
         GEOMETRY_SHAPE,
@@ -384,7 +443,7 @@ mod tests {
             );
             assert!(!f.meaning.is_empty(), "{}", f.name);
         }
-        assert_eq!(FIELDS.len(), 41);
+        assert_eq!(FIELDS.len(), 50);
     }
 
     #[test]

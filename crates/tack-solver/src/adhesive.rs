@@ -12,7 +12,7 @@
 use std::collections::HashSet;
 use std::hash::{DefaultHasher, Hash, Hasher};
 
-use ndarray::{Array2, Zip};
+use ndarray::{Array2, ArrayView2, Zip};
 use tack_geometry::{Boundary, Surface, Window};
 use tack_kernels::{ElasticOperator, FreeOperator, padded_size};
 
@@ -114,8 +114,17 @@ impl Default for AdhesiveOptions {
 /// Quasi-static adhesive contact along an approach path; owns operator, fields and scratch.
 pub struct AdhesiveSolver {
     pub(crate) base: SolverBase,
-    /// The criterion's σ_c (zero-range law) or the cohesive tension σ0 (Dugdale law).
+    /// The criterion's σ_c (zero-range law) or the cohesive tension σ0 (Dugdale law) of the
+    /// reference work of adhesion.
     pub(crate) sigma_c: f64,
+    /// The greatest tension of each element (a patterned work of adhesion,
+    /// [`AdhesiveSolver::set_gamma_map`]), or a 1 × 1 array holding `sigma_c`; read through
+    /// [`AdhesiveSolver::tension`], which broadcasts it.
+    pub(crate) tension: Array2<f64>,
+    /// Whether `tension` is a map (per element) rather than the uniform `sigma_c`.
+    pub(crate) patterned: bool,
+    /// The reference work of adhesion and the law, from which a map's tensions follow.
+    reference: (f64, AdhesionLaw),
     pub(crate) options: AdhesiveOptions,
     pub(crate) bonded: Array2<bool>,
     pub(crate) pcg: PcgWork,
@@ -174,6 +183,9 @@ impl AdhesiveSolver {
         Ok(Self {
             base,
             sigma_c,
+            tension: Array2::from_elem((1, 1), sigma_c),
+            patterned: false,
+            reference: (gamma, law),
             options,
             bonded: Array2::from_elem(shape, false),
             pcg: PcgWork::new(shape),
@@ -200,6 +212,50 @@ impl AdhesiveSolver {
     pub fn critical_stress(&self) -> f64 {
         self.sigma_c
     }
+    /// Makes the work of adhesion a field: `gamma[[i, j]] ≥ 0` on element `(i, j)` (the grid's
+    /// shape). The criterion detaches an element beyond its own `σ_c = sqrt(E*γ_ij/(κΔx))`;
+    /// the Dugdale law keeps one range `h0 = γ/σ0` of the reference `γ` given at construction
+    /// and gives each element the tension `σ0·γ_ij/γ` (docs/theory.md §3.8). The reference `γ`
+    /// stays what [`AdhesiveSolver::critical_stress`] and [`AdhesiveSolver::range`] report.
+    ///
+    /// Errors name `adhesion.gamma_map`: a map of another shape, or an entry that is negative
+    /// or not finite.
+    pub fn set_gamma_map(&mut self, gamma: ArrayView2<f64>) -> Result<(), SolverError> {
+        let shape = self.bonded.dim();
+        if gamma.dim() != shape {
+            return Err(SolverError::MapShape {
+                field: tack_fields::ADHESION_GAMMA_MAP,
+                map: gamma.dim(),
+                grid: shape,
+            });
+        }
+        if let Some(&bad) = gamma.iter().find(|g| !(g.is_finite() && **g >= 0.0)) {
+            return Err(SolverError::OutOfRange {
+                field: tack_fields::ADHESION_GAMMA_MAP,
+                value: bad,
+                allowed: "a finite number ≥ 0 in every element",
+            });
+        }
+        let (gamma_ref, law) = self.reference;
+        self.tension = match law {
+            AdhesionLaw::JkrLimit { kappa } => {
+                let scale = self.base.op.e_star() / (kappa * self.base.grid().dx());
+                gamma.mapv(|g| (scale * g).sqrt())
+            }
+            AdhesionLaw::Dugdale { sigma0 } => gamma.mapv(|g| sigma0 * (g / gamma_ref)),
+        };
+        self.patterned = true;
+        Ok(())
+    }
+
+    /// The greatest tension of every element: the criterion's `σ_c` or the Dugdale law's σ0,
+    /// per element when the work of adhesion is a map ([`AdhesiveSolver::set_gamma_map`]).
+    pub fn tension(&self) -> ArrayView2<'_, f64> {
+        self.tension
+            .broadcast(self.bonded.dim())
+            .expect("a 1 × 1 array or the grid's shape")
+    }
+
     /// The adhesion law's range `h0 = γ/σ0` (Dugdale), `None` for the zero-range criterion.
     pub fn range(&self) -> Option<f64> {
         self.cohesive.as_ref().map(|c| c.range)
@@ -250,6 +306,7 @@ impl AdhesiveSolver {
         if closed {
             self.bonded.fill(true);
         } else if self.sigma_c == 0.0
+            && !self.patterned
             && self.options.nested_start
             && !self.bonded.iter().any(|&b| b)
         {
@@ -268,7 +325,7 @@ impl AdhesiveSolver {
         let mut level = inexact_tolerance.unwrap_or(0.0);
         // Whether the last round changed the set (a set is revisited only after a change).
         let mut just_changed = true;
-        let mut detach_below;
+        let mut detach_margin;
         // `work.disp` and the gap are up to date only inside the last inexact round's window.
         let mut stale = false;
         loop {
@@ -279,7 +336,8 @@ impl AdhesiveSolver {
             rounds += 1;
             let n_bonded = self.bonded.iter().filter(|&&b| b).count();
             if periodic && n_bonded == n {
-                match self.base.full_contact_or_weakest(closed, sigma_c) {
+                let map = self.patterned.then_some(self.tension.view());
+                match self.base.full_contact_or_weakest(closed, sigma_c, map) {
                     None => {
                         full = true;
                         break;
@@ -297,7 +355,9 @@ impl AdhesiveSolver {
             }
             let cycle = exact && !visited.insert(fingerprint);
             let mut attach_below = 0.0;
-            detach_below = -sigma_c;
+            // Detach where `p < −σ·(1 + margin) − floor`: the margin of inexact rounds, and on a
+            // map a floor of the reference's margin, so elements of little γ keep one too.
+            detach_margin = (0.0, 0.0);
             // Where the gap is up to date after this round (`None`: everywhere).
             let mut fresh: Option<Window> = None;
             if n_bonded == 0 {
@@ -310,10 +370,16 @@ impl AdhesiveSolver {
                 // unique (a convex problem), so no decision needs one.
                 let (c, w) = self.solve_bonded(d, level, false);
                 cg_total += c.iterations;
-                if sigma_c > 0.0 {
+                if sigma_c > 0.0 || self.patterned {
                     let relative = level / LOOSE_REFERENCE_TOLERANCE;
                     attach_below = -LOOSE_ATTACH_MARGIN * level * c.scale;
-                    detach_below = -sigma_c * (1.0 + LOOSE_DETACH_MARGIN * relative);
+                    let margin = LOOSE_DETACH_MARGIN * relative;
+                    let floor = if self.patterned {
+                        sigma_c * margin
+                    } else {
+                        0.0
+                    };
+                    detach_margin = (margin, floor);
                 }
                 fresh = w;
             } else {
@@ -338,11 +404,17 @@ impl AdhesiveSolver {
                 Some(w) => ndarray::s![w.i0..w.i1, w.j0..w.j1],
                 None => ndarray::s![.., ..],
             };
+            let (margin, floor) = detach_margin;
+            let tension = self
+                .tension
+                .broadcast(self.bonded.dim())
+                .expect("a 1 × 1 array or the grid's shape");
             Zip::from(self.bonded.slice_mut(block))
                 .and(self.base.pressure.slice_mut(block))
                 .and(self.base.gap.slice(block))
-                .for_each(|b, p, &g| {
-                    if *b && *p < detach_below {
+                .and(tension.slice(block))
+                .for_each(|b, p, &g, &s| {
+                    if *b && *p < -s * (1.0 + margin) - floor {
                         *b = false;
                         *p = 0.0;
                         changed = true;

@@ -2,7 +2,7 @@
 //! pressure and gap fields and the CG vectors, all allocated once; the gap update
 //! `g = f − d + K p`; the periodic full-contact field; the integrals of a record.
 
-use ndarray::{Array2, Zip};
+use ndarray::{Array2, ArrayView2, Zip};
 use tack_geometry::{Boundary, Grid, Surface};
 use tack_kernels::ElasticOperator;
 
@@ -108,19 +108,38 @@ impl SolverBase {
     /// full-contact state at the least mean pressure whose greatest tension is `tension` (σ_c
     /// of the criterion, σ0 of the Dugdale law, 0 without adhesion) and returns `None`;
     /// otherwise full contact cannot hold and the element to release is returned: the most
-    /// tensile of the full-contact field (first in row-major order on ties).
+    /// tensile of the full-contact field (first in row-major order on ties). With a `map` of
+    /// per-element tensions (patterned adhesion) the same holds element by element: the weakest
+    /// element is the least `p + σ_ij`.
     pub(crate) fn full_contact_or_weakest(
         &mut self,
         closed: bool,
         tension: f64,
+        map: Option<ArrayView2<f64>>,
     ) -> Option<(usize, usize)> {
         let p_min = self.full_contact_field();
+        let ncols = self.pressure.ncols();
+        if let Some(map) = map {
+            // Per-element tensions: the mean pressure that keeps every `p + m ≥ −σ_ij` is
+            // `m = −min(p + σ)`, reached at the weakest element.
+            let (mut least, mut weakest) = (f64::INFINITY, 0);
+            for (k, (&p, &s)) in self.pressure.iter().zip(map.iter()).enumerate() {
+                if p + s < least {
+                    (least, weakest) = (p + s, k);
+                }
+            }
+            if closed {
+                self.pressure.mapv_inplace(|p| p - least);
+                self.gap.fill(0.0);
+                return None;
+            }
+            return Some((weakest / ncols, weakest % ncols));
+        }
         if closed {
             self.pressure.mapv_inplace(|p| p - p_min - tension);
             self.gap.fill(0.0);
             return None;
         }
-        let ncols = self.pressure.ncols();
         let weakest = self.pressure.iter().position(|&p| p == p_min).unwrap_or(0);
         Some((weakest / ncols, weakest % ncols))
     }

@@ -51,7 +51,8 @@ impl AdhesiveSolver {
             if periodic && n_bonded == n {
                 // Full contact: as under the criterion, with σ0 the greatest tension; the
                 // released element joins the zone.
-                match self.base.full_contact_or_weakest(closed, sigma0) {
+                let map = self.patterned.then_some(self.tension.view());
+                match self.base.full_contact_or_weakest(closed, sigma0, map) {
                     None => {
                         full = true;
                         break;
@@ -78,14 +79,19 @@ impl AdhesiveSolver {
             let g_margin = tolerance * c.scale.max(range);
             let mut changed = false;
             let coh = self.cohesive.as_mut().expect("the Dugdale law");
+            let tension = self
+                .tension
+                .broadcast(self.bonded.dim())
+                .expect("a 1 × 1 array or the grid's shape");
             Zip::from(&mut self.bonded)
                 .and(&mut coh.zone)
                 .and(&mut self.base.pressure)
                 .and(&self.base.gap)
-                .for_each(|b, z, p, &g| {
+                .and(&tension)
+                .for_each(|b, z, p, &g, &s| {
                     if *b {
-                        if *p < -sigma0 - p_margin {
-                            (*b, *z, *p) = (false, true, -sigma0);
+                        if *p < -s - p_margin {
+                            (*b, *z, *p) = (false, true, -s);
                             changed = true;
                         }
                     } else if *z {
@@ -100,7 +106,7 @@ impl AdhesiveSolver {
                         *b = true;
                         changed = true;
                     } else if g < range {
-                        (*z, *p) = (true, -sigma0);
+                        (*z, *p) = (true, -s);
                         changed = true;
                     }
                 });
@@ -133,13 +139,17 @@ impl AdhesiveSolver {
         };
         let coh = self.cohesive.as_ref().expect("the Dugdale law");
         let base = &mut self.base;
+        let tension = self
+            .tension
+            .broadcast(self.bonded.dim())
+            .expect("a 1 × 1 array or the grid's shape");
         let Some(window) = window else {
             return solve_with_zone(
                 base.op.as_mut(),
                 base.surface.heights().view(),
                 self.bonded.view(),
                 coh.zone.view(),
-                coh.sigma0,
+                tension,
                 d,
                 base.pressure.view_mut(),
                 &mut base.work,
@@ -166,7 +176,7 @@ impl AdhesiveSolver {
             sub.heights.view(),
             sub.bonded.view(),
             zone.view(),
-            coh.sigma0,
+            tension.slice(block),
             d,
             sub.pressure.view_mut(),
             &mut sub.work,
@@ -182,15 +192,15 @@ impl AdhesiveSolver {
     }
 }
 
-/// `K_CC p_C = (d − f − K p_Z)_C` on one grid with `p_Z = −σ0` on `zone`; leaves the
-/// whole pressure in `pressure` and `work.disp = K p`.
+/// `K_CC p_C = (d − f − K p_Z)_C` on one grid with `p_Z = −σ0` on `zone` (σ0 per element:
+/// `tension`); leaves the whole pressure in `pressure` and `work.disp = K p`.
 #[allow(clippy::too_many_arguments)]
 fn solve_with_zone(
     op: &mut dyn ElasticOperator,
     heights: ArrayView2<f64>,
     bonded: ArrayView2<bool>,
     zone: ArrayView2<bool>,
-    sigma0: f64,
+    tension: ArrayView2<f64>,
     d: f64,
     mut pressure: ArrayViewMut2<f64>,
     work: &mut Work,
@@ -201,9 +211,10 @@ fn solve_with_zone(
     Zip::from(&mut pressure)
         .and(&bonded)
         .and(&zone)
-        .for_each(|p, &b, &z| {
+        .and(&tension)
+        .for_each(|p, &b, &z, &s| {
             if z {
-                *p = -sigma0;
+                *p = -s;
             } else if !b {
                 *p = 0.0;
             }

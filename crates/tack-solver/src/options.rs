@@ -22,6 +22,16 @@ pub enum SolverError {
         /// Steps completed before the stop.
         steps: usize,
     },
+    /// A per-element map does not have the grid's shape.
+    #[error("{field}: the map is {} × {} but the grid is {} × {}; the map must have the grid's shape", map.0, map.1, grid.0, grid.1)]
+    MapShape {
+        /// The field of the map.
+        field: &'static str,
+        /// Shape of the map.
+        map: (usize, usize),
+        /// Shape of the grid.
+        grid: (usize, usize),
+    },
     /// The surface and the operator live on different grids.
     #[error("the surface grid {surface:?} does not match the operator grid {operator:?}")]
     GridMismatch {
