@@ -35,6 +35,7 @@
 
 mod apparent;
 mod const_math;
+mod ellipse;
 mod fits;
 mod gaussian_fit;
 mod hertz;
@@ -51,6 +52,10 @@ mod wavy_dugdale;
 mod westergaard;
 
 pub use apparent::{CycleBranch, apparent_work_of_adhesion, jkr_branch_force};
+pub use ellipse::{
+    EllipticHertz, EllipticJkrPoint, EllipticJkrPullOff, elliptic_hertz_eccentricity,
+    elliptic_hertz_from_approach, elliptic_hertz_from_force, elliptic_jkr_pull_off,
+};
 pub use fits::{alpha_star, lambda_fit, lambda_star, rms_height_from_alpha_star};
 pub use gaussian_fit::{FitError, GaussianFit, fit_gaussian};
 pub use hertz::{hertz_contact_radius, hertz_force, hertz_max_pressure, hertz_pressure};

@@ -126,6 +126,8 @@ scene_fields! {
     GEOMETRY_HALF_SIDE = geometry.half_side,
     GEOMETRY_C = geometry.c,
     GEOMETRY_EXPONENT = geometry.exponent,
+    GEOMETRY_RADIUS_X = geometry.radius_x,
+    GEOMETRY_RADIUS_Y = geometry.radius_y,
     ROUGHNESS_KIND = roughness.kind,
     ROUGHNESS_H = roughness.h,
     ROUGHNESS_LAMBDA = roughness.lambda,
@@ -235,6 +237,16 @@ pub const FIELDS: &[Field] = &[
         GEOMETRY_EXPONENT,
         Kind::Number,
         "power law z = c·r^m: the exponent m (1 = cone, 2 = paraboloid)",
+    ),
+    f(
+        GEOMETRY_RADIUS_X,
+        Kind::Number,
+        "ellipsoid z = x²/(2Rx) + y²/(2Ry): the radius Rx along x",
+    ),
+    f(
+        GEOMETRY_RADIUS_Y,
+        Kind::Number,
+        "ellipsoid z = x²/(2Rx) + y²/(2Ry): the radius Ry along y",
     ),
     f(
         ROUGHNESS_KIND,
@@ -384,7 +396,7 @@ mod tests {
             );
             assert!(!f.meaning.is_empty(), "{}", f.name);
         }
-        assert_eq!(FIELDS.len(), 41);
+        assert_eq!(FIELDS.len(), 43);
     }
 
     #[test]
