@@ -1,8 +1,9 @@
 //! Closed-form reference solutions for adhesive and non-adhesive contact (Li, Pohrt & Popov 2019).
 //!
 //! Plain `f64` functions (dependencies: `libm`, and `ellip` for the elliptic integrals). Units
-//! are any consistent system: `e_star` is the effective modulus E*, `gamma` the work of adhesion per unit area, forces are positive when
-//! compressive and the approach `d` is positive when pressing. Equation numbers (Eq. N) refer to
+//! are any consistent system: `e_star` is the effective modulus E*, `gamma` the work of
+//! adhesion per unit area, forces are positive when compressive and the approach `d` is
+//! positive when pressing. Equation numbers (Eq. N) refer to
 //! Li, Pohrt & Popov, "Adhesive Strength of Contacts of Rough Spheres", Front. Mech. Eng. 2019.
 //!
 //! Besides the closed forms: the inverses of the adhesion parameters (waviness amplitude from
