@@ -1,8 +1,9 @@
 //! Closed-form reference solutions for adhesive and non-adhesive contact (Li, Pohrt & Popov 2019).
 //!
-//! Plain `f64` functions, no dependencies. Units are any consistent system: `e_star` is the
-//! effective modulus E*, `gamma` the work of adhesion per unit area, forces are positive when
-//! compressive and the approach `d` is positive when pressing. Equation numbers (Eq. N) refer to
+//! Plain `f64` functions (dependencies: `libm`, and `ellip` for the elliptic integrals). Units
+//! are any consistent system: `e_star` is the effective modulus E*, `gamma` the work of
+//! adhesion per unit area, forces are positive when compressive and the approach `d` is
+//! positive when pressing. Equation numbers (Eq. N) refer to
 //! Li, Pohrt & Popov, "Adhesive Strength of Contacts of Rough Spheres", Front. Mech. Eng. 2019.
 //!
 //! Besides the closed forms: the inverses of the adhesion parameters (waviness amplitude from
@@ -35,6 +36,7 @@
 
 mod apparent;
 mod const_math;
+mod ellipse;
 mod fits;
 mod gaussian_fit;
 mod hertz;
@@ -52,6 +54,10 @@ mod wavy_dugdale;
 mod westergaard;
 
 pub use apparent::{CycleBranch, apparent_work_of_adhesion, jkr_branch_force};
+pub use ellipse::{
+    EllipticHertz, EllipticJkrPoint, EllipticJkrPullOff, elliptic_hertz_eccentricity,
+    elliptic_hertz_from_approach, elliptic_hertz_from_force, elliptic_jkr_pull_off,
+};
 pub use fits::{alpha_star, lambda_fit, lambda_star, rms_height_from_alpha_star};
 pub use gaussian_fit::{FitError, GaussianFit, fit_gaussian};
 pub use hertz::{hertz_contact_radius, hertz_force, hertz_max_pressure, hertz_pressure};

@@ -135,6 +135,8 @@ scene_fields! {
     GEOMETRY_HALF_SIDE = geometry.half_side,
     GEOMETRY_C = geometry.c,
     GEOMETRY_EXPONENT = geometry.exponent,
+    GEOMETRY_RADIUS_X = geometry.radius_x,
+    GEOMETRY_RADIUS_Y = geometry.radius_y,
     ROUGHNESS_KIND = roughness.kind,
     ROUGHNESS_H = roughness.h,
     ROUGHNESS_LAMBDA = roughness.lambda,
@@ -296,6 +298,16 @@ pub const FIELDS: &[Field] = &[
         "power law z = c·r^m: the exponent m (1 = cone, 2 = paraboloid)",
     ),
     f(
+        GEOMETRY_RADIUS_X,
+        Kind::Number,
+        "ellipsoid z = x²/(2Rx) + y²/(2Ry): the radius Rx along x",
+    ),
+    f(
+        GEOMETRY_RADIUS_Y,
+        Kind::Number,
+        "ellipsoid z = x²/(2Rx) + y²/(2Ry): the radius Ry along y",
+    ),
+    f(
         ROUGHNESS_KIND,
         Kind::Choice(&["waviness1d", "waviness2d", "random", "file"]),
         "the type of roughness added to the shape",
@@ -443,7 +455,7 @@ mod tests {
             );
             assert!(!f.meaning.is_empty(), "{}", f.name);
         }
-        assert_eq!(FIELDS.len(), 50);
+        assert_eq!(FIELDS.len(), 52);
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! Grids, surfaces and shapes: the rigid body's gap `f(x, y)` at zero approach, sampled on a grid.
 //!
 //! A [`Grid`] is a validated set of square elements with a boundary kind; a [`Surface`] holds
-//! one height per element. Shapes ([`Sphere`], [`Waviness1d`], [`Waviness2d`], [`FlatPunch`])
+//! one height per element. Shapes ([`Sphere`], [`Ellipsoid`], [`Waviness1d`], [`Waviness2d`], [`FlatPunch`])
 //! are analytic height functions sampled onto a grid; [`rough_surface`] generates seeded random
 //! roughness (one continuous surface whatever the resolution) and [`read_height_map_file`]
 //! imports measured heights; [`coarsen_band_limited`] takes a band-limited map to twice its
@@ -53,7 +53,7 @@ pub use heightmap::{height_map_surface, read_height_map_file, read_height_map_te
 pub use resample::{BAND_LIMIT_TOLERANCE, coarsen_band_limited, share_above_coarse_nyquist};
 pub use rough::{RoughSpec, rough_surface};
 pub use shapes::{
-    DEFAULT_PUNCH_LIFT, FlatPunch, MAX_POWER_LAW_EXPONENT, PowerLaw, PunchFace, Shape, Sphere,
-    Waviness1d, Waviness2d,
+    DEFAULT_PUNCH_LIFT, Ellipsoid, FlatPunch, MAX_POWER_LAW_EXPONENT, PowerLaw, PunchFace, Shape,
+    Sphere, Waviness1d, Waviness2d,
 };
 pub use surface::{Surface, Window};

@@ -1,4 +1,4 @@
-//! Analytic shapes (sphere, power law, 1D/2D waviness, flat punch) as height functions `f(x, y)` sampled on a grid.
+//! Analytic shapes (sphere, ellipsoid, power law, 1D/2D waviness, flat punch) as height functions `f(x, y)` sampled on a grid.
 //!
 //! Shapes compose by adding surfaces: the sphere with 2D waviness of Eq. 6 is
 //! `Surface::from_shape(grid, &sphere)` followed by `add_shape(&waviness)`.
@@ -37,6 +37,39 @@ impl Sphere {
 impl Shape for Sphere {
     fn height(&self, x: f64, y: f64) -> f64 {
         (x * x + y * y) / (2.0 * self.radius)
+    }
+}
+
+/// An ellipsoid in the parabolic (Hertz) approximation, like [`Sphere`]:
+/// `f = x²/(2Rx) + y²/(2Ry)`, principal axes along x and y; `Rx = Ry = R` is the sphere.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ellipsoid {
+    radius_x: f64,
+    radius_y: f64,
+}
+
+impl Ellipsoid {
+    /// An ellipsoid with finite radii `Rx > 0` (field `geometry.radius_x`) and `Ry > 0` (field
+    /// `geometry.radius_y`).
+    pub fn new(radius_x: f64, radius_y: f64) -> Result<Self, GeometryError> {
+        Ok(Self {
+            radius_x: positive(fields::GEOMETRY_RADIUS_X, radius_x)?,
+            radius_y: positive(fields::GEOMETRY_RADIUS_Y, radius_y)?,
+        })
+    }
+    /// The radius of curvature `Rx` in the x–z plane.
+    pub fn radius_x(&self) -> f64 {
+        self.radius_x
+    }
+    /// The radius of curvature `Ry` in the y–z plane.
+    pub fn radius_y(&self) -> f64 {
+        self.radius_y
+    }
+}
+
+impl Shape for Ellipsoid {
+    fn height(&self, x: f64, y: f64) -> f64 {
+        x * x / (2.0 * self.radius_x) + y * y / (2.0 * self.radius_y)
     }
 }
 
@@ -278,6 +311,30 @@ mod tests {
         assert_eq!(s.height(0.0, -2.0), 1.0);
         assert!(Sphere::new(-1.0).is_err());
         assert!(Sphere::new(f64::NAN).is_err());
+    }
+
+    #[test]
+    fn ellipsoid_is_a_paraboloid_and_validated() {
+        let e = Ellipsoid::new(2.0, 0.5).unwrap();
+        assert_eq!((e.radius_x(), e.radius_y()), (2.0, 0.5));
+        assert_eq!(e.height(0.0, 0.0), 0.0);
+        assert_eq!(e.height(2.0, 0.0), 1.0);
+        assert_eq!(e.height(0.0, -1.0), 1.0);
+        assert_eq!(e.height(2.0, 1.0), 2.0);
+        let round = Ellipsoid::new(1.5, 1.5).unwrap();
+        let sphere = Sphere::new(1.5).unwrap();
+        for (x, y) in [(0.3, -0.7), (1.0, 2.0), (-4.0, 0.1)] {
+            assert!((round.height(x, y) - sphere.height(x, y)).abs() < 1e-15);
+        }
+        for (rx, ry, field) in [
+            (0.0, 1.0, "geometry.radius_x"),
+            (f64::NAN, 1.0, "geometry.radius_x"),
+            (1.0, -1.0, "geometry.radius_y"),
+            (1.0, f64::INFINITY, "geometry.radius_y"),
+        ] {
+            let e = Ellipsoid::new(rx, ry).unwrap_err().to_string();
+            assert!(e.starts_with(field), "{e}");
+        }
     }
 
     #[test]
