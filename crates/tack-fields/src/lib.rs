@@ -71,8 +71,9 @@ pub fn field(name: &str) -> Option<&'static Field> {
 
 /// The sections of a scene file, each a TOML table (`version` is the only top-level key
 /// besides them).
-pub const SECTIONS: [&str; 8] = [
+pub const SECTIONS: [&str; 9] = [
     "material",
+    "body",
     "adhesion",
     "geometry",
     "roughness",
@@ -118,6 +119,10 @@ macro_rules! scene_fields {
 scene_fields! {
     MATERIAL_E_STAR = material.e_star,
     MATERIAL_GAMMA = material.gamma,
+    BODY_KIND = body.kind,
+    BODY_THICKNESS = body.thickness,
+    BODY_POISSON = body.poisson,
+    BODY_INTERFACE = body.interface,
     ADHESION_MODEL = adhesion.model,
     ADHESION_SIGMA0 = adhesion.sigma0,
     ADHESION_GAMMA_MAP = adhesion.gamma_map,
@@ -206,6 +211,18 @@ pub const FIELDS: &[Field] = &[
         MATERIAL_GAMMA,
         Kind::Number,
         "work of adhesion γ per unit area (0: non-adhesive)",
+    ),
+    f(
+        BODY_KIND,
+        Kind::Choice(&["half_space", "layer"]),
+        "the elastic body: a half-space or a layer on a rigid base",
+    ),
+    f(BODY_THICKNESS, Kind::Number, "layer: thickness h"),
+    f(BODY_POISSON, Kind::Number, "layer: Poisson ratio ν"),
+    f(
+        BODY_INTERFACE,
+        Kind::Choice(&["bonded", "frictionless"]),
+        "layer: how it meets its rigid base",
     ),
     f(
         ADHESION_MODEL,
@@ -455,7 +472,7 @@ mod tests {
             );
             assert!(!f.meaning.is_empty(), "{}", f.name);
         }
-        assert_eq!(FIELDS.len(), 52);
+        assert_eq!(FIELDS.len(), 56);
     }
 
     #[test]

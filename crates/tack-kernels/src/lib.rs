@@ -2,6 +2,9 @@
 //! element pressures to surface displacements, for free (non-periodic) and periodic boundaries.
 //!
 //! Both operators implement [`ElasticOperator`]; build the one a grid needs with [`operator_for`].
+//! An elastic [`Layer`] on a rigid base has the same two operators, [`FreeLayerOperator`] and
+//! [`PeriodicLayerOperator`] (built by [`layer_operator_for`]), whose spectrum is the
+//! half-space's times [`layer_compliance_factor`].
 //! FFT plans and all scratch buffers are allocated once, at construction; `apply` allocates nothing
 //! of its own. Nothing in this crate does IO.
 //!
@@ -45,12 +48,18 @@
 mod fft2;
 pub use fft2::Fft2;
 mod free;
+mod free_layer;
+mod layer;
 mod love;
 mod periodic;
+mod periodic_layer;
 
 pub use free::{FreeOperator, fast_size, padded_size};
+pub use free_layer::FreeLayerOperator;
+pub use layer::{Interface, Layer, layer_compliance_factor};
 pub use love::{MEAN_SELF_COMPLIANCE, SELF_COMPLIANCE, love_rectangle};
 pub use periodic::PeriodicOperator;
+pub use periodic_layer::PeriodicLayerOperator;
 
 use ndarray::{ArrayView2, ArrayViewMut2};
 use tack_geometry::{Boundary, Grid};
@@ -65,10 +74,22 @@ pub enum KernelError {
         field = tack_fields::MATERIAL_E_STAR
     )]
     Modulus(f64),
+    /// The layer thickness is not a finite positive number.
+    #[error(
+        "{field} = {0} is invalid: must be a finite number > 0",
+        field = tack_fields::BODY_THICKNESS
+    )]
+    Thickness(f64),
+    /// The layer's Poisson ratio is outside (−1, 0.5].
+    #[error(
+        "{field} = {0} is invalid: must be a number in (-1, 0.5]",
+        field = tack_fields::BODY_POISSON
+    )]
+    Poisson(f64),
 }
 
 /// A linear map from element pressures to element-centre surface displacements of an
-/// elastic half-space (positive pressure is compressive and pushes the surface in).
+/// elastic half-space or layer (positive pressure is compressive and pushes the surface in).
 pub trait ElasticOperator: Send {
     /// The grid the operator acts on.
     fn grid(&self) -> &Grid;
@@ -79,8 +100,8 @@ pub trait ElasticOperator: Send {
     /// Displacement of an element's centre per unit pressure on that element alone.
     fn self_compliance(&self) -> f64;
     /// An approximate inverse for preconditioning: `pressure ≈ K⁻¹ · displacement`, applied as
-    /// the spectral stiffness `E*|q|/2` (positive definite; the q = 0 mode gets the smallest
-    /// non-zero wave number of the transform grid).
+    /// the spectral stiffness `E*|q|/2` (a layer's: `E*|q|/(2S(|q|h))`; positive definite, the
+    /// q = 0 mode gets the smallest non-zero wave number of the transform grid).
     fn precondition(&mut self, displacement: ArrayView2<f64>, pressure: ArrayViewMut2<f64>);
     /// For periodic operators: solve `K p = u` for the zero-mean pressure `p` given a
     /// displacement `u` (its mean is ignored) and return true; other operators return false.
@@ -134,5 +155,18 @@ pub fn operator_for(grid: Grid, e_star: f64) -> Result<Box<dyn ElasticOperator>,
     Ok(match grid.boundary() {
         Boundary::Free => Box::new(FreeOperator::new(grid, e_star)?),
         Boundary::Periodic => Box::new(PeriodicOperator::new(grid, e_star)?),
+    })
+}
+
+/// [`operator_for`] for an elastic [`Layer`] on a rigid base (`e_star` is the layer's
+/// `E/(1 − ν²)`): [`FreeLayerOperator`] or [`PeriodicLayerOperator`].
+pub fn layer_operator_for(
+    grid: Grid,
+    e_star: f64,
+    layer: &Layer,
+) -> Result<Box<dyn ElasticOperator>, KernelError> {
+    Ok(match grid.boundary() {
+        Boundary::Free => Box::new(FreeLayerOperator::new(grid, e_star, *layer)?),
+        Boundary::Periodic => Box::new(PeriodicLayerOperator::new(grid, e_star, *layer)?),
     })
 }
