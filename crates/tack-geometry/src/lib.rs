@@ -5,7 +5,8 @@
 //! are analytic height functions sampled onto a grid; [`rough_surface`] generates seeded random
 //! roughness (one continuous surface whatever the resolution) and [`read_height_map_file`]
 //! imports measured heights; [`coarsen_band_limited`] takes a band-limited map to twice its
-//! element size. Surfaces compose by adding
+//! element size; [`AdhesionPattern`] generates work-of-adhesion fields (stripes, checkerboard,
+//! seeded log-normal random) per element. Surfaces compose by adding
 //! heights, so a macro shape plus roughness needs no special case.
 //!
 //! Element `(i, j)` has its centre at `((i − ⌊nx/2⌋)Δx, (j − ⌊ny/2⌋)Δx)`, so the sphere's apex
@@ -42,6 +43,7 @@
 mod error;
 mod grid;
 mod heightmap;
+mod pattern;
 mod resample;
 mod rough;
 mod shapes;
@@ -50,6 +52,7 @@ mod surface;
 pub use error::GeometryError;
 pub use grid::{Boundary, Grid, MAX_ELEMENTS_PER_AXIS};
 pub use heightmap::{height_map_surface, read_height_map_file, read_height_map_text};
+pub use pattern::AdhesionPattern;
 pub use resample::{BAND_LIMIT_TOLERANCE, coarsen_band_limited, share_above_coarse_nyquist};
 pub use rough::{RoughSpec, rough_surface};
 pub use shapes::{

@@ -83,12 +83,8 @@ fn signed(k: usize, n: usize) -> f64 {
 /// `spec.rms` (the continuous surface's; see the module text for the samples'). Errors name
 /// the offending field.
 pub fn rough_surface(grid: Grid, spec: &RoughSpec) -> Result<Surface, GeometryError> {
-    let (nx, ny) = grid.shape();
     let (columns_hat, power) = half_spectrum(&grid, spec)?;
-    let mut columns = Array2::<Complex<f64>>::zeros(columns_hat.dim());
-    ndifft(&columns_hat, &mut columns, &FftHandler::new(nx), 0);
-    let mut heights = Array2::<f64>::zeros((nx, ny));
-    ndifft_r2c(&columns, &mut heights, &R2cFftHandler::new(ny), 1);
+    let mut heights = synthesize(&grid, &columns_hat);
     // The inverse transforms divide by nx·ny; c_m was drawn with amplitude |q|^−(H+1), whose
     // continuous mean square is `power`.
     heights *= if spec.rms == 0.0 {
@@ -99,15 +95,29 @@ pub fn rough_surface(grid: Grid, spec: &RoughSpec) -> Result<Surface, GeometryEr
     Surface::new(grid, heights)
 }
 
+/// The samples on `grid` of the half spectrum `hat` (shape `(nx, ny/2 + 1)`, as built by
+/// [`hermitian_half_spectrum`]): an inverse c2c transform along x, then an inverse c2r
+/// transform along y. Like the transforms, the result is divided by `nx·ny`.
+pub(crate) fn synthesize(grid: &Grid, hat: &Array2<Complex<f64>>) -> Array2<f64> {
+    let (nx, ny) = grid.shape();
+    let mut columns = Array2::<Complex<f64>>::zeros(hat.dim());
+    ndifft(hat, &mut columns, &FftHandler::new(nx), 0);
+    let mut samples = Array2::<f64>::zeros((nx, ny));
+    ndifft_r2c(&columns, &mut samples, &R2cFftHandler::new(ny), 1);
+    samples
+}
+
 /// Zig-zag code of a signed wave number: 0, −1, 1, −2, 2, … ↦ 0, 1, 2, 3, 4, …
-fn zigzag(m: i64) -> u64 {
+pub(crate) fn zigzag(m: i64) -> u64 {
     ((m << 1) ^ (m >> 63)) as u64
 }
 
 /// The phase (radians in `[0, 2π)`) of the wave vector `(mx, my)`: the first `u64` of the
-/// ChaCha8 stream numbered by the wave vector.
-fn phase(rng: &mut ChaCha8Rng, mx: i64, my: i64) -> f64 {
-    rng.set_stream((zigzag(mx) << 32) | zigzag(my));
+/// ChaCha8 stream numbered `domain | zigzag(mx) << 32 | zigzag(my)`. The roughness uses
+/// `domain = 0`; since `|mx|, |my| ≤ 2^15` the codes stay below `2^17`, so a `domain` made of
+/// higher bits (e.g. bit 63) gives streams the roughness never draws from.
+pub(crate) fn phase(rng: &mut ChaCha8Rng, domain: u64, mx: i64, my: i64) -> f64 {
+    rng.set_stream(domain | (zigzag(mx) << 32) | zigzag(my));
     rng.set_word_pos(0);
     (rng.next_u64() >> 11) as f64 * (TAU / (1u64 << 53) as f64)
 }
@@ -116,10 +126,6 @@ fn phase(rng: &mut ChaCha8Rng, mx: i64, my: i64) -> f64 {
 /// inverse c2c transform along x followed by an inverse c2r transform along y turns into the
 /// surface (times `nx·ny`, with amplitudes `|q|^−(H+1)`), and the continuous mean square of
 /// that unscaled surface, `Σ_m |q_m|^−2(H+1)` over every represented wave vector.
-///
-/// Entry `(kx, ky)` holds every wave vector `m ≡ (kx, ky)` (mod the grid) of the box, each
-/// times `exp(i q_m·x₀)` for the centre `x₀` of element `(0, 0)`; the entries are Hermitian
-/// in the self-paired columns `ky = 0` and `ky = ny/2` because `c_−m = conj(c_m)`.
 pub(crate) fn half_spectrum(
     grid: &Grid,
     spec: &RoughSpec,
@@ -149,31 +155,57 @@ pub(crate) fn half_spectrum(
     {
         return Err(band_error);
     }
+    let (lx, ly) = (grid.lx(), grid.ly());
+    let mut rng = ChaCha8Rng::seed_from_u64(spec.seed);
+    let (hat, power) = hermitian_half_spectrum(grid, &mut rng, 0, |mx, my| {
+        let q = (TAU * mx as f64 / lx).hypot(TAU * my as f64 / ly);
+        if q < q0 * (1.0 - EDGE) || q > q1 * (1.0 + EDGE) {
+            None
+        } else {
+            Some(q.powf(-(hurst + 1.0)))
+        }
+    });
+    if power == 0.0 {
+        return Err(band_error);
+    }
+    Ok((hat, power))
+}
 
+/// The half spectrum `(nx, ny/2 + 1)` of the real field `Σ_m c_m·exp(i q_m·x)` over the wave
+/// vectors `m` of the grid's box (`|mx| ≤ ⌊nx/2⌋`, `|my| ≤ ⌊ny/2⌋`) for which `amplitude(mx,
+/// my)` is `Some(|c_m|)` (it must be even in `m`), with the phase of `c_m` from
+/// [`phase`]`(rng, domain, m)` for the member of the pair `±m` with `my > 0` (or `my = 0`,
+/// `mx > 0`) and `c_−m = conj(c_m)`; and `Σ_m |c_m|²` over the same wave vectors.
+///
+/// Entry `(kx, ky)` holds every wave vector `m ≡ (kx, ky)` (mod the grid) of the box, each
+/// times `exp(i q_m·x₀)` for the centre `x₀` of element `(0, 0)`; the entries are Hermitian
+/// in the self-paired columns `ky = 0` and `ky = ny/2` because `c_−m = conj(c_m)`.
+pub(crate) fn hermitian_half_spectrum(
+    grid: &Grid,
+    rng: &mut ChaCha8Rng,
+    domain: u64,
+    amplitude: impl Fn(i64, i64) -> Option<f64>,
+) -> (Array2<Complex<f64>>, f64) {
     let (nx, ny) = grid.shape();
     let (nx_i, ny_i) = (nx as i64, ny as i64);
     // Element (0, 0) sits at x₀ = −(⌊nx/2⌋, ⌊ny/2⌋)·Δx.
     let (cx, cy) = (nx_i / 2, ny_i / 2);
-    let mut rng = ChaCha8Rng::seed_from_u64(spec.seed);
     let mut hat = Array2::<Complex<f64>>::zeros((nx, ny / 2 + 1));
     let mut power = 0.0;
     for my in -(ny_i / 2)..=ny_i / 2 {
-        let qy = TAU * my as f64 / grid.ly();
         let ky = my.rem_euclid(ny_i) as usize;
         for mx in -(nx_i / 2)..=nx_i / 2 {
-            let q = (TAU * mx as f64 / grid.lx()).hypot(qy);
-            if q < q0 * (1.0 - EDGE) || q > q1 * (1.0 + EDGE) {
+            let Some(amplitude) = amplitude(mx, my) else {
                 continue;
-            }
-            let amplitude = q.powf(-(hurst + 1.0));
+            };
             power += amplitude * amplitude;
             if ky > ny / 2 {
                 continue; // held by the conjugate entry of the c2r half spectrum
             }
             let c = if my > 0 || (my == 0 && mx > 0) {
-                Complex::from_polar(amplitude, phase(&mut rng, mx, my))
+                Complex::from_polar(amplitude, phase(rng, domain, mx, my))
             } else {
-                Complex::from_polar(amplitude, phase(&mut rng, -mx, -my)).conj()
+                Complex::from_polar(amplitude, phase(rng, domain, -mx, -my)).conj()
             };
             // exp(i q_m·x₀) = exp(−2πi (mx·cx/nx + my·cy/ny)), reduced exactly in integers.
             let turns = (mx * cx).rem_euclid(nx_i) as f64 / nx as f64
@@ -181,10 +213,7 @@ pub(crate) fn half_spectrum(
             hat[[mx.rem_euclid(nx_i) as usize, ky]] += c * Complex::from_polar(1.0, -TAU * turns);
         }
     }
-    if power == 0.0 {
-        return Err(band_error);
-    }
-    Ok((hat, power))
+    (hat, power)
 }
 
 #[cfg(test)]
@@ -399,7 +428,7 @@ mod tests {
             let mut rng = ChaCha8Rng::seed_from_u64(seed);
             for my in 0..=16 {
                 for mx in -32..32 {
-                    all.push(phase(&mut rng, mx, my));
+                    all.push(phase(&mut rng, 0, mx, my));
                 }
             }
         }
