@@ -39,6 +39,37 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
         rounded(p.e_star),
         rounded(p.gamma),
     ));
+    if let Some(layer) = &p.layer {
+        lines.push(format!(
+            "            a layer of thickness h = {}, nu = {}, {} on a rigid base",
+            rounded(layer.thickness),
+            layer.poisson,
+            layer.interface.name()
+        ));
+    }
+    let a = &f.adhesion;
+    if let Some(path) = &a.gamma_map {
+        lines.push(format!(
+            "            gamma per element from {}",
+            path.display()
+        ));
+    } else if let Some(kind) = a.pattern.filter(|k| *k != tack::PatternKind::Uniform) {
+        let opt = |v: Option<f64>| v.map_or("-".to_owned(), rounded);
+        lines.push(match kind {
+            tack::PatternKind::Random => format!(
+                "            gamma pattern random: contrast {}, correlation length {}, seed {}",
+                opt(a.contrast),
+                opt(a.correlation_length),
+                a.seed.unwrap_or(tack::gamma_map::DEFAULT_PATTERN_SEED)
+            ),
+            _ => format!(
+                "            gamma pattern {}: gamma_b = {}, period {}",
+                kind.name(),
+                opt(a.gamma_b),
+                opt(a.period)
+            ),
+        });
+    }
     let boundary = match p.grid.boundary() {
         tack::geometry::Boundary::Free => "free",
         tack::geometry::Boundary::Periodic => "periodic",
@@ -188,6 +219,27 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
             s.pull_off_force / fm
         ));
     }
+    if let Some(&fe) = s.extra.get("f_elliptic_jkr").filter(|_| adhesive) {
+        lines.push(format!(
+            "            F_JG = {}, F/F_JG = {:.4} (ellipsoid, Johnson–Greenwood approximate JKR)",
+            rounded(fe),
+            s.pull_off_force / fe
+        ));
+    }
+    if let (Some(&lo), Some(&mean), Some(&hi)) = (
+        s.extra.get("gamma_min"),
+        s.extra.get("gamma_mean"),
+        s.extra.get("gamma_max"),
+    ) {
+        lines.push(format!(
+            "gamma       varies over the surface: {} to {}, mean {} (F_JKR and the ratios use \
+             gamma = {})",
+            rounded(lo),
+            rounded(hi),
+            rounded(mean),
+            rounded(f.material.gamma)
+        ));
+    }
     if let Some(&fk) = s.extra.get("f_kendall").filter(|_| adhesive) {
         lines.push(format!(
             "            F_Kendall = {}, F/F_Kendall = {:.4}",
@@ -314,6 +366,9 @@ fn describe_body(geometry: &Geometry, roughness: &Option<Roughness>) -> String {
         Geometry::FlatPunch { .. } => "flat punch".to_owned(),
         Geometry::PowerLaw { c, exponent } if *exponent == 1.0 => format!("cone z = {c}·r"),
         Geometry::PowerLaw { c, exponent } => format!("power law z = {c}·r^{exponent}"),
+        Geometry::Ellipsoid { radius_x, radius_y } => {
+            format!("ellipsoid Rx = {radius_x}, Ry = {radius_y}")
+        }
         Geometry::None => "flat".to_owned(),
     };
     let rough = match roughness {

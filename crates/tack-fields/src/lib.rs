@@ -286,7 +286,7 @@ pub const FIELDS: &[Field] = &[
     ),
     f(
         GEOMETRY_SHAPE,
-        Kind::Choice(&["sphere", "flat_punch", "power_law", "none"]),
+        Kind::Choice(&["sphere", "flat_punch", "power_law", "ellipsoid", "none"]),
         "the macroscopic body",
     ),
     f(

@@ -69,6 +69,7 @@
 //!     },
 //!     curve,
 //!     surface: Some((Array2::from_elem((3, 2), 0.25), 0.1)),
+//!     gamma: None,
 //!     snapshots: vec![Snapshot {
 //!         step: 3,
 //!         approach: 0.0,

@@ -241,6 +241,9 @@ pub struct RunResult {
     pub curve: Curve,
     /// `/surface/heights` `(nx, ny)` and its `dx`, when asked for.
     pub surface: Option<(Array2<f64>, f64)>,
+    /// `/surface/gamma` `(nx, ny)`: the work of adhesion per element, when it varies over the
+    /// surface (written only with [`RunResult::surface`], and of its shape).
+    pub gamma: Option<Array2<f64>>,
     /// `/snapshots/<step>`, in any order when writing; read back sorted by step.
     pub snapshots: Vec<Snapshot>,
     /// `/summary`.

@@ -43,12 +43,19 @@ pub fn read_result(path: &Path) -> Result<RunResult, IoError> {
         None
     };
     let surface_shape = surface.as_ref().map(|(h, _)| h.dim());
+    let gamma = if file.link_exists("surface/gamma") {
+        let bound = Bound::Ours(&mut budget);
+        Some(read_heights(&file, "/surface/gamma", surface_shape, bound, path)?.0)
+    } else {
+        None
+    };
     let snapshots = read_snapshots(&file, curve.len(), surface_shape, path, &mut budget)?;
     let summary = read_summary(&file, path)?;
     Ok(RunResult {
         provenance,
         curve,
         surface,
+        gamma,
         snapshots,
         summary,
     })
@@ -98,6 +105,17 @@ pub fn describe(path: &Path) -> Result<String, IoError> {
         ),
         None => "surface: not stored".to_owned(),
     });
+    if let Some(g) = &r.gamma {
+        let lo = g.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = g.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        lines.push(format!(
+            "work of adhesion: {} x {} map, {} to {}",
+            g.nrows(),
+            g.ncols(),
+            num(lo),
+            num(hi)
+        ));
+    }
     let steps: Vec<String> = r.snapshots.iter().map(|s| s.step.to_string()).collect();
     lines.push(if steps.is_empty() {
         "snapshots: none".to_owned()

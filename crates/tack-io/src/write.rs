@@ -139,8 +139,23 @@ fn write_file(tmp: &Path, path: &Path, result: &RunResult) -> Result<(), IoError
     if let Some((heights, dx)) = &result.surface {
         check_dx(*dx, "/surface/heights", path)?;
         let surface = create_group(&file, "surface", path)?;
-        let heights = write_dataset(&surface, "heights", heights.view(), path)?;
-        write_attr(&heights, "dx", dx, path)?;
+        let heights_set = write_dataset(&surface, "heights", heights.view(), path)?;
+        write_attr(&heights_set, "dx", dx, path)?;
+        if let Some(gamma) = &result.gamma {
+            if gamma.dim() != heights.dim() {
+                return Err(IoError::Invalid {
+                    path: path.to_owned(),
+                    what: format!(
+                        "/surface/gamma is {:?} but /surface/heights is {:?}; the work of \
+                         adhesion must have the surface's shape",
+                        gamma.dim(),
+                        heights.dim()
+                    ),
+                });
+            }
+            let gamma_set = write_dataset(&surface, "gamma", gamma.view(), path)?;
+            write_attr(&gamma_set, "dx", dx, path)?;
+        }
     }
     let surface = result.surface.as_ref().map(|(h, _)| h.dim());
     write_snapshots(&file, &result.snapshots, result.curve.len(), surface, path)?;

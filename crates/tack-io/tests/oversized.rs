@@ -94,6 +94,7 @@ fn small() -> RunResult {
             full_contact: Some(vec![false; 5]),
         },
         surface: Some((Array2::from_elem((4, 3), 0.5), 0.125)),
+        gamma: None,
         snapshots: vec![
             Snapshot {
                 step: 1,

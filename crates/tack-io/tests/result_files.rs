@@ -113,6 +113,9 @@ fn sample() -> RunResult {
             Array2::from_shape_fn((4, 3), |(i, j)| (i * 3 + j) as f64 * 1e-3),
             0.125,
         )),
+        gamma: Some(Array2::from_shape_fn((4, 3), |(i, j)| {
+            0.5 + (i + j) as f64 * 1e-2
+        })),
         snapshots: vec![
             Snapshot {
                 step: 3,
@@ -149,6 +152,7 @@ fn minimal() -> RunResult {
             full_contact: None,
         },
         surface: None,
+        gamma: None,
         snapshots: vec![],
         summary: Summary::default(),
     }

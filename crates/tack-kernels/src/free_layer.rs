@@ -257,6 +257,10 @@ impl FreeLayerOperator {
 }
 
 impl ElasticOperator for FreeLayerOperator {
+    fn is_half_space(&self) -> bool {
+        false
+    }
+
     fn grid(&self) -> &Grid {
         &self.grid
     }

@@ -97,6 +97,10 @@ impl PeriodicLayerOperator {
 }
 
 impl ElasticOperator for PeriodicLayerOperator {
+    fn is_half_space(&self) -> bool {
+        false
+    }
+
     fn grid(&self) -> &Grid {
         &self.grid
     }

@@ -131,8 +131,9 @@ impl Result {
         Ok(dict.clone_ref(py))
     }
 
-    /// The rigid body's heights, `{"heights": 2-D array, "dx": float}`, or None when the
-    /// result does not store them (`output.surface = false`).
+    /// The rigid body's heights, `{"heights": 2-D array, "dx": float}` (and `"gamma"`, the
+    /// work of adhesion per element, when it varies), or None when the result does not store
+    /// them (`output.surface = false`).
     #[getter]
     fn surface(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
         let value = self
@@ -144,6 +145,9 @@ impl Result {
                         let d = PyDict::new(py);
                         d.set_item("heights", heights.clone().into_pyarray(py))?;
                         d.set_item("dx", dx)?;
+                        if let Some(gamma) = &self.inner.gamma {
+                            d.set_item("gamma", gamma.clone().into_pyarray(py))?;
+                        }
                         d.into_any().unbind()
                     }
                 })

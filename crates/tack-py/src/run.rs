@@ -197,7 +197,7 @@ fn command_line(py: Python<'_>) -> String {
 
 /// The pull-off of a body given as heights (`tack::heights::pull_off`).
 #[pyfunction]
-#[pyo3(signature = (heights, *, dx, e_star, gamma, periodic=false, radius=None, max_approach=None, unload_step=None, coarse_unload_step=None, kappa=None, model="jkr_limit", sigma0=None, snapshots=None, threads=None, progress=None))]
+#[pyo3(signature = (heights, *, dx, e_star, gamma, gamma_map=None, periodic=false, radius=None, max_approach=None, unload_step=None, coarse_unload_step=None, kappa=None, model="jkr_limit", sigma0=None, snapshots=None, threads=None, progress=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn pull_off(
     py: Python<'_>,
@@ -205,6 +205,7 @@ pub fn pull_off(
     dx: f64,
     e_star: f64,
     gamma: f64,
+    gamma_map: Option<PyReadonlyArray2<'_, f64>>,
     periodic: bool,
     radius: Option<f64>,
     max_approach: Option<f64>,
@@ -249,8 +250,13 @@ pub fn pull_off(
         unload_step,
         coarse_unload_step,
         kappa,
-        adhesion: tack::AdhesionSpec { model, sigma0 },
+        adhesion: tack::AdhesionSpec {
+            model,
+            sigma0,
+            ..tack::AdhesionSpec::default()
+        },
         snapshots,
+        gamma_map: gamma_map.map(|g| g.as_array().to_owned()),
     };
     let heights = heights.as_array().to_owned();
     let options = RunOptions {

@@ -16,6 +16,14 @@ const SURFACE_NAMES: Names = &[
     (fields::GRID_NY, "shape[1]"),
     (fields::GRID_DX, "dx"),
     (fields::GEOMETRY_RADIUS, "radius"),
+    (fields::GEOMETRY_RADIUS_X, "radius_x"),
+    (fields::GEOMETRY_RADIUS_Y, "radius_y"),
+    (fields::MATERIAL_GAMMA, "gamma"),
+    (fields::ADHESION_GAMMA_B, "gamma_b"),
+    (fields::ADHESION_PERIOD, "period"),
+    (fields::ADHESION_FRACTION, "fraction"),
+    (fields::ADHESION_CONTRAST, "contrast"),
+    (fields::ADHESION_CORRELATION_LENGTH, "correlation_length"),
     (fields::ROUGHNESS_HURST, "hurst"),
     (fields::ROUGHNESS_H, "rms"),
     (concat!(field_name!(roughness.q0), "/q1"), "q0/q1"),
@@ -98,6 +106,72 @@ fn power_law(
         .into_pyarray(py))
 }
 
+/// The elliptic paraboloid `x²/(2Rx) + y²/(2Ry)` sampled at the element centres.
+#[pyfunction]
+#[pyo3(signature = (nx, ny, *, dx, radius_x, radius_y))]
+fn ellipsoid(
+    py: Python<'_>,
+    nx: usize,
+    ny: usize,
+    dx: f64,
+    radius_x: f64,
+    radius_y: f64,
+) -> PyResult<Bound<'_, PyArray2<f64>>> {
+    let grid = grid(nx, ny, dx)?;
+    let shape = tack::geometry::Ellipsoid::new(radius_x, radius_y).map_err(named)?;
+    Ok(Surface::from_shape(grid, &shape)
+        .into_heights()
+        .into_pyarray(py))
+}
+
+/// A generated work-of-adhesion pattern (`tack::geometry::AdhesionPattern`) at the element
+/// centres: `kind` is `"stripes"`, `"checkerboard"` or `"random"`.
+#[pyfunction]
+#[pyo3(signature = (nx, ny, *, dx, kind, gamma_a, gamma_b=0.0, period=0.0, fraction=0.5, contrast=0.0, correlation_length=0.0, seed=1))]
+#[allow(clippy::too_many_arguments)]
+fn gamma_pattern<'py>(
+    py: Python<'py>,
+    nx: usize,
+    ny: usize,
+    dx: f64,
+    kind: &str,
+    gamma_a: f64,
+    gamma_b: f64,
+    period: f64,
+    fraction: f64,
+    contrast: f64,
+    correlation_length: f64,
+    seed: u64,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    use tack::geometry::AdhesionPattern;
+    let grid = grid(nx, ny, dx)?;
+    let pattern = match kind {
+        "stripes" => AdhesionPattern::Stripes {
+            gamma_a,
+            gamma_b,
+            period,
+            fraction,
+        },
+        "checkerboard" => AdhesionPattern::Checkerboard {
+            gamma_a,
+            gamma_b,
+            period,
+        },
+        "random" => AdhesionPattern::Random {
+            mean: gamma_a,
+            contrast,
+            correlation_length,
+            seed,
+        },
+        other => {
+            return Err(named(format!(
+                "kind = {other:?} is invalid: must be \"stripes\", \"checkerboard\" or \"random\""
+            )));
+        }
+    };
+    Ok(pattern.field(&grid).map_err(named)?.into_pyarray(py))
+}
+
 /// Element-centre coordinates `(x, y)`: `x[i] = (i − ⌊nx/2⌋)·dx`, `y[j] = (j − ⌊ny/2⌋)·dx`.
 #[pyfunction]
 #[pyo3(signature = (nx, ny, *, dx))]
@@ -127,6 +201,8 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(rough, m)?)?;
     m.add_function(wrap_pyfunction!(sphere, m)?)?;
     m.add_function(wrap_pyfunction!(power_law, m)?)?;
+    m.add_function(wrap_pyfunction!(ellipsoid, m)?)?;
+    m.add_function(wrap_pyfunction!(gamma_pattern, m)?)?;
     m.add_function(wrap_pyfunction!(coordinates, m)?)?;
     m.add_function(wrap_pyfunction!(band, m)?)?;
     Ok(())

@@ -168,6 +168,11 @@ impl AdhesiveSolver {
             AdhesionLaw::Dugdale { .. } => KAPPA,
         };
         validate::adhesion(gamma, kappa, &options)?;
+        let mut options = options;
+        if !op.is_half_space() {
+            // Sub-grids and coarse starts build half-space operators of their own.
+            (options.bonded_subgrid, options.nested_start) = (false, false);
+        }
         let base = SolverBase::new(op, surface)?;
         let shape = base.grid().shape();
         let (sigma_c, cohesive) = match law {
@@ -199,12 +204,12 @@ impl AdhesiveSolver {
     /// Switches the nested coarse-to-fine cold start of non-adhesive solves on or off
     /// ([`AdhesiveOptions::nested_start`]).
     pub fn set_nested_start(&mut self, on: bool) {
-        self.options.nested_start = on;
+        self.options.nested_start = on && self.base.op.is_half_space();
     }
 
     /// Switches sub-grid CG on free grids on or off ([`AdhesiveOptions::bonded_subgrid`]).
     pub fn set_bonded_subgrid(&mut self, on: bool) {
-        self.options.bonded_subgrid = on;
+        self.options.bonded_subgrid = on && self.base.op.is_half_space();
     }
 
     /// The critical tensile stress `σ_c = sqrt(E*γ/(κΔx))` of the detachment criterion, or the

@@ -159,11 +159,13 @@ impl PolonskyKeer {
         options: SolverOptions,
     ) -> Result<Self, SolverError> {
         options.validate()?;
+        // Windows and coarse starts build half-space operators of their own.
+        let half_space = op.is_half_space();
         Ok(Self {
             base: SolverBase::new(op, surface)?,
             options,
             coarse_start: false,
-            crop: true,
+            crop: half_space,
             subs: SubgridCache::new(1),
         })
     }
@@ -175,14 +177,14 @@ impl PolonskyKeer {
     /// settling the contact set, so the saving is small (`cargo xtask bench-contact`: 276 → 234
     /// iterations on a 1024² periodic H = 0.8 surface at 7% contact).
     pub(crate) fn set_coarse_start(&mut self, on: bool) {
-        self.coarse_start = on;
+        self.coarse_start = on && self.base.op.is_half_space();
     }
 
     /// Free grids: iterate only on the bounding box of the elements with `f ≤ d` (no other
     /// element can touch: compressive pressures only push the surface away), then compute the
     /// full-grid gap with one product. Exact (the same linear problem). On by default.
     pub(crate) fn set_crop(&mut self, on: bool) {
-        self.crop = on;
+        self.crop = on && self.base.op.is_half_space();
     }
 
     /// Equilibrium at approach `d` (finite), warm-started from the previous solve.

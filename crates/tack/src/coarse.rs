@@ -32,9 +32,26 @@ pub fn coarse_problem(scene: &Scene, problem: &Problem) -> Result<Problem, Scene
                 .into(),
         ));
     }
+    if scene.file.adhesion.gamma_map.is_some() {
+        return Err(refuse(format!(
+            "needs a work of adhesion that does not depend on the grid; {} is given per \
+             element (a generated {} is not)",
+            fields::ADHESION_GAMMA_MAP,
+            fields::ADHESION_PATTERN
+        )));
+    }
     let grid = problem.grid;
     let (nx, ny) = grid.shape();
     let odd = |n: usize| n % 2 == 1 && n > 1;
+    if scene.file.adhesion.pattern == Some(crate::scene::PatternKind::Random)
+        && (odd(nx) || odd(ny))
+    {
+        return Err(refuse(format!(
+            "with {} = \"random\" needs even grid sides (the coarse grid keeps the period of \
+             the γ field); the grid is {nx} × {ny}",
+            fields::ADHESION_PATTERN
+        )));
+    }
     let q_coarse = std::f64::consts::PI / (2.0 * grid.dx());
     let mut file = scene.file.clone();
     let mut coarse_map = None;
@@ -75,6 +92,7 @@ pub fn coarse_problem(scene: &Scene, problem: &Problem) -> Result<Problem, Scene
                 path,
                 dataset.as_deref(),
                 &grid,
+                (fields::ROUGHNESS_PATH, fields::ROUGHNESS_DATASET),
             )?;
             let map =
                 tack_geometry::coarsen_band_limited(&fine, tack_geometry::BAND_LIMIT_TOLERANCE)
@@ -133,6 +151,7 @@ pub fn coarse_problem(scene: &Scene, problem: &Problem) -> Result<Problem, Scene
                 heights: map,
                 roughness_range: Some(*range),
                 radius: None,
+                gamma: None,
             }),
         ),
         None => Problem::from_scene(&coarse),

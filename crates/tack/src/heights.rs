@@ -110,6 +110,9 @@ pub struct PullOffSpec {
     pub adhesion: AdhesionSpec,
     /// Which steps keep their fields (default: the pull-off step and the last contact).
     pub snapshots: Snapshots,
+    /// The work of adhesion per element, the heights' shape (`None`: [`PullOffSpec::gamma`]
+    /// everywhere). [`PullOffSpec::gamma`] stays the reference of the path and of F_JKR.
+    pub gamma_map: Option<Array2<f64>>,
 }
 
 impl PullOffSpec {
@@ -127,6 +130,7 @@ impl PullOffSpec {
             kappa: None,
             adhesion: AdhesionSpec::default(),
             snapshots: Snapshots::PullOff,
+            gamma_map: None,
         }
     }
 }
@@ -144,12 +148,26 @@ pub struct PullOffPlan {
 }
 
 impl PullOffPlan {
-    /// The body as [`run`] takes it: `heights` with this plan's radius and roughness range.
+    /// The body as [`run`] takes it: `heights` with this plan's radius and roughness range
+    /// (and no γ array: see [`PullOffPlan::body_with_gamma`]).
     pub fn body<'a>(&self, heights: &'a Array2<f64>) -> HeightBody<'a> {
         HeightBody {
             heights,
             roughness_range: self.fit.map(|f| f.residual_range()),
             radius: self.radius,
+            gamma: None,
+        }
+    }
+
+    /// [`PullOffPlan::body`] with the work of adhesion `gamma` per element.
+    pub fn body_with_gamma<'a>(
+        &self,
+        heights: &'a Array2<f64>,
+        gamma: Option<&'a Array2<f64>>,
+    ) -> HeightBody<'a> {
+        HeightBody {
+            gamma,
+            ..self.body(heights)
         }
     }
 }
@@ -260,7 +278,8 @@ pub fn pull_off_scene(
     let (start, load_step) =
         crate::pull_off_path::load_plan(first_touch, max_approach, unload_step, range);
     let file = SceneSchema {
-        adhesion: spec.adhesion,
+        adhesion: spec.adhesion.clone(),
+        body: crate::scene::BodySpec::default(),
         version: SCENE_VERSION,
         material: Material {
             e_star: spec.e_star,
@@ -309,10 +328,16 @@ pub fn pull_off_scene(
         ),
         _ => "# no sphere radius: the path was given\n".to_owned(),
     };
+    let gamma_note = if spec.gamma_map.is_some() {
+        "# The work of adhesion is an array given in memory too (stored in the result's \
+         /surface/gamma);\n# material.gamma is its reference.\n"
+    } else {
+        ""
+    };
     scene.text = format!(
         "# tack::heights::pull_off: the rigid body is a {nx} x {ny} height array given in \
          memory\n# (stored in the result's /surface/heights), not described by this scene \
-         (geometry \"none\").\n{rule}{}",
+         (geometry \"none\").\n{gamma_note}{rule}{}",
         scene.text
     );
     Ok(PullOffPlan { scene, radius, fit })
@@ -328,7 +353,8 @@ pub fn pull_off(
     observer: &mut dyn tack_solver::Observer,
 ) -> Result<RunOutcome, Error> {
     let plan = pull_off_scene(heights, spec)?;
-    run(&plan.scene, &plan.body(heights), options, observer)
+    let body = plan.body_with_gamma(heights, spec.gamma_map.as_ref());
+    run(&plan.scene, &body, options, observer)
 }
 
 #[cfg(test)]
@@ -445,6 +471,7 @@ mod tests {
                 heights: &Array2::zeros((8, 8)),
                 roughness_range: None,
                 radius: None,
+                gamma: None,
             },
         )
         .unwrap_err()

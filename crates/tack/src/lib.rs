@@ -58,7 +58,9 @@
 pub mod coarse;
 pub mod engine;
 pub mod error;
+pub mod gamma_map;
 pub mod heights;
+pub mod layer;
 pub mod memory;
 pub mod overrides;
 pub mod problem;
@@ -99,7 +101,10 @@ pub use problem::Problem;
 pub use provenance::{GIT_REVISION, VERSION, command_line, now_rfc3339};
 #[allow(deprecated)]
 pub use scene::SceneFile;
-pub use scene::{AdhesionModel, AdhesionSpec, SCENE_VERSION, Scene, SceneSchema};
+pub use scene::{
+    AdhesionModel, AdhesionSpec, BodyKind, BodySpec, InterfaceKind, PatternKind, SCENE_VERSION,
+    Scene, SceneSchema,
+};
 pub use summary::{SUMMARY_QUANTITIES, summary_quantity};
 
 pub use ndarray;

@@ -12,8 +12,8 @@ use std::path::Path;
 use tack_fields::{self as fields, field_name};
 
 use tack_geometry::{
-    Boundary, FlatPunch, Grid, RoughSpec, Shape, Sphere, Surface, Waviness1d, Waviness2d, Window,
-    rough_surface,
+    Boundary, Ellipsoid, FlatPunch, Grid, RoughSpec, Shape, Sphere, Surface, Waviness1d,
+    Waviness2d, Window, rough_surface,
 };
 use tack_solver::{
     AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, KAPPA, SnapshotRequest,
@@ -64,6 +64,9 @@ pub struct References {
     /// The exact JKR-limit pull-off force of a power-law body c·r^m on a free grid (method of
     /// dimensionality reduction; `tack_analytics::power_law_pull_off_force`).
     pub f_mdr: Option<f64>,
+    /// The approximate (Johnson–Greenwood) JKR pull-off force of an ellipsoid under approach
+    /// control, signed (tensile negative): `tack_analytics::elliptic_jkr_pull_off`.
+    pub f_elliptic: Option<f64>,
     /// Mean pressure of complete non-adhesive contact of a waviness: p*_1D = πE*h/λ (Eq. 2)
     /// or p*_2D = √2πE*h/λ (Eq. 5).
     pub p_star: Option<f64>,
@@ -78,8 +81,13 @@ pub struct Problem {
     pub surface: Surface,
     /// Effective modulus `E*`.
     pub e_star: f64,
-    /// Work of adhesion `γ`.
+    /// Work of adhesion `γ` (the reference when it varies: see [`Problem::gamma_map`]).
     pub gamma: f64,
+    /// γ of every element when it varies over the surface (`[adhesion]` map or pattern, or an
+    /// array given in memory); `None`: [`Problem::gamma`] everywhere.
+    pub gamma_map: Option<ndarray::Array2<f64>>,
+    /// The elastic body: `None` for the half-space, or a layer on a rigid base (`[body]`).
+    pub layer: Option<tack_kernels::Layer>,
     /// Pohrt–Popov constant κ (read by the zero-range law only).
     pub kappa: f64,
     /// The adhesion law (`[adhesion]`): the zero-range criterion with [`Problem::kappa`], or a
@@ -246,6 +254,15 @@ impl Problem {
             surface.add(&array)?;
         }
         let mut warnings = Vec::new();
+        let layer = crate::layer::body_layer(&f.body, &grid, &mut warnings)?;
+        let gamma_map = crate::gamma_map::gamma_map(
+            &f.adhesion,
+            gamma,
+            &grid,
+            &scene.base_dir,
+            body.and_then(|b| b.gamma),
+            &mut warnings,
+        )?;
         check_scales(
             e_star,
             gamma,
@@ -295,6 +312,26 @@ impl Problem {
                 references.f_kendall = Some(-tack_analytics::kendall_pull_off(e_star, gamma, a));
                 under_resolved(&mut warnings, "the punch radius a", a, dx);
             }
+            Geometry::Ellipsoid { radius_x, radius_y } if gamma > 0.0 => {
+                let jg = tack_analytics::elliptic_jkr_pull_off(e_star, gamma, radius_x, radius_y)
+                    .approach_control;
+                if grid.nx() == 1 || grid.ny() == 1 || grid.boundary() == Boundary::Periodic {
+                    warnings.push(format!(
+                        "no F_JG reference: the elliptic JKR approximation is for one body on a \
+                         free {} × {} grid, not a strip or a periodic array",
+                        grid.nx(),
+                        grid.ny()
+                    ));
+                } else if jg.force.is_normal() {
+                    references.f_elliptic = Some(jg.force);
+                }
+                under_resolved(
+                    &mut warnings,
+                    "the elliptic pull-off contact's shorter semi-axis",
+                    jg.semi_axis_x.min(jg.semi_axis_y),
+                    dx,
+                );
+            }
             Geometry::PowerLaw { c, exponent } if gamma > 0.0 => {
                 let a_f = tack_analytics::power_law_pull_off_radius(e_star, gamma, c, exponent);
                 let f = tack_analytics::power_law_pull_off_force(e_star, gamma, c, exponent);
@@ -336,6 +373,8 @@ impl Problem {
         let law = adhesion_law(f, kappa, &surface)?;
         let sphere_radius = match f.geometry {
             Geometry::Sphere { radius } => Some(radius),
+            // The default path of the sphere of the same Gaussian curvature.
+            Geometry::Ellipsoid { radius_x, radius_y } => Some((radius_x * radius_y).sqrt()),
             _ => body_radius,
         };
         let (path, path_rule) = approach_path(
@@ -344,6 +383,12 @@ impl Problem {
                 grid: &grid,
                 surface: &surface,
                 sphere_radius,
+                ellipsoid: match f.geometry {
+                    Geometry::Ellipsoid { radius_x, radius_y } => {
+                        Some(Ellipsoid::new(radius_x, radius_y)?)
+                    }
+                    _ => None,
+                },
                 heights_only: matches!(f.geometry, Geometry::None),
                 e_star,
                 gamma,
@@ -436,13 +481,17 @@ impl Problem {
             AdhesionLaw::Dugdale { sigma0 } => gamma / sigma0,
             AdhesionLaw::JkrLimit { .. } => 0.0,
         };
+        // The reach of adhesion grows with γ: a map crops for its greatest.
+        let gamma_max = gamma_map
+            .as_ref()
+            .map_or(gamma, |m| crate::gamma_map::map_range(m).2.max(gamma));
         let window = if f.grid.crop {
             contact_window(
                 &surface,
                 path.max_approach,
                 roughness_range + range,
                 e_star,
-                gamma,
+                gamma_max,
             )
             .filter(|w| w.shape() != grid.shape())
         } else {
@@ -453,6 +502,8 @@ impl Problem {
             surface,
             e_star,
             gamma,
+            gamma_map,
+            layer,
             kappa,
             law,
             options,
@@ -484,14 +535,20 @@ impl Problem {
             Some(w) => self.surface.window(w)?,
             None => self.surface.clone(),
         };
-        let op = tack_kernels::operator_for(*surface.grid(), self.e_star)?;
-        Ok(AdhesiveSolver::with_law(
-            op,
-            &surface,
-            self.gamma,
-            self.law,
-            self.options,
-        )?)
+        let op = match &self.layer {
+            Some(layer) => tack_kernels::layer_operator_for(*surface.grid(), self.e_star, layer)?,
+            None => tack_kernels::operator_for(*surface.grid(), self.e_star)?,
+        };
+        let mut solver =
+            AdhesiveSolver::with_law(op, &surface, self.gamma, self.law, self.options)?;
+        if let Some(map) = &self.gamma_map {
+            let view = match window {
+                Some(w) => map.slice(ndarray::s![w.i0..w.i1, w.j0..w.j1]),
+                None => map.view(),
+            };
+            solver.set_gamma_map(view)?;
+        }
+        Ok(solver)
     }
 }
 
@@ -596,6 +653,9 @@ pub struct HeightBody<'a> {
     /// `protocol.max_approach` gets the default pull-off path of that radius. `None`: no
     /// references.
     pub radius: Option<f64>,
+    /// Work of adhesion per element `(nx, ny)`, finite and ≥ 0 (`None`: `material.gamma`
+    /// everywhere, which stays the reference of F_JKR and the path).
+    pub gamma: Option<&'a ndarray::Array2<f64>>,
 }
 
 /// The surface of a height array on `grid`; errors name `heights` (shape, a non-finite entry).
@@ -625,8 +685,11 @@ pub(crate) fn height_surface(
 struct PathBody<'a> {
     grid: &'a Grid,
     surface: &'a Surface,
-    /// The sphere's radius (`geometry.radius`, or the radius of a body given in memory).
+    /// The sphere's radius (`geometry.radius`, or the radius of a body given in memory; an
+    /// ellipsoid's √(RxRy)).
     sphere_radius: Option<f64>,
+    /// The ellipsoid whose shape the roughness sits on, when the body is one.
+    ellipsoid: Option<Ellipsoid>,
     /// Whether the body is only heights (`geometry.shape = "none"`: a map, an array), whose
     /// radius a least-squares paraboloid may find; a punch has none.
     heights_only: bool,
@@ -870,16 +933,21 @@ fn default_path(body: &PathBody<'_>) -> Result<PathRule, SceneError> {
     })
 }
 
-/// The greatest height of the body above the sphere of radius `radius` on its grid: the top of
-/// the roughness (and of any array added), computed only when the default path needs it.
+/// The greatest height of the body above the sphere of radius `radius` (or above its ellipsoid)
+/// on its grid: the top of the roughness (and of any array added), computed only when the
+/// default path needs it.
 fn top_above_sphere(body: &PathBody<'_>, radius: f64) -> Result<f64, SceneError> {
     let sphere = Sphere::new(radius).map_err(rename(fields::GEOMETRY_RADIUS))?;
+    let shape: &dyn Shape = match &body.ellipsoid {
+        Some(e) => e,
+        None => &sphere,
+    };
     let grid = body.grid;
     Ok(body
         .surface
         .heights()
         .indexed_iter()
-        .map(|((i, j), h)| h - sphere.height(grid.x(i), grid.y(j)))
+        .map(|((i, j), h)| h - shape.height(grid.x(i), grid.y(j)))
         .fold(f64::NEG_INFINITY, f64::max))
 }
 
@@ -1284,6 +1352,9 @@ fn base_surface(grid: Grid, geometry: &Geometry) -> Result<Surface, SceneError> 
             }
             s
         }
+        Geometry::Ellipsoid { radius_x, radius_y } => {
+            Surface::from_shape(grid, &Ellipsoid::new(radius_x, radius_y)?)
+        }
         Geometry::None => Surface::flat(grid),
     })
 }
@@ -1341,7 +1412,8 @@ fn add_roughness(
         }
         Roughness::File { path, dataset } => {
             let full = base_dir.join(path);
-            let heights = read_map(&full, path, dataset.as_deref(), &grid)?;
+            let names = (fields::ROUGHNESS_PATH, fields::ROUGHNESS_DATASET);
+            let heights = read_map(&full, path, dataset.as_deref(), &grid, names)?;
             let (nx, ny) = heights.dim();
             if (nx, ny) != grid.shape() {
                 return Err(SceneError::Inconsistent(format!(
@@ -1364,20 +1436,18 @@ fn add_roughness(
     Ok(())
 }
 
-/// Reads a height map (HDF5 by extension, else text) and checks its `dx` against the grid's.
+/// Reads a map (heights or γ; HDF5 by extension, else text) and checks its `dx` against the
+/// grid's; `names` are the fields of its path and dataset, for messages.
 /// A text map without a `# dx = ...` header takes the grid's `dx`.
 pub(crate) fn read_map(
     full: &Path,
     given: &Path,
     dataset: Option<&str>,
     grid: &Grid,
+    names: (&'static str, &'static str),
 ) -> Result<ndarray::Array2<f64>, SceneError> {
     let field = |what: String| {
-        SceneError::Inconsistent(format!(
-            "{} = `{}`: {what}",
-            fields::ROUGHNESS_PATH,
-            given.display()
-        ))
+        SceneError::Inconsistent(format!("{} = `{}`: {what}", names.0, given.display()))
     };
     let is_h5 = full
         .extension()
@@ -1395,13 +1465,13 @@ pub(crate) fn read_map(
         }
         Ok(m) if m.is_dir() => {
             return Err(field(format!(
-                "`{}` is a directory, not a height map file",
+                "`{}` is a directory, not a map file",
                 full.display()
             )));
         }
         Ok(m) if !m.is_file() => {
             return Err(field(format!(
-                "`{}` is not a regular file (a device, FIFO or socket), not a height map file",
+                "`{}` is not a regular file (a device, FIFO or socket), not a map file",
                 full.display()
             )));
         }
@@ -1415,7 +1485,7 @@ pub(crate) fn read_map(
         if dataset.is_some() {
             return Err(field(format!(
                 "{} applies only to HDF5 maps (.h5, .hdf5)",
-                fields::ROUGHNESS_DATASET
+                names.1
             )));
         }
         // Parse with the grid's dx (succeeds whatever the header says), then read the
@@ -1520,7 +1590,17 @@ fn check_fits(
         concat!(field_name!(grid.nx), "/", field_name!(grid.ny))
     };
     let (nx, ny) = grid.shape();
-    match *geometry {
+    // An ellipsoid's contact reaches furthest along its larger radius.
+    let (geometry, body) = match *geometry {
+        Geometry::Ellipsoid { radius_x, radius_y } => (
+            Geometry::Sphere {
+                radius: radius_x.max(radius_y),
+            },
+            "the ellipsoid (R its larger radius)",
+        ),
+        g => (g, "the sphere"),
+    };
+    match geometry {
         Geometry::Sphere { radius } => {
             let depth = path.max_approach - first_touch;
             let hertz = (radius * depth).sqrt();
@@ -1533,7 +1613,7 @@ fn check_fits(
                     format!("{hertz:.4e}")
                 };
                 return Err(SceneError::Inconsistent(format!(
-                    "{size_field} = {} is too small for the sphere: at {depth_field} = {} \
+                    "{size_field} = {} is too small for {body}: at {depth_field} = {} \
                      the Hertz contact radius sqrt(R·d) = {hertz} plus a 30% margin needs a \
                      free grid of at least {n_needed} × {n_needed} elements at {dx_field} = {} \
                      (the grid is {nx} × {ny}); raise {size_field} or {shallower}",
@@ -1600,7 +1680,7 @@ fn check_fits(
                 )));
             }
         }
-        Geometry::None => {}
+        Geometry::None | Geometry::Ellipsoid { .. } => {}
     }
     Ok(())
 }
@@ -1717,6 +1797,7 @@ load_step = 0.05
             heights: &heights,
             roughness_range: Some(0.0),
             radius: Some(1.0),
+            gamma: None,
         };
         let p = crate::heights::problem(&scene, &body).unwrap();
         assert!(
@@ -1997,7 +2078,7 @@ load_step = 0.05
         let dir = std::env::temp_dir();
         let dir = dir.to_str().unwrap();
         for (path, what) in [
-            (dir, "is a directory, not a height map file"),
+            (dir, "is a directory, not a map file"),
             ("/dev/null", "is not a regular file"),
             ("/no/such/map.txt", "no such file"),
         ] {

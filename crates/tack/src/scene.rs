@@ -24,9 +24,13 @@ pub struct SceneSchema {
     pub version: i64,
     /// `[material]`.
     pub material: Material,
-    /// `[adhesion]`: the adhesion law, optional (default: the zero-range limit).
+    /// `[adhesion]`: the adhesion law and the pattern of γ, optional (default: the zero-range
+    /// limit, one γ everywhere).
     #[serde(default, skip_serializing_if = "AdhesionSpec::is_default")]
     pub adhesion: AdhesionSpec,
+    /// `[body]`: the elastic body, optional (default: a homogeneous half-space).
+    #[serde(default, skip_serializing_if = "BodySpec::is_default")]
+    pub body: BodySpec,
     /// `[geometry]`: the macroscopic shape.
     pub geometry: Geometry,
     /// `[roughness]`: added to the shape, optional.
@@ -60,8 +64,9 @@ pub struct Material {
     pub gamma: f64,
 }
 
-/// `[adhesion]`: which law turns the work of adhesion `material.gamma` into tractions.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+/// `[adhesion]`: which law turns the work of adhesion `material.gamma` into tractions, and
+/// whether γ varies over the surface (a map file or a generated pattern).
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct AdhesionSpec {
     /// `"jkr_limit"` (default) or `"dugdale"`.
@@ -71,6 +76,34 @@ pub struct AdhesionSpec {
     /// `model = "dugdale"`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sigma0: Option<f64>,
+    /// γ per element from a file (text or HDF5, the grid's shape; the height maps' formats),
+    /// relative to the scene file's directory.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gamma_map: Option<PathBuf>,
+    /// The dataset of an HDF5 γ map.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dataset: Option<String>,
+    /// A generated pattern of γ (`material.gamma` is phase a, or the random field's mean).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pattern: Option<PatternKind>,
+    /// Stripes, checkerboard: γ of phase b (≥ 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gamma_b: Option<f64>,
+    /// Stripes, checkerboard: the period.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub period: Option<f64>,
+    /// Stripes: the share of a period that is phase b (default 0.5).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fraction: Option<f64>,
+    /// Random: the correlation length ℓ.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub correlation_length: Option<f64>,
+    /// Random: the coefficient of variation of γ.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub contrast: Option<f64>,
+    /// Random: the seed (default 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seed: Option<u64>,
 }
 
 impl AdhesionSpec {
@@ -78,6 +111,80 @@ impl AdhesionSpec {
     pub fn is_default(&self) -> bool {
         *self == Self::default()
     }
+}
+
+/// `adhesion.pattern`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PatternKind {
+    /// One γ everywhere (`material.gamma`).
+    #[default]
+    Uniform,
+    /// Stripes along x: phase b on `fraction` of each `period`, centred on x = 0.
+    Stripes,
+    /// Squares of side `period/2`, phase a on the one centred at the origin.
+    Checkerboard,
+    /// A seeded log-normal field of mean `material.gamma`, coefficient of variation
+    /// `contrast` and correlation length `correlation_length`.
+    Random,
+}
+
+impl PatternKind {
+    /// The name in scene files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Uniform => "uniform",
+            Self::Stripes => "stripes",
+            Self::Checkerboard => "checkerboard",
+            Self::Random => "random",
+        }
+    }
+}
+
+/// `[body]`: the elastic body the rigid one presses on.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodySpec {
+    /// `"half_space"` (default) or `"layer"`.
+    #[serde(default)]
+    pub kind: BodyKind,
+    /// Layer: the thickness h (> 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub thickness: Option<f64>,
+    /// Layer: Poisson's ratio ν in (−1, 0.5] (`material.e_star` is the layer's E/(1 − ν²)).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub poisson: Option<f64>,
+    /// Layer: `"bonded"` (default) or `"frictionless"` on its rigid base.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub interface: Option<InterfaceKind>,
+}
+
+impl BodySpec {
+    /// The default section (left out when a scene is written).
+    pub fn is_default(&self) -> bool {
+        *self == Self::default()
+    }
+}
+
+/// `body.kind`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BodyKind {
+    /// A homogeneous elastic half-space.
+    #[default]
+    HalfSpace,
+    /// An elastic layer of thickness `body.thickness` on a rigid base.
+    Layer,
+}
+
+/// `body.interface`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum InterfaceKind {
+    /// Welded to the base.
+    Bonded,
+    /// Sliding freely on the base.
+    Frictionless,
 }
 
 /// `adhesion.model`.
@@ -127,6 +234,13 @@ pub enum Geometry {
         c: f64,
         /// Exponent `m` (1 to 16).
         exponent: f64,
+    },
+    /// `shape = "ellipsoid"`: a paraboloid `x²/(2Rx) + y²/(2Ry)`.
+    Ellipsoid {
+        /// Radius `Rx` along x (> 0).
+        radius_x: f64,
+        /// Radius `Ry` along y (> 0).
+        radius_y: f64,
     },
     /// `shape = "none"`: a flat body (only the roughness, if any).
     None,

@@ -37,6 +37,19 @@ pub fn summary(problem: &Problem, path: &PathResult) -> tack_io::Summary {
     if let Some(f) = r.f_mdr {
         extra.insert("f_mdr".to_owned(), f);
     }
+    if let Some(f) = r.f_elliptic {
+        extra.insert("f_elliptic_jkr".to_owned(), f);
+    }
+    if let Some(map) = &problem.gamma_map {
+        let (lo, mean, hi) = crate::gamma_map::map_range(map);
+        extra.insert("gamma_min".to_owned(), lo);
+        extra.insert("gamma_mean".to_owned(), mean);
+        extra.insert("gamma_max".to_owned(), hi);
+    }
+    if let Some(layer) = &problem.layer {
+        extra.insert("layer_thickness".to_owned(), layer.thickness);
+        extra.insert("layer_poisson".to_owned(), layer.poisson);
+    }
     if let Some(p) = r.p_star {
         extra.insert("p_star".to_owned(), p);
     }
@@ -277,7 +290,7 @@ pub const MIN_TENSILE_STEPS: usize = 3;
 /// Names of every scalar [`summary`] can record: the [`tack_io::Summary`] fields, then its
 /// `extra` keys. A run need not have all of them (`d_jkr` only for spheres, `crop_rows` only
 /// when cropped, ...). Parameter sweeps collect quantities by these names.
-pub const SUMMARY_QUANTITIES: [&str; 34] = [
+pub const SUMMARY_QUANTITIES: [&str; 40] = [
     "pull_off_force",
     "f_jkr",
     "pull_off_ratio",
@@ -286,6 +299,12 @@ pub const SUMMARY_QUANTITIES: [&str; 34] = [
     "d_jkr",
     "f_kendall",
     "f_mdr",
+    "f_elliptic_jkr",
+    "gamma_min",
+    "gamma_mean",
+    "gamma_max",
+    "layer_thickness",
+    "layer_poisson",
     "p_star",
     "min_mean_pressure",
     "sigma_c",
@@ -361,6 +380,7 @@ pub fn assemble_result(
         surface: problem
             .store_surface
             .then(|| (problem.surface.heights().clone(), problem.grid.dx())),
+        gamma: problem.gamma_map.clone().filter(|_| problem.store_surface),
         snapshots: snapshots(path),
         summary: summary(problem, path),
     }
@@ -389,6 +409,7 @@ pub fn surface_file(problem: &Problem, provenance: tack_io::Provenance) -> tack_
             ..tack_io::Curve::default()
         },
         surface: Some((problem.surface.heights().clone(), problem.grid.dx())),
+        gamma: problem.gamma_map.clone(),
         snapshots: Vec::new(),
         summary: tack_io::Summary {
             pull_off_force: f64::NAN,

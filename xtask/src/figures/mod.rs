@@ -304,6 +304,7 @@ pub fn write_figure(
             full_contact: None,
         },
         surface: None,
+        gamma: None,
         snapshots: Vec::new(),
         summary: tack_io::Summary {
             pull_off_force: f64::NAN,

@@ -512,6 +512,7 @@ mod tests {
         let tack::scene::AdhesionSpec {
             model: tack::scene::AdhesionModel::Dugdale,
             sigma0: Some(sigma0),
+            ..
         } = base.adhesion
         else {
             panic!("{:?}", base.adhesion)

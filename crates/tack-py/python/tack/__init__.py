@@ -32,7 +32,7 @@ import math
 import os
 import sys
 import warnings
-from typing import Any, Callable, Dict, Mapping, Optional, Sequence, Union, overload
+from typing import Any, Callable, Dict, Mapping, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 
@@ -227,12 +227,33 @@ def _model(model: Any) -> str:
     return model
 
 
+def _gamma(value: Any, shape: Tuple[int, ...]) -> Tuple[float, Optional[np.ndarray]]:
+    """``pull_off``'s ``gamma``: a number > 0, or an array of the heights' shape (finite, >= 0,
+    mean > 0) whose mean is the reference; returns the reference and the array (or None)."""
+    note = " (a pull-off needs adhesion; for contact without it use tack.contact)"
+    if isinstance(value, np.ndarray) or _check._ndim(value) > 0:
+        g = _check.heights(value, "gamma")
+        if g.shape != tuple(shape):
+            raise _check.invalid(
+                "gamma.shape", g.shape, f"the heights' shape {tuple(shape)}"
+            )
+        bad = g < 0.0
+        if bad.any():
+            index, shown = _check._first_bad(bad)
+            raise _check.invalid(f"gamma{shown}", float(g[index]), "a finite number >= 0")
+        mean = float(g.mean())
+        if not mean > 0.0:
+            raise _check.invalid("gamma.mean()", mean, "a number > 0" + note)
+        return mean, g
+    return _check.positive("gamma", value, note), None
+
+
 def pull_off(
     heights: Any,
     *,
     dx: float,
     e_star: float,
-    gamma: float,
+    gamma: Any,
     periodic: bool = False,
     radius: Optional[float] = None,
     max_approach: Optional[float] = None,
@@ -255,7 +276,11 @@ def pull_off(
             tack.surface.random(...)``.
         dx: element size (> 0).
         e_star: effective modulus E* (> 0).
-        gamma: work of adhesion (> 0; without adhesion use :func:`contact`).
+        gamma: work of adhesion (> 0; without adhesion use :func:`contact`), or a 2-D array
+            of the heights' shape with one gamma per element (finite, >= 0, mean > 0):
+            patterned adhesion. The mean is then the reference of ``f_jkr``, the ratios and the
+            default path; the summary holds ``gamma_min``, ``gamma_mean``, ``gamma_max`` and
+            ``result.gamma`` the array (e.g. ``tack.surface.stripes(...)``).
         periodic: the array is one period of a periodic body (default: free, non-periodic).
             On a periodic grid the approach is measured from the deformed mean plane (see
             :func:`contact`), and steps in full contact (approach >= mean of the heights) are
@@ -304,14 +329,12 @@ def pull_off(
         RuntimeWarning: contact reached the edge of a free array, or steps did not converge.
     """
     array = _check.heights(heights)
+    gamma, gamma_map = _gamma(gamma, array.shape)
     args = dict(
         dx=_check.positive("dx", dx),
         e_star=_check.positive("e_star", e_star),
-        gamma=_check.positive(
-            "gamma",
-            gamma,
-            " (a pull-off needs adhesion; for contact without it use tack.contact)",
-        ),
+        gamma=gamma,
+        gamma_map=gamma_map,
         periodic=_check.flag("periodic", periodic),
         radius=_check.optional(_check.positive, "radius", radius),
         max_approach=_check.optional(_check.finite, "max_approach", max_approach),

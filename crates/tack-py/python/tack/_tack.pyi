@@ -40,7 +40,7 @@ class Result:
         """{step: {"pressure": 2-D float array, "bonded": 2-D bool array, "approach": float}}."""
     @property
     def surface(self) -> Optional[Dict[str, Any]]:
-        """{"heights": 2-D array, "dx": float}, or None."""
+        """{"heights": 2-D array, "dx": float[, "gamma": 2-D array]}, or None."""
     @property
     def provenance(self) -> Dict[str, Any]:
         """tack_version, git_revision, command_line, scene, created, seed."""
@@ -104,6 +104,7 @@ def pull_off(
     dx: float,
     e_star: float,
     gamma: float,
+    gamma_map: Optional[npt.NDArray[np.float64]] = ...,
     periodic: bool = ...,
     radius: Optional[float] = ...,
     max_approach: Optional[float] = ...,
@@ -140,6 +141,23 @@ def rough(
 def sphere(nx: int, ny: int, *, dx: float, radius: float) -> npt.NDArray[np.float64]: ...
 def power_law(
     nx: int, ny: int, *, dx: float, c: float, exponent: float
+) -> npt.NDArray[np.float64]: ...
+def ellipsoid(
+    nx: int, ny: int, *, dx: float, radius_x: float, radius_y: float
+) -> npt.NDArray[np.float64]: ...
+def gamma_pattern(
+    nx: int,
+    ny: int,
+    *,
+    dx: float,
+    kind: str,
+    gamma_a: float,
+    gamma_b: float = ...,
+    period: float = ...,
+    fraction: float = ...,
+    contrast: float = ...,
+    correlation_length: float = ...,
+    seed: int = ...,
 ) -> npt.NDArray[np.float64]: ...
 def coordinates(
     nx: int, ny: int, *, dx: float

@@ -17,7 +17,17 @@ import numpy as np
 from . import _check, _tack
 from . import analytics
 
-__all__ = ["band", "coordinates", "power_law", "random", "sphere"]
+__all__ = [
+    "band",
+    "checkerboard",
+    "coordinates",
+    "ellipsoid",
+    "gamma_random",
+    "power_law",
+    "random",
+    "sphere",
+    "stripes",
+]
 
 Shape = Union[int, Tuple[int, int]]
 
@@ -107,6 +117,87 @@ def power_law(shape: Shape, *, dx: float, c: float, exponent: float) -> np.ndarr
     if not 1.0 <= m <= 16.0:
         raise _check.invalid("exponent", m, "a number in [1, 16]")
     return _tack.power_law(nx, ny, dx=dx_, c=c_, exponent=m)
+
+
+def ellipsoid(shape: Shape, *, dx: float, radius_x: float, radius_y: float) -> np.ndarray:
+    """The elliptic paraboloid ``x^2/(2 Rx) + y^2/(2 Ry)`` at the element centres, apex 0 at
+    the origin (a scene's ``geometry.shape = "ellipsoid"``)."""
+    nx, ny = _shape(shape)
+    dx_ = _check.positive("dx", dx)
+    return _tack.ellipsoid(
+        nx,
+        ny,
+        dx=dx_,
+        radius_x=_check.positive("radius_x", radius_x),
+        radius_y=_check.positive("radius_y", radius_y),
+    )
+
+
+def stripes(
+    shape: Shape,
+    *,
+    dx: float,
+    gamma: float,
+    gamma_b: float,
+    period: float,
+    fraction: float = 0.5,
+) -> np.ndarray:
+    """A work of adhesion in stripes along x, for :func:`tack.pull_off`'s ``gamma``: ``gamma_b``
+    on the share ``fraction`` of each ``period`` centred on x = k*period, ``gamma`` elsewhere
+    (a scene's ``adhesion.pattern = "stripes"``; an element takes the value at its centre)."""
+    nx, ny = _shape(shape)
+    return _tack.gamma_pattern(
+        nx,
+        ny,
+        dx=_check.positive("dx", dx),
+        kind="stripes",
+        gamma_a=_check.non_negative("gamma", gamma),
+        gamma_b=_check.non_negative("gamma_b", gamma_b),
+        period=_check.positive("period", period),
+        fraction=_check.real("fraction", fraction),
+    )
+
+
+def checkerboard(
+    shape: Shape, *, dx: float, gamma: float, gamma_b: float, period: float
+) -> np.ndarray:
+    """A work of adhesion in squares of side ``period/2``, ``gamma`` on the one centred at the
+    origin, ``gamma_b`` on its neighbours (``adhesion.pattern = "checkerboard"``)."""
+    nx, ny = _shape(shape)
+    return _tack.gamma_pattern(
+        nx,
+        ny,
+        dx=_check.positive("dx", dx),
+        kind="checkerboard",
+        gamma_a=_check.non_negative("gamma", gamma),
+        gamma_b=_check.non_negative("gamma_b", gamma_b),
+        period=_check.positive("period", period),
+    )
+
+
+def gamma_random(
+    shape: Shape,
+    *,
+    dx: float,
+    gamma: float,
+    contrast: float,
+    correlation_length: float,
+    seed: int = 1,
+) -> np.ndarray:
+    """A seeded log-normal work of adhesion of mean ``gamma`` and coefficient of variation
+    ``contrast``, Gaussian correlation length ``correlation_length`` (one continuous field per
+    seed, periodic over the array; ``adhesion.pattern = "random"``)."""
+    nx, ny = _shape(shape)
+    return _tack.gamma_pattern(
+        nx,
+        ny,
+        dx=_check.positive("dx", dx),
+        kind="random",
+        gamma_a=_check.positive("gamma", gamma),
+        contrast=_check.non_negative("contrast", contrast),
+        correlation_length=_check.positive("correlation_length", correlation_length),
+        seed=_check.count("seed", seed, low=0, high=2**64 - 1),
+    )
 
 
 def coordinates(shape: Shape, *, dx: float) -> Tuple[np.ndarray, np.ndarray]:

@@ -1,0 +1,85 @@
+//! The elastic body of a scene (`[body]`): the homogeneous half-space, or a layer on a rigid
+//! base (`tack_kernels::Layer`), checked against the grid and the scene's other fields.
+
+use tack_fields as fields;
+use tack_geometry::{Boundary, Grid};
+use tack_kernels::{Interface, Layer};
+
+use crate::scene::{BodyKind, BodySpec, InterfaceKind, SceneError, num};
+
+/// Least layer thickness relative to Δx: a thinner film's compliance is below the round-off
+/// of the half-space terms it is built from.
+pub const MIN_THICKNESS_PER_DX: f64 = 1e-9;
+
+/// The free layer operator integrates each element's influence with up to 64 sub-squares per
+/// side (`tack_kernels::FreeLayerOperator`): a thinner layer than `Δx/64` is flagged.
+pub const FREE_LAYER_RESOLVED_PER_DX: f64 = 1.0 / 64.0;
+
+/// The layer of `[body]` (`None`: the half-space), checked: its fields only with
+/// `kind = "layer"`, thickness and ν required there, a thickness above
+/// [`MIN_THICKNESS_PER_DX`]`·Δx`; warnings for what the result cannot be trusted on.
+pub(crate) fn body_layer(
+    spec: &BodySpec,
+    grid: &Grid,
+    warnings: &mut Vec<String>,
+) -> Result<Option<Layer>, SceneError> {
+    if spec.kind == BodyKind::HalfSpace {
+        let given = [
+            (fields::BODY_THICKNESS, spec.thickness.is_some()),
+            (fields::BODY_POISSON, spec.poisson.is_some()),
+            (fields::BODY_INTERFACE, spec.interface.is_some()),
+        ];
+        if let Some((field, _)) = given.iter().find(|(_, g)| *g) {
+            return Err(SceneError::Inconsistent(format!(
+                "{field} is read by {} = \"layer\" only: set it or leave {field} out (the default \
+                 body is a half-space)",
+                fields::BODY_KIND
+            )));
+        }
+        return Ok(None);
+    }
+    let required = |field: &'static str, v: Option<f64>, what: &str| {
+        v.ok_or_else(|| {
+            SceneError::Inconsistent(format!(
+                "{field} is required with {} = \"layer\": {what}",
+                fields::BODY_KIND
+            ))
+        })
+    };
+    let layer = Layer {
+        thickness: required(
+            fields::BODY_THICKNESS,
+            spec.thickness,
+            "the thickness h > 0",
+        )?,
+        poisson: required(
+            fields::BODY_POISSON,
+            spec.poisson,
+            "Poisson's ratio ν in (−1, 0.5] (material.e_star is the layer's E/(1 − ν²))",
+        )?,
+        interface: match spec.interface.unwrap_or(InterfaceKind::Bonded) {
+            InterfaceKind::Bonded => Interface::Bonded,
+            InterfaceKind::Frictionless => Interface::Frictionless,
+        },
+    };
+    layer.check()?;
+    if layer.thickness < MIN_THICKNESS_PER_DX * grid.dx() {
+        return Err(SceneError::out_of_range(
+            fields::BODY_THICKNESS,
+            num(layer.thickness),
+            "at least 1e-9·grid.dx: a thinner film's compliance is below the round-off of the \
+             operator",
+        ));
+    }
+    if grid.boundary() == Boundary::Free && layer.thickness < FREE_LAYER_RESOLVED_PER_DX * grid.dx()
+    {
+        warnings.push(format!(
+            "under-resolved layer: {} = {} is below grid.dx/64, where the free layer operator's \
+             element integrals are not resolved; refine {} or use a periodic grid",
+            fields::BODY_THICKNESS,
+            num(layer.thickness),
+            fields::GRID_DX
+        ));
+    }
+    Ok(Some(layer))
+}
