@@ -247,23 +247,23 @@ pub const FIELDS: &[Field] = &[
     ),
     f(
         ADHESION_PATTERN,
-        Kind::Choice(&["uniform", "stripes", "checkerboard", "random"]),
+        Kind::Choice(&["uniform", "stripes", "rings", "checkerboard", "random"]),
         "a generated work-of-adhesion pattern (material.gamma is phase a)",
     ),
     f(
         ADHESION_GAMMA_B,
         Kind::Number,
-        "stripes, checkerboard: the work of adhesion of phase b (≥ 0)",
+        "stripes, rings, checkerboard: the work of adhesion of phase b (≥ 0)",
     ),
     f(
         ADHESION_PERIOD,
         Kind::Number,
-        "stripes, checkerboard: the period of the pattern",
+        "stripes, rings, checkerboard: the period of the pattern",
     ),
     f(
         ADHESION_FRACTION,
         Kind::Number,
-        "stripes: the share of each period that is phase b (0 to 1, default 0.5)",
+        "stripes, rings: the share of each period that is phase b (0 to 1, default 0.5)",
     ),
     f(
         ADHESION_CORRELATION_LENGTH,

@@ -5,6 +5,9 @@
 //! — belongs to phase a.
 //!
 //! * **Stripes** along x: phase b where `|x − round(x/p)·p| < fraction·p/2`, phase a elsewhere.
+//! * **Rings** about the origin: the same rule in the radius `r` (phase b on a central disc of
+//!   radius `fraction·p/2` and on rings about r = k·p): the axisymmetric patterns whose
+//!   zero-range answer is exact (`tack_analytics::axisymmetric_retraction`).
 //! * **Checkerboard**: squares of side `s = p/2`; phase b where `round(x/s) + round(y/s)` is odd,
 //!   so the square centred at the origin is phase a.
 //! * **Random**: `γ = mean·exp(σφ − σ²/2)`, `σ² = ln(1 + contrast²)`: log-normal with mean `mean`
@@ -49,6 +52,18 @@ const PATTERN_STREAM_DOMAIN: u64 = 1 << 63;
 pub enum AdhesionPattern {
     /// Stripes along x: phase b on the part `fraction` of each period centred on x = k·period, phase a elsewhere.
     Stripes {
+        /// γ of phase a (field `material.gamma`), finite `≥ 0`.
+        gamma_a: f64,
+        /// γ of phase b (field `adhesion.gamma_b`), finite `≥ 0`.
+        gamma_b: f64,
+        /// The period (field `adhesion.period`), finite and at least two elements.
+        period: f64,
+        /// The share of each period that is phase b (field `adhesion.fraction`), in `[0, 1]`.
+        fraction: f64,
+    },
+    /// Rings about the origin: phase b where `|r − round(r/period)·period| < fraction·period/2`
+    /// (a central disc of radius `fraction·period/2`, then rings), phase a elsewhere.
+    Rings {
         /// γ of phase a (field `material.gamma`), finite `≥ 0`.
         gamma_a: f64,
         /// γ of phase b (field `adhesion.gamma_b`), finite `≥ 0`.
@@ -103,6 +118,30 @@ impl AdhesionPattern {
                 }
                 Ok(Array2::from_shape_fn(grid.shape(), |(i, _)| {
                     let t = grid.x(i) / period;
+                    if (t - t.round()).abs() < fraction / 2.0 - TIE {
+                        gamma_b
+                    } else {
+                        gamma_a
+                    }
+                }))
+            }
+            Self::Rings {
+                gamma_a,
+                gamma_b,
+                period,
+                fraction,
+            } => {
+                check_phases(gamma_a, gamma_b)?;
+                check_period(grid, period)?;
+                if !(0.0..=1.0).contains(&fraction) {
+                    return Err(GeometryError::OutOfRange {
+                        field: fields::ADHESION_FRACTION,
+                        value: fraction,
+                        allowed: "a number from 0 to 1",
+                    });
+                }
+                Ok(Array2::from_shape_fn(grid.shape(), |(i, j)| {
+                    let t = grid.x(i).hypot(grid.y(j)) / period;
                     if (t - t.round()).abs() < fraction / 2.0 - TIE {
                         gamma_b
                     } else {
@@ -287,6 +326,36 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn rings_are_a_disc_and_rings_about_the_origin() {
+        let g = Grid::new(41, 41, 0.1, Boundary::Free).unwrap();
+        let rings = AdhesionPattern::Rings {
+            gamma_a: 1.0,
+            gamma_b: 2.0,
+            period: 2.0,
+            fraction: 0.7,
+        };
+        let f = rings.field(&g).unwrap();
+        for ((i, j), &v) in f.indexed_iter() {
+            let r = g.x(i).hypot(g.y(j));
+            // The disc r < 0.7 and the ring |r − 2| < 0.7 are phase b.
+            let b = r < 0.7 - 1e-9 || (r - 2.0).abs() < 0.7 - 1e-9;
+            assert_eq!(v, if b { 2.0 } else { 1.0 }, "({i}, {j}) r = {r}");
+        }
+        let bad = AdhesionPattern::Rings {
+            gamma_a: 1.0,
+            gamma_b: 2.0,
+            period: 2.0,
+            fraction: 1.5,
+        };
+        assert!(
+            bad.field(&g)
+                .unwrap_err()
+                .to_string()
+                .contains("adhesion.fraction")
+        );
     }
 
     #[test]

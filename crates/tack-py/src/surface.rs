@@ -125,7 +125,7 @@ fn ellipsoid(
 }
 
 /// A generated work-of-adhesion pattern (`tack::geometry::AdhesionPattern`) at the element
-/// centres: `kind` is `"stripes"`, `"checkerboard"` or `"random"`.
+/// centres: `kind` is `"stripes"`, `"rings"`, `"checkerboard"` or `"random"`.
 #[pyfunction]
 #[pyo3(signature = (nx, ny, *, dx, kind, gamma_a, gamma_b=0.0, period=0.0, fraction=0.5, contrast=0.0, correlation_length=0.0, seed=1))]
 #[allow(clippy::too_many_arguments)]
@@ -152,6 +152,12 @@ fn gamma_pattern<'py>(
             period,
             fraction,
         },
+        "rings" => AdhesionPattern::Rings {
+            gamma_a,
+            gamma_b,
+            period,
+            fraction,
+        },
         "checkerboard" => AdhesionPattern::Checkerboard {
             gamma_a,
             gamma_b,
@@ -165,7 +171,7 @@ fn gamma_pattern<'py>(
         },
         other => {
             return Err(named(format!(
-                "kind = {other:?} is invalid: must be \"stripes\", \"checkerboard\" or \"random\""
+                "kind = {other:?} is invalid: must be \"stripes\", \"rings\", \"checkerboard\" or \"random\""
             )));
         }
     };

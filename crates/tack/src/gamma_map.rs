@@ -50,6 +50,7 @@ pub(crate) fn gamma_map(
         Source::Pattern(pattern) => {
             let scale = match pattern {
                 AdhesionPattern::Stripes { period, .. }
+                | AdhesionPattern::Rings { period, .. }
                 | AdhesionPattern::Checkerboard { period, .. } => (fields::ADHESION_PERIOD, period),
                 AdhesionPattern::Random {
                     correlation_length, ..
@@ -100,7 +101,7 @@ fn source<'a>(
     ];
     let reads: &[&str] = match pattern {
         PatternKind::Uniform => &[],
-        PatternKind::Stripes => &[
+        PatternKind::Stripes | PatternKind::Rings => &[
             fields::ADHESION_GAMMA_B,
             fields::ADHESION_PERIOD,
             fields::ADHESION_FRACTION,
@@ -145,6 +146,12 @@ fn source<'a>(
     let generated = match pattern {
         PatternKind::Uniform => None,
         PatternKind::Stripes => Some(AdhesionPattern::Stripes {
+            gamma_a: gamma,
+            gamma_b: required(fields::ADHESION_GAMMA_B, spec.gamma_b)?,
+            period: required(fields::ADHESION_PERIOD, spec.period)?,
+            fraction: spec.fraction.unwrap_or(0.5),
+        }),
+        PatternKind::Rings => Some(AdhesionPattern::Rings {
             gamma_a: gamma,
             gamma_b: required(fields::ADHESION_GAMMA_B, spec.gamma_b)?,
             period: required(fields::ADHESION_PERIOD, spec.period)?,

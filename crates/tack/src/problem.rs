@@ -1590,17 +1590,35 @@ fn check_fits(
         concat!(field_name!(grid.nx), "/", field_name!(grid.ny))
     };
     let (nx, ny) = grid.shape();
-    // An ellipsoid's contact reaches furthest along its larger radius.
-    let (geometry, body) = match *geometry {
-        Geometry::Ellipsoid { radius_x, radius_y } => (
-            Geometry::Sphere {
-                radius: radius_x.max(radius_y),
-            },
-            "the ellipsoid (R its larger radius)",
-        ),
-        g => (g, "the sphere"),
-    };
-    match geometry {
+    if let Geometry::Ellipsoid { radius_x, radius_y } = *geometry {
+        // The elliptic Hertz contact at the deepest approach, with the sphere's margin.
+        let depth = (path.max_approach - first_touch).max(0.0);
+        let hertz = tack_analytics::elliptic_hertz_from_approach(1.0, radius_x, radius_y, depth);
+        let need = |semi: f64| SPHERE_FIT_MARGIN * semi;
+        let (mx, my) = (need(hertz.semi_axis_x), need(hertz.semi_axis_y));
+        if mx > grid.lx() / 2.0 || my > grid.ly() / 2.0 {
+            let n_x = count_text((2.0 * mx / grid.dx()).ceil());
+            let n_y = count_text((2.0 * my / grid.dx()).ceil());
+            return Err(SceneError::Inconsistent(format!(
+                "{size_field} = {} is too small for the ellipsoid: at {depth_field} = {} the \
+                 elliptic Hertz contact has semi-axes {} × {} that with a 30% margin need a free \
+                 grid of at least {n_x} × {n_y} elements at {dx_field} = {} (the grid is {nx} × \
+                 {ny}); raise {size_field} or {shallower}",
+                if spec.n.is_some() {
+                    nx.to_string()
+                } else {
+                    format!("{nx}/{ny}")
+                },
+                num(path.max_approach),
+                num(hertz.semi_axis_x),
+                num(hertz.semi_axis_y),
+                num(grid.dx()),
+                dx_field = fields::GRID_DX
+            )));
+        }
+        return Ok(());
+    }
+    match *geometry {
         Geometry::Sphere { radius } => {
             let depth = path.max_approach - first_touch;
             let hertz = (radius * depth).sqrt();
@@ -1613,7 +1631,7 @@ fn check_fits(
                     format!("{hertz:.4e}")
                 };
                 return Err(SceneError::Inconsistent(format!(
-                    "{size_field} = {} is too small for {body}: at {depth_field} = {} \
+                    "{size_field} = {} is too small for the sphere: at {depth_field} = {} \
                      the Hertz contact radius sqrt(R·d) = {hertz} plus a 30% margin needs a \
                      free grid of at least {n_needed} × {n_needed} elements at {dx_field} = {} \
                      (the grid is {nx} × {ny}); raise {size_field} or {shallower}",

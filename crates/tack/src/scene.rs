@@ -86,13 +86,13 @@ pub struct AdhesionSpec {
     /// A generated pattern of γ (`material.gamma` is phase a, or the random field's mean).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub pattern: Option<PatternKind>,
-    /// Stripes, checkerboard: γ of phase b (≥ 0).
+    /// Stripes, rings, checkerboard: γ of phase b (≥ 0).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub gamma_b: Option<f64>,
-    /// Stripes, checkerboard: the period.
+    /// Stripes, rings, checkerboard: the period.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub period: Option<f64>,
-    /// Stripes: the share of a period that is phase b (default 0.5).
+    /// Stripes, rings: the share of a period that is phase b (default 0.5).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fraction: Option<f64>,
     /// Random: the correlation length ℓ.
@@ -122,6 +122,9 @@ pub enum PatternKind {
     Uniform,
     /// Stripes along x: phase b on `fraction` of each `period`, centred on x = 0.
     Stripes,
+    /// Rings about the origin: phase b on a central disc of radius `fraction·period/2` and on
+    /// rings about r = k·period.
+    Rings,
     /// Squares of side `period/2`, phase a on the one centred at the origin.
     Checkerboard,
     /// A seeded log-normal field of mean `material.gamma`, coefficient of variation
@@ -135,6 +138,7 @@ impl PatternKind {
         match self {
             Self::Uniform => "uniform",
             Self::Stripes => "stripes",
+            Self::Rings => "rings",
             Self::Checkerboard => "checkerboard",
             Self::Random => "random",
         }

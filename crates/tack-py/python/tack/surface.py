@@ -25,6 +25,7 @@ __all__ = [
     "gamma_random",
     "power_law",
     "random",
+    "rings",
     "sphere",
     "stripes",
 ]
@@ -151,6 +152,31 @@ def stripes(
         ny,
         dx=_check.positive("dx", dx),
         kind="stripes",
+        gamma_a=_check.non_negative("gamma", gamma),
+        gamma_b=_check.non_negative("gamma_b", gamma_b),
+        period=_check.positive("period", period),
+        fraction=_check.real("fraction", fraction),
+    )
+
+
+def rings(
+    shape: Shape,
+    *,
+    dx: float,
+    gamma: float,
+    gamma_b: float,
+    period: float,
+    fraction: float = 0.5,
+) -> np.ndarray:
+    """A work of adhesion in rings about the origin: ``gamma_b`` on a central disc of radius
+    ``fraction*period/2`` and on rings about r = k*period, ``gamma`` elsewhere
+    (``adhesion.pattern = "rings"``)."""
+    nx, ny = _shape(shape)
+    return _tack.gamma_pattern(
+        nx,
+        ny,
+        dx=_check.positive("dx", dx),
+        kind="rings",
         gamma_a=_check.non_negative("gamma", gamma),
         gamma_b=_check.non_negative("gamma_b", gamma_b),
         period=_check.positive("period", period),
