@@ -194,7 +194,11 @@ fn check_period(grid: &Grid, period: f64) -> Result<(), GeometryError> {
         Err(GeometryError::OutOfRange {
             field: fields::ADHESION_PERIOD,
             value: period,
-            allowed: "a finite length of at least two elements per period (twice grid.dx)",
+            allowed: concat!(
+                "a finite length of at least two elements per period (twice ",
+                tack_fields::field_name!(grid.dx),
+                ")"
+            ),
         })
     }
 }

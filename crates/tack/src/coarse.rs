@@ -87,7 +87,7 @@ pub fn coarse_problem(scene: &Scene, problem: &Problem) -> Result<Problem, Scene
             }
         }
         Some(Roughness::File { path, dataset }) => {
-            let fine = crate::problem::read_map(
+            let fine = crate::map_file::read_map(
                 &scene.base_dir.join(path),
                 path,
                 dataset.as_deref(),

@@ -72,7 +72,7 @@ pub(crate) fn gamma_map(
         Source::File(path, dataset) => {
             let full = base_dir.join(path);
             let names = (fields::ADHESION_GAMMA_MAP, fields::ADHESION_DATASET);
-            let map = crate::problem::read_map(&full, path, dataset, grid, names)?;
+            let map = crate::map_file::read_map(&full, path, dataset, grid, names)?;
             check_array(&map, grid, &format!("{} = `{}`", names.0, path.display()))?;
             map
         }

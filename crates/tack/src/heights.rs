@@ -329,10 +329,13 @@ pub fn pull_off_scene(
         _ => "# no sphere radius: the path was given\n".to_owned(),
     };
     let gamma_note = if spec.gamma_map.is_some() {
-        "# The work of adhesion is an array given in memory too (stored in the result's \
-         /surface/gamma);\n# material.gamma is its reference.\n"
+        format!(
+            "# The work of adhesion is an array given in memory too (stored in the result's \
+             /surface/gamma);\n# {} is its mean, the reference.\n",
+            tack_fields::MATERIAL_GAMMA
+        )
     } else {
-        ""
+        String::new()
     };
     scene.text = format!(
         "# tack::heights::pull_off: the rigid body is a {nx} x {ny} height array given in \

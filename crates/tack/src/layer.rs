@@ -38,7 +38,7 @@ pub(crate) fn body_layer(
         }
         return Ok(None);
     }
-    let required = |field: &'static str, v: Option<f64>, what: &str| {
+    let required = |field: &'static str, v: Option<f64>, what: String| {
         v.ok_or_else(|| {
             SceneError::Inconsistent(format!(
                 "{field} is required with {} = \"layer\": {what}",
@@ -50,12 +50,15 @@ pub(crate) fn body_layer(
         thickness: required(
             fields::BODY_THICKNESS,
             spec.thickness,
-            "the thickness h > 0",
+            "the thickness h > 0".into(),
         )?,
         poisson: required(
             fields::BODY_POISSON,
             spec.poisson,
-            "Poisson's ratio ν in (−1, 0.5] (material.e_star is the layer's E/(1 − ν²))",
+            format!(
+                "Poisson's ratio ν in (−1, 0.5] ({} is the layer's E/(1 − ν²))",
+                fields::MATERIAL_E_STAR
+            ),
         )?,
         interface: match spec.interface.unwrap_or(InterfaceKind::Bonded) {
             InterfaceKind::Bonded => Interface::Bonded,
@@ -67,18 +70,21 @@ pub(crate) fn body_layer(
         return Err(SceneError::out_of_range(
             fields::BODY_THICKNESS,
             num(layer.thickness),
-            "at least 1e-9·grid.dx: a thinner film's compliance is below the round-off of the \
-             operator",
+            concat!(
+                "at least 1e-9·",
+                tack_fields::field_name!(grid.dx),
+                ": a thinner film's compliance is below the round-off of the operator"
+            ),
         ));
     }
     if grid.boundary() == Boundary::Free && layer.thickness < FREE_LAYER_RESOLVED_PER_DX * grid.dx()
     {
         warnings.push(format!(
-            "under-resolved layer: {} = {} is below grid.dx/64, where the free layer operator's \
-             element integrals are not resolved; refine {} or use a periodic grid",
+            "under-resolved layer: {} = {} is below {dx}/64, where the free layer operator's \
+             element integrals are not resolved; refine {dx} or use a periodic grid",
             fields::BODY_THICKNESS,
             num(layer.thickness),
-            fields::GRID_DX
+            dx = fields::GRID_DX
         ));
     }
     Ok(Some(layer))

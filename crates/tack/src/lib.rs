@@ -61,6 +61,7 @@ pub mod error;
 pub mod gamma_map;
 pub mod heights;
 pub mod layer;
+mod map_file;
 pub mod memory;
 pub mod overrides;
 pub mod problem;

@@ -25,8 +25,8 @@ use crate::scene::{
     Roughness, Scene, SceneError, SceneSchema, num,
 };
 
-/// Relative tolerance on a height map's `dx` against `grid.dx`.
-pub const DX_MATCH_TOLERANCE: f64 = 1e-9;
+pub use crate::map_file::DX_MATCH_TOLERANCE;
+pub(crate) use crate::map_file::read_map;
 
 pub use crate::pull_off_path::SPHERE_FIT_MARGIN;
 
@@ -1436,78 +1436,6 @@ fn add_roughness(
     Ok(())
 }
 
-/// Reads a map (heights or γ; HDF5 by extension, else text) and checks its `dx` against the
-/// grid's; `names` are the fields of its path and dataset, for messages.
-/// A text map without a `# dx = ...` header takes the grid's `dx`.
-pub(crate) fn read_map(
-    full: &Path,
-    given: &Path,
-    dataset: Option<&str>,
-    grid: &Grid,
-    names: (&'static str, &'static str),
-) -> Result<ndarray::Array2<f64>, SceneError> {
-    let field = |what: String| {
-        SceneError::Inconsistent(format!("{} = `{}`: {what}", names.0, given.display()))
-    };
-    let is_h5 = full
-        .extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| matches!(e.to_ascii_lowercase().as_str(), "h5" | "hdf5"));
-    match std::fs::metadata(full) {
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
-            return Err(field(format!(
-                "no such file (looked for `{}`)",
-                full.display()
-            )));
-        }
-        Err(e) => {
-            return Err(field(format!("cannot read `{}`: {e}", full.display())));
-        }
-        Ok(m) if m.is_dir() => {
-            return Err(field(format!(
-                "`{}` is a directory, not a map file",
-                full.display()
-            )));
-        }
-        Ok(m) if !m.is_file() => {
-            return Err(field(format!(
-                "`{}` is not a regular file (a device, FIFO or socket), not a map file",
-                full.display()
-            )));
-        }
-        Ok(_) => {}
-    }
-    let (heights, dx) = if is_h5 {
-        // The grid's shape: a map declaring another is refused before its data is read.
-        tack_io::read_height_map_h5(full, dataset, Some(grid.shape()))
-            .map_err(|e| field(e.to_string()))?
-    } else {
-        if dataset.is_some() {
-            return Err(field(format!(
-                "{} applies only to HDF5 maps (.h5, .hdf5)",
-                names.1
-            )));
-        }
-        // Parse with the grid's dx (succeeds whatever the header says), then read the
-        // header's own dx: a parse error now means there is no header.
-        let (heights, _) = tack_geometry::read_height_map_file(full, Some(grid.dx()))
-            .map_err(|e| field(e.to_string()))?;
-        match tack_geometry::read_height_map_file(full, None) {
-            Ok((_, dx)) => (heights, dx),
-            Err(tack_geometry::GeometryError::Parse(_)) => (heights, grid.dx()),
-            Err(e) => return Err(field(e.to_string())),
-        }
-    };
-    if ((dx - grid.dx()) / grid.dx()).abs() > DX_MATCH_TOLERANCE {
-        return Err(field(format!(
-            "the map's dx = {dx} differs from {dx_field} = {} (relative tolerance \
-             {DX_MATCH_TOLERANCE:e}); set {dx_field} to the map's element size",
-            grid.dx(),
-            dx_field = fields::GRID_DX
-        )));
-    }
-    Ok(heights)
-}
 
 /// A waviness must span at least [`MIN_ELEMENTS_PER_WAVELENGTH`] elements; on a periodic grid
 /// the period must hold a whole number of wavelengths (along x; and along y for 2D waviness).
