@@ -31,10 +31,29 @@ fn bare_fft_pair(mx: usize, my: usize) -> impl FnMut() {
     move || fft.round_trip()
 }
 
-/// Median times (s) of one operator application on an `n²` grid and of the bare FFT round trip
-/// of its padded size.
-fn operator_vs_floor(n: usize, boundary: Boundary) -> Result<(f64, f64)> {
-    let mut op = operator_for(Grid::square(n, 1.0, boundary)?, 1.0)?;
+/// The body of a kernel bench row: the half-space, or a bonded incompressible layer of 4Δx.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Body {
+    HalfSpace,
+    Layer,
+}
+
+/// Median times (s) of one application of `body`'s operator on an `n²` grid and of the bare
+/// FFT round trip of its padded size.
+fn body_vs_floor(n: usize, boundary: Boundary, body: Body) -> Result<(f64, f64)> {
+    let grid = Grid::square(n, 1.0, boundary)?;
+    let mut op = match body {
+        Body::HalfSpace => operator_for(grid, 1.0)?,
+        Body::Layer => tack_kernels::layer_operator_for(
+            grid,
+            1.0,
+            &tack_kernels::Layer {
+                thickness: 4.0,
+                poisson: 0.5,
+                interface: tack_kernels::Interface::Bonded,
+            },
+        )?,
+    };
     let p = Array2::from_shape_fn((n, n), |(i, j)| ((i + 2 * j) % 5) as f64);
     let mut u = Array2::zeros((n, n));
     let t_op = median_time(|| op.apply(p.view(), u.view_mut()));
@@ -48,20 +67,27 @@ fn operator_vs_floor(n: usize, boundary: Boundary) -> Result<(f64, f64)> {
 /// `cargo xtask bench-kernels`: operator application vs the bare FFT pair of its padded size.
 pub fn kernels() -> Result<()> {
     println!("operator application vs bare forward+inverse r2c FFT pair of the same padded size");
+    println!("(layer: a bonded incompressible film of thickness 4Δx on a rigid base)");
     println!(
-        "{:>6} {:>10} {:>12} {:>12} {:>8}",
-        "N", "boundary", "apply [ms]", "fft [ms]", "ratio"
+        "{:>6} {:>10} {:>11} {:>12} {:>12} {:>8}",
+        "N", "boundary", "body", "apply [ms]", "fft [ms]", "ratio"
     );
     for n in [256usize, 512, 1024] {
         for boundary in [Boundary::Free, Boundary::Periodic] {
-            let (t_op, t_fft) = operator_vs_floor(n, boundary)?;
-            println!(
-                "{n:>6} {:>10} {:>12.3} {:>12.3} {:>8.2}",
-                format!("{boundary:?}").to_lowercase(),
-                t_op * 1e3,
-                t_fft * 1e3,
-                t_op / t_fft
-            );
+            for body in [Body::HalfSpace, Body::Layer] {
+                let (t_op, t_fft) = body_vs_floor(n, boundary, body)?;
+                println!(
+                    "{n:>6} {:>10} {:>11} {:>12.3} {:>12.3} {:>8.2}",
+                    format!("{boundary:?}").to_lowercase(),
+                    match body {
+                        Body::HalfSpace => "half-space",
+                        Body::Layer => "layer",
+                    },
+                    t_op * 1e3,
+                    t_fft * 1e3,
+                    t_op / t_fft
+                );
+            }
         }
     }
     Ok(())
@@ -245,9 +271,17 @@ pub fn all(args: &[String]) -> Result<()> {
     } else {
         vec![256, 512]
     } {
-        for boundary in [Boundary::Free, Boundary::Periodic] {
-            let (t_op, t_fft) = operator_vs_floor(n, boundary)?;
-            let label = format!("{n}² {boundary:?}");
+        for (boundary, body) in [
+            (Boundary::Free, Body::HalfSpace),
+            (Boundary::Periodic, Body::HalfSpace),
+            (Boundary::Free, Body::Layer),
+            (Boundary::Periodic, Body::Layer),
+        ] {
+            let (t_op, t_fft) = body_vs_floor(n, boundary, body)?;
+            let label = match body {
+                Body::HalfSpace => format!("{n}² {boundary:?}"),
+                Body::Layer => format!("{n}² {boundary:?} layer"),
+            };
             println!(
                 "   {label:<16} apply {:8.3} ms  floor {:8.3} ms  ratio {:.2}",
                 t_op * 1e3,

@@ -1436,7 +1436,6 @@ fn add_roughness(
     Ok(())
 }
 
-
 /// A waviness must span at least [`MIN_ELEMENTS_PER_WAVELENGTH`] elements; on a periodic grid
 /// the period must hold a whole number of wavelengths (along x; and along y for 2D waviness).
 fn check_wavelength(grid: &Grid, lambda: f64, two_d: bool) -> Result<(), SceneError> {
