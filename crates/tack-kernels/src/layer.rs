@@ -250,7 +250,7 @@ mod tests {
     #[test]
     fn thin_bonded_compressible_layer_is_in_uniaxial_strain() {
         // u/p = h(1+ν)(1−2ν)/(E(1−ν)), i.e. S → kh(1−2ν)/(2(1−ν)²); the relative correction is
-        // O(kh) with a coefficient that grows as ν → 1/2 (the incompressible crossover at
+        // O((kh)²) with a coefficient that grows as ν → 1/2 (the incompressible crossover at
         // kh ~ √(1−2ν)), so ν = 0.49 is tested at smaller kh.
         for (nu, kh, tol) in [(-0.9, 1e-4, 1e-3), (0.0, 1e-4, 1e-3), (0.3, 1e-4, 1e-3)] {
             let s = layer_compliance_factor(kh, nu, Interface::Bonded);
