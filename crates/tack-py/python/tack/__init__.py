@@ -231,7 +231,7 @@ def _gamma(value: Any, shape: Tuple[int, ...]) -> Tuple[float, Optional[np.ndarr
     """``pull_off``'s ``gamma``: a number > 0, or an array of the heights' shape (finite, >= 0,
     mean > 0) whose mean is the reference; returns the reference and the array (or None)."""
     note = " (a pull-off needs adhesion; for contact without it use tack.contact)"
-    if isinstance(value, np.ndarray) or _check._ndim(value) > 0:
+    if _check._ndim(value) == 2:
         g = _check.heights(value, "gamma")
         if g.shape != tuple(shape):
             raise _check.invalid(
