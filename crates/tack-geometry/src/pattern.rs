@@ -4,7 +4,7 @@
 //! a phase boundary — within `1e-9` of the period, relative, so whatever the rounding of `x/period`
 //! — belongs to phase a.
 //!
-//! * **Stripes** along x: phase b where `|x − round(x/p)·p| < fraction·p/2`, phase a elsewhere.
+//! * **Stripes** across x (bands parallel to y): phase b where `|x − round(x/p)·p| < fraction·p/2`, phase a elsewhere.
 //! * **Rings** about the origin: the same rule in the radius `r` (phase b on a central disc of
 //!   radius `fraction·p/2` and on rings about r = k·p): the axisymmetric patterns whose
 //!   zero-range answer is exact (`tack_analytics::axisymmetric_retraction`).
@@ -50,7 +50,8 @@ const PATTERN_STREAM_DOMAIN: u64 = 1 << 63;
 /// A generated work-of-adhesion pattern (γ per element).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum AdhesionPattern {
-    /// Stripes along x: phase b on the part `fraction` of each period centred on x = k·period, phase a elsewhere.
+    /// Stripes across x (bands parallel to y): phase b on the part `fraction` of each period
+    /// centred on x = k·period, phase a elsewhere.
     Stripes {
         /// γ of phase a (field `material.gamma`), finite `≥ 0`.
         gamma_a: f64,

@@ -102,7 +102,7 @@ mod write;
 pub use error::IoError;
 pub use h5::MAX_DATASET_BYTES;
 pub use model::{Curve, Provenance, RunResult, Snapshot, Summary};
-pub use read::{describe, read_height_map_h5, read_result};
+pub use read::{describe, read_gamma_map_h5, read_height_map_h5, read_result};
 pub use sweep::{
     POINT_FAILED, POINT_INCOMPLETE, POINT_MISSING, POINT_OK, ParameterColumn, SweepTable,
     read_sweep_table, write_sweep_table,

@@ -156,15 +156,34 @@ pub fn read_height_map_h5(
     dataset: Option<&str>,
     shape: Option<(usize, usize)>,
 ) -> Result<(Array2<f64>, f64), IoError> {
+    read_map_h5(path, dataset, shape, ["heights", "/surface/heights"])
+}
+
+/// A work-of-adhesion map from an HDF5 file: [`read_height_map_h5`] with the default datasets
+/// `gamma`, then `/surface/gamma` (the map of tack's own result files), never the heights.
+pub fn read_gamma_map_h5(
+    path: &Path,
+    dataset: Option<&str>,
+    shape: Option<(usize, usize)>,
+) -> Result<(Array2<f64>, f64), IoError> {
+    read_map_h5(path, dataset, shape, ["gamma", "/surface/gamma"])
+}
+
+fn read_map_h5(
+    path: &Path,
+    dataset: Option<&str>,
+    shape: Option<(usize, usize)>,
+    defaults: [&str; 2],
+) -> Result<(Array2<f64>, f64), IoError> {
     let file = open(path)?;
     let name = match dataset {
         Some(name) => name,
-        None => ["heights", "/surface/heights"]
+        None => defaults
             .into_iter()
             .find(|n| file.link_exists(n))
             .ok_or_else(|| IoError::Missing {
                 path: path.to_owned(),
-                what: "dataset `heights` (nor `/surface/heights`)".to_owned(),
+                what: format!("dataset `{}` (nor `{}`)", defaults[0], defaults[1]),
             })?,
     };
     read_heights(&file, name, shape, Bound::Foreign, path)

@@ -73,6 +73,10 @@ impl FreeOperator {
 }
 
 impl ElasticOperator for FreeOperator {
+    fn is_half_space(&self) -> bool {
+        true
+    }
+
     fn grid(&self) -> &Grid {
         &self.grid
     }

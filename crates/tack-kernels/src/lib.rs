@@ -98,10 +98,8 @@ pub trait ElasticOperator: Send {
     /// Whether this is the homogeneous half-space of [`ElasticOperator::e_star`]: solvers may
     /// then solve on windows and coarsened grids with half-space operators of their own
     /// (sub-grid CG, cropping, nested starts). Other bodies (a layer) return false, and
-    /// solvers keep to the operator's own grid.
-    fn is_half_space(&self) -> bool {
-        true
-    }
+    /// solvers keep to the operator's own grid. Required, so a new body says which it is.
+    fn is_half_space(&self) -> bool;
     /// `displacement = K · pressure`. Both views have the grid's shape.
     fn apply(&mut self, pressure: ArrayView2<f64>, displacement: ArrayViewMut2<f64>);
     /// Displacement of an element's centre per unit pressure on that element alone.

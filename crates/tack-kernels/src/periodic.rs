@@ -57,6 +57,10 @@ impl PeriodicOperator {
 }
 
 impl ElasticOperator for PeriodicOperator {
+    fn is_half_space(&self) -> bool {
+        true
+    }
+
     fn grid(&self) -> &Grid {
         &self.grid
     }

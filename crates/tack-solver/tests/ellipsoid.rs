@@ -98,13 +98,14 @@ fn elliptic_pull_off_ratio(k: f64) -> f64 {
 fn elliptic_pull_off_beside_the_johnson_greenwood_approximation() {
     // Rx/Ry = 4. Measured F/F_JG at b_JG/Δx = 8, 16, 32: 1.1531, 1.1068, 1.0722; Richardson
     // 1.0604 (8, 16) and 1.0376 (16, 32; 25 s, so CI runs 8 and 16). The zero-range criterion
-    // is first order and too adhesive, as on the sphere; the extrapolation settles 2–4% above
+    // is first order and too adhesive, as on the sphere; the extrapolation lands 6% and 3.8% above
     // F_JG. That is the approximation's own error: it keeps the contact elliptic and imposes
     // Griffith only at the axes' ends, good near the circle and worse with the ellipticity.
-    // Tolerance: the Richardson value within 8% of F_JG, and the meshes ordered.
+    // Tolerance: the meshes ordered and the Richardson value in [1.02, 1.09]: above F_JG by
+    // more than the sphere's Richardson error (< 1%), below the coarse pair's +6% plus 3%.
     let (coarse, fine) = (elliptic_pull_off_ratio(8.0), elliptic_pull_off_ratio(16.0));
     let richardson = 2.0 * fine - coarse;
     println!("ellipsoid Rx/Ry = 4: F/F_JG = {coarse:.4}, {fine:.4}; Richardson {richardson:.4}");
-    assert!(coarse > fine && fine > richardson);
-    assert!((richardson - 1.0).abs() < 0.08, "{richardson}");
+    assert!(coarse > fine, "{coarse} {fine}");
+    assert!((1.02..1.09).contains(&richardson), "{richardson}");
 }

@@ -198,7 +198,7 @@ fn straight_fronts_crossing_stripes_are_held_by_the_strong_one() {
 }
 
 #[test]
-fn a_uniform_map_gives_the_bits_of_the_uniform_solver() {
+fn a_uniform_map_gives_the_equilibria_of_the_uniform_solver() {
     let grid = Grid::square(41, 0.05, Boundary::Free).unwrap();
     let surface = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
     let path = ApproachPath::load_retract(0.0, 0.2, 0.02, 0.01).unwrap();
@@ -241,6 +241,42 @@ fn a_uniform_map_keeps_the_bits_of_the_dugdale_law() {
         results.push(r.records.iter().map(|s| s.force).collect::<Vec<_>>());
     }
     assert_eq!(results[0], results[1]);
+}
+
+#[test]
+fn a_dugdale_map_scales_the_tension_at_one_range() {
+    // γ_ij = 2γ everywhere at reference γ and σ0 is the uniform law of 2γ and 2σ0 (the same
+    // range γ/σ0): the map's tensions σ0·γ_ij/γ must carry the whole physics.
+    use tack_solver::AdhesionLaw;
+    let grid = Grid::square(41, 0.05, Boundary::Free).unwrap();
+    let surface = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
+    let path = ApproachPath::load_retract(-0.05, 0.2, 0.02, 0.01).unwrap();
+    let run = |gamma: f64, sigma0: f64, map: Option<f64>| {
+        let op = operator_for(grid, 1.0).unwrap();
+        let law = AdhesionLaw::Dugdale { sigma0 };
+        let mut s =
+            AdhesiveSolver::with_law(op, &surface, gamma, law, AdhesiveOptions::default()).unwrap();
+        if let Some(g) = map {
+            s.set_gamma_map(Array2::from_elem((41, 41), g).view())
+                .unwrap();
+        }
+        let r = s.run_path(&path, &SnapshotRequest::None, &mut ()).unwrap();
+        assert!(r.completed && r.all_converged());
+        r.records.iter().map(|s| s.force).collect::<Vec<_>>()
+    };
+    let (mapped, uniform) = (run(0.05, 0.5, Some(0.1)), run(0.1, 1.0, None));
+    let scale = uniform.iter().fold(0.0f64, |m, f| m.max(f.abs()));
+    for (a, b) in mapped.iter().zip(&uniform) {
+        assert!((a - b).abs() < 1e-9 * scale, "{a} vs {b}");
+    }
+    // And it is not the reference's own law.
+    let reference = run(0.05, 0.5, None);
+    assert!(
+        reference
+            .iter()
+            .zip(&uniform)
+            .any(|(a, b)| (a - b).abs() > 1e-3 * scale)
+    );
 }
 
 #[test]

@@ -57,6 +57,36 @@ pub(crate) fn gamma_map(
                 } => (fields::ADHESION_CORRELATION_LENGTH, correlation_length),
             };
             let map = pattern.field(grid)?;
+            // Extreme parameters (a contrast near 1e154, ℓ of 1e154 periods) overflow the field.
+            let what = match pattern {
+                AdhesionPattern::Random { .. } => format!(
+                    "{} = \"random\" ({}, {})",
+                    fields::ADHESION_PATTERN,
+                    fields::ADHESION_CONTRAST,
+                    fields::ADHESION_CORRELATION_LENGTH
+                ),
+                _ => fields::ADHESION_PATTERN.to_owned(),
+            };
+            check_array(&map, grid, &what)?;
+            if let AdhesionPattern::Stripes {
+                period, fraction, ..
+            }
+            | AdhesionPattern::Rings {
+                period, fraction, ..
+            } = pattern
+                && fraction > 0.0
+                && fraction < 1.0
+                && fraction.min(1.0 - fraction) * period < 2.0 * grid.dx()
+            {
+                warnings.push(format!(
+                    "under-resolved pattern: the narrower phase, min({f}, 1 − {f})·{p} = {}, spans \
+                     fewer than 2 elements; refine {}",
+                    num(fraction.min(1.0 - fraction) * period),
+                    fields::GRID_DX,
+                    f = fields::ADHESION_FRACTION,
+                    p = fields::ADHESION_PERIOD,
+                ));
+            }
             let elements = scale.1 / grid.dx();
             if elements < MIN_PATTERN_ELEMENTS {
                 warnings.push(format!(

@@ -331,7 +331,7 @@ pub fn pull_off_scene(
     let gamma_note = if spec.gamma_map.is_some() {
         format!(
             "# The work of adhesion is an array given in memory too (stored in the result's \
-             /surface/gamma);\n# {} is its mean, the reference.\n",
+             /surface/gamma);\n# {} is the reference of the path and of F_JKR.\n",
             tack_fields::MATERIAL_GAMMA
         )
     } else {

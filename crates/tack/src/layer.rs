@@ -11,6 +11,10 @@ use crate::scene::{BodyKind, BodySpec, InterfaceKind, SceneError, num};
 /// of the half-space terms it is built from.
 pub const MIN_THICKNESS_PER_DX: f64 = 1e-9;
 
+/// Least film thickness, in elements, of an adhesive run: the criterion's κ was calibrated on
+/// the half-space and checked on films of 10 elements and more (`tests/layer.rs`).
+pub const MIN_ADHESIVE_THICKNESS_PER_DX: f64 = 4.0;
+
 /// The free layer operator integrates each element's influence with up to 64 sub-squares per
 /// side (`tack_kernels::FreeLayerOperator`): a thinner layer than `Δx/64` is flagged.
 pub const FREE_LAYER_RESOLVED_PER_DX: f64 = 1.0 / 64.0;

@@ -54,8 +54,12 @@ pub(crate) fn read_map(
     }
     let (heights, dx) = if is_h5 {
         // The grid's shape: a map declaring another is refused before its data is read.
-        tack_io::read_height_map_h5(full, dataset, Some(grid.shape()))
-            .map_err(|e| field(e.to_string()))?
+        let read = if names.0 == fields::ADHESION_GAMMA_MAP {
+            tack_io::read_gamma_map_h5
+        } else {
+            tack_io::read_height_map_h5
+        };
+        read(full, dataset, Some(grid.shape())).map_err(|e| field(e.to_string()))?
     } else {
         if dataset.is_some() {
             return Err(field(format!(

@@ -41,6 +41,10 @@ pub const TOLERANCE_RANGE: (f64, f64) = (1e-14, 1e-1);
 /// The grid's size field when it is given as `nx` and `ny`.
 const GRID_NX_BY_NY: &str = concat!(field_name!(grid.nx), " × ", field_name!(grid.ny));
 
+/// Greatest ratio of an ellipsoid's radii: beyond it the elliptic Hertz and JKR references lose
+/// their digits (the eccentricity rounds to 1).
+pub const MAX_ELLIPSOID_RATIO: f64 = 1e6;
+
 /// Smallest wavelength, in elements, a waviness may have.
 pub const MIN_ELEMENTS_PER_WAVELENGTH: f64 = 4.0;
 
@@ -361,6 +365,40 @@ impl Problem {
             references.d_jkr = Some(tack_analytics::jkr_pull_off_approach(e_star, gamma, r));
         }
 
+        if let Some(layer) = &layer {
+            let named: Vec<&str> = [
+                ("F_JKR", references.f_jkr.is_some()),
+                ("F_Kendall", references.f_kendall.is_some()),
+                ("F_MDR", references.f_mdr.is_some()),
+                ("F_JG", references.f_elliptic.is_some()),
+                ("p*", references.p_star.is_some()),
+                ("Johnson's α", references.johnson_alpha.is_some()),
+                ("α*", references.alpha_star.is_some()),
+            ]
+            .into_iter()
+            .filter_map(|(n, on)| on.then_some(n))
+            .collect();
+            if !named.is_empty() {
+                warnings.push(format!(
+                    "the closed-form references ({}) are the half-space's: the layer of {} = {} \
+                     changes them, so the ratios measure the film's effect, not the error",
+                    named.join(", "),
+                    fields::BODY_THICKNESS,
+                    num(layer.thickness)
+                ));
+            }
+            if gamma > 0.0 && layer.thickness < crate::layer::MIN_ADHESIVE_THICKNESS_PER_DX * dx {
+                warnings.push(format!(
+                    "under-resolved film: {} = {} spans fewer than {} elements; the criterion's κ \
+                     was calibrated on the half-space and on films of 10 elements and more; \
+                     refine {}",
+                    fields::BODY_THICKNESS,
+                    num(layer.thickness),
+                    crate::layer::MIN_ADHESIVE_THICKNESS_PER_DX,
+                    fields::GRID_DX
+                ));
+            }
+        }
         let first_touch = surface.min();
         let kappa = f.solver.kappa.unwrap_or(KAPPA);
         if !(kappa.is_finite() && kappa > 0.0) {
@@ -374,7 +412,7 @@ impl Problem {
         let sphere_radius = match f.geometry {
             Geometry::Sphere { radius } => Some(radius),
             // The default path of the sphere of the same Gaussian curvature.
-            Geometry::Ellipsoid { radius_x, radius_y } => Some((radius_x * radius_y).sqrt()),
+            Geometry::Ellipsoid { radius_x, radius_y } => Some(radius_x.sqrt() * radius_y.sqrt()),
             _ => body_radius,
         };
         let (path, path_rule) = approach_path(
@@ -414,6 +452,7 @@ impl Problem {
             &path,
             first_touch,
             path_rule.is_some(),
+            layer.is_some(),
         )?;
         check_memory(scene, &grid, Some(path.step_bound()))?;
         // Random roughness and height arrays (measured surfaces); not waviness, whose
@@ -485,7 +524,8 @@ impl Problem {
         let gamma_max = gamma_map
             .as_ref()
             .map_or(gamma, |m| crate::gamma_map::map_range(m).2.max(gamma));
-        let window = if f.grid.crop {
+        // The crop's reach is the half-space's; a film bulges beyond it, so it runs uncropped.
+        let window = if f.grid.crop && layer.is_none() {
             contact_window(
                 &surface,
                 path.max_approach,
@@ -1353,7 +1393,20 @@ fn base_surface(grid: Grid, geometry: &Geometry) -> Result<Surface, SceneError> 
             s
         }
         Geometry::Ellipsoid { radius_x, radius_y } => {
-            Surface::from_shape(grid, &Ellipsoid::new(radius_x, radius_y)?)
+            let shape = Ellipsoid::new(radius_x, radius_y)?;
+            if radius_x.max(radius_y) / radius_x.min(radius_y) > MAX_ELLIPSOID_RATIO {
+                return Err(SceneError::out_of_range(
+                    fields::GEOMETRY_RADIUS_X,
+                    radius_x,
+                    concat!(
+                        "within a factor 1e6 of ",
+                        field_name!(geometry.radius_y),
+                        " (a longer ellipsoid is a cylinder: the elliptic integrals of its \
+                         references lose every digit)"
+                    ),
+                ));
+            }
+            Surface::from_shape(grid, &shape)
         }
         Geometry::None => Surface::flat(grid),
     })
@@ -1489,7 +1542,11 @@ fn check_fits(
     path: &ApproachPath,
     first_touch: f64,
     default_path: bool,
+    film: bool,
 ) -> Result<(), SceneError> {
+    // A thin film bulges around the contact: its radius reaches √(2.5Rd) (Shull's thin-film
+    // limit δ → 0.4a²/R) instead of Hertz's √(Rd).
+    let reach = if film { 2.5f64.sqrt() } else { 1.0 };
     // What set the deepest approach, as the message names it.
     let depth_field = if path.is_indentation() {
         fields::PROTOCOL_INDENT
@@ -1521,9 +1578,9 @@ fn check_fits(
         // The elliptic Hertz contact at the deepest approach, with the sphere's margin.
         let depth = (path.max_approach - first_touch).max(0.0);
         let hertz = tack_analytics::elliptic_hertz_from_approach(1.0, radius_x, radius_y, depth);
-        let need = |semi: f64| SPHERE_FIT_MARGIN * semi;
+        let need = |semi: f64| SPHERE_FIT_MARGIN * reach * semi;
         let (mx, my) = (need(hertz.semi_axis_x), need(hertz.semi_axis_y));
-        if mx > grid.lx() / 2.0 || my > grid.ly() / 2.0 {
+        if !(mx <= grid.lx() / 2.0 && my <= grid.ly() / 2.0) {
             let n_x = count_text((2.0 * mx / grid.dx()).ceil());
             let n_y = count_text((2.0 * my / grid.dx()).ceil());
             return Err(SceneError::Inconsistent(format!(
@@ -1548,7 +1605,7 @@ fn check_fits(
     match *geometry {
         Geometry::Sphere { radius } => {
             let depth = path.max_approach - first_touch;
-            let hertz = (radius * depth).sqrt();
+            let hertz = reach * (radius * depth).sqrt();
             let needed = SPHERE_FIT_MARGIN * hertz;
             if needed > half_extent {
                 let n_needed = count_text((2.0 * needed / grid.dx()).ceil());

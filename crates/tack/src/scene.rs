@@ -120,7 +120,7 @@ pub enum PatternKind {
     /// One γ everywhere (`material.gamma`).
     #[default]
     Uniform,
-    /// Stripes along x: phase b on `fraction` of each `period`, centred on x = 0.
+    /// Stripes across x (bands parallel to y): phase b on `fraction` of each `period`, centred on x = 0.
     Stripes,
     /// Rings about the origin: phase b on a central disc of radius `fraction·period/2` and on
     /// rings about r = k·period.

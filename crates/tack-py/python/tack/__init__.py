@@ -280,7 +280,7 @@ def pull_off(
             of the heights' shape with one gamma per element (finite, >= 0, mean > 0):
             patterned adhesion. The mean is then the reference of ``f_jkr``, the ratios and the
             default path; the summary holds ``gamma_min``, ``gamma_mean``, ``gamma_max`` and
-            ``result.gamma`` the array (e.g. ``tack.surface.stripes(...)``).
+            ``result.surface["gamma"]`` the array (e.g. ``tack.surface.stripes(...)``).
         periodic: the array is one period of a periodic body (default: free, non-periodic).
             On a periodic grid the approach is measured from the deformed mean plane (see
             :func:`contact`), and steps in full contact (approach >= mean of the heights) are
