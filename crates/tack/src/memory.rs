@@ -55,7 +55,16 @@ pub struct Estimate {
     pub record_bytes: f64,
 }
 
+/// Copies of a varying work of adhesion per element (the problem's, the solver's tensions and
+/// the result's), in f64 fields: added to [`Estimate::fields`] when γ varies.
+pub const GAMMA_MAP_FIELDS: f64 = 3.0;
+
 impl Estimate {
+    /// Adds `per_element` f64 fields of the grid's size (a varying γ: [`GAMMA_MAP_FIELDS`]).
+    pub fn add_fields(&mut self, per_element: f64) {
+        self.fields += self.elements * 8.0 * per_element;
+    }
+
     /// The whole estimate.
     pub fn total(&self) -> f64 {
         self.fields + self.snapshot_bytes + self.record_bytes

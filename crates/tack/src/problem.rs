@@ -565,7 +565,11 @@ impl Problem {
     /// snapshots `output.snapshots` keeps and the step records, over the path's step bound
     /// ([`tack_solver::ApproachPath::step_bound`]).
     pub fn memory_estimate(&self) -> crate::memory::Estimate {
-        crate::memory::estimate(&self.grid, self.path.step_bound(), &self.snapshots)
+        let mut e = crate::memory::estimate(&self.grid, self.path.step_bound(), &self.snapshots);
+        if self.gamma_map.is_some() {
+            e.add_fields(crate::memory::GAMMA_MAP_FIELDS);
+        }
+        e
     }
 
     /// A fresh solver for this problem (builds the elastic operator: FFT plans, kernel spectrum),
@@ -1032,7 +1036,14 @@ fn check_memory(scene: &Scene, grid: &Grid, steps: Option<usize>) -> Result<(), 
         Some(n) => (n, (&f.output.snapshots).into()),
         None => (0, SnapshotRequest::None),
     };
-    let estimate = crate::memory::estimate(grid, max_steps, &request);
+    let mut estimate = crate::memory::estimate(grid, max_steps, &request);
+    let a = &f.adhesion;
+    if a.gamma_map.is_some()
+        || a.pattern
+            .is_some_and(|p| p != crate::scene::PatternKind::Uniform)
+    {
+        estimate.add_fields(crate::memory::GAMMA_MAP_FIELDS);
+    }
     let grid_field = if f.grid.n.is_some() {
         fields::GRID_N
     } else {
