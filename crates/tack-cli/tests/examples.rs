@@ -335,8 +335,6 @@ fn overrides_are_applied_and_recorded() {
     );
 }
 
-/// `tack surface` output is a valid `roughness.kind = "file"` input (HDF5 and text), and the
-/// heights survive the round trip exactly.
 #[test]
 fn gamma_maps_round_trip_from_result_files_not_their_heights() {
     // `tack surface` of a patterned scene stores the map (/surface/gamma) beside the heights;
@@ -392,6 +390,8 @@ fn gamma_maps_round_trip_from_result_files_not_their_heights() {
     }
 }
 
+/// `tack surface` output is a valid `roughness.kind = "file"` input (HDF5 and text), and the
+/// heights survive the round trip exactly.
 #[test]
 fn surface_files_round_trip_as_height_maps() {
     let scratch = Scratch::new("surface");

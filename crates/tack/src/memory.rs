@@ -12,6 +12,8 @@
 //!   snapshots as `output.snapshots` can keep over `protocol.max_steps` steps (`"all"`: every
 //!   step, `{ every = k }`: one in k, `{ steps = [...] }`: the listed ones, `"pull_off"`: two);
 //! - step records: [`STEP_RECORD_BYTES`] per step, `protocol.max_steps` of them.
+//! - a work of adhesion that varies: [`GAMMA_MAP_FIELDS`] more fields (the problem's map, the
+//!   solver's tensions, the result's copy).
 //!
 //! The path's length is known before it runs when it ends at `protocol.retract_to` or is an
 //! indentation (`tack_solver::ApproachPath::step_bound`); a retraction that ends when contact is

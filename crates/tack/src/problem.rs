@@ -200,7 +200,8 @@ impl Problem {
         let grid = build_grid(&f.grid)?;
         // The working fields before anything of the grid's size is allocated; the snapshots
         // and records once the path's step count is known.
-        check_memory(scene, &grid, None)?;
+        let gamma_array = body.is_some_and(|b| b.gamma.is_some());
+        check_memory(scene, &grid, None, gamma_array)?;
         let mut surface = base_surface(grid, &f.geometry)?;
         let mut seed = None;
         let mut references = References::default();
@@ -365,40 +366,6 @@ impl Problem {
             references.d_jkr = Some(tack_analytics::jkr_pull_off_approach(e_star, gamma, r));
         }
 
-        if let Some(layer) = &layer {
-            let named: Vec<&str> = [
-                ("F_JKR", references.f_jkr.is_some()),
-                ("F_Kendall", references.f_kendall.is_some()),
-                ("F_MDR", references.f_mdr.is_some()),
-                ("F_JG", references.f_elliptic.is_some()),
-                ("p*", references.p_star.is_some()),
-                ("Johnson's α", references.johnson_alpha.is_some()),
-                ("α*", references.alpha_star.is_some()),
-            ]
-            .into_iter()
-            .filter_map(|(n, on)| on.then_some(n))
-            .collect();
-            if !named.is_empty() {
-                warnings.push(format!(
-                    "the closed-form references ({}) are the half-space's: the layer of {} = {} \
-                     changes them, so the ratios measure the film's effect, not the error",
-                    named.join(", "),
-                    fields::BODY_THICKNESS,
-                    num(layer.thickness)
-                ));
-            }
-            if gamma > 0.0 && layer.thickness < crate::layer::MIN_ADHESIVE_THICKNESS_PER_DX * dx {
-                warnings.push(format!(
-                    "under-resolved film: {} = {} spans fewer than {} elements; the criterion's κ \
-                     was calibrated on the half-space and on films of 10 elements and more; \
-                     refine {}",
-                    fields::BODY_THICKNESS,
-                    num(layer.thickness),
-                    crate::layer::MIN_ADHESIVE_THICKNESS_PER_DX,
-                    fields::GRID_DX
-                ));
-            }
-        }
         let first_touch = surface.min();
         let kappa = f.solver.kappa.unwrap_or(KAPPA);
         if !(kappa.is_finite() && kappa > 0.0) {
@@ -454,7 +421,7 @@ impl Problem {
             path_rule.is_some(),
             layer.is_some(),
         )?;
-        check_memory(scene, &grid, Some(path.step_bound()))?;
+        check_memory(scene, &grid, Some(path.step_bound()), gamma_array)?;
         // Random roughness and height arrays (measured surfaces); not waviness, whose
         // figures load in steps on purpose and whose contact is one patch per period.
         let span = surface.max() - surface.min();
@@ -514,6 +481,45 @@ impl Problem {
         }
         if let AdhesionLaw::Dugdale { sigma0 } = law {
             dugdale_references(&mut references, &mut warnings, e_star, gamma, sigma0, &grid);
+        }
+        if let Some(layer) = &layer {
+            let named: Vec<&str> = [
+                ("F_JKR", references.f_jkr.is_some()),
+                ("d_JKR", references.d_jkr.is_some()),
+                ("F_Maugis", references.f_maugis.is_some()),
+                ("F_Kendall", references.f_kendall.is_some()),
+                ("F_MDR", references.f_mdr.is_some()),
+                ("F_JG", references.f_elliptic.is_some()),
+                ("p*", references.p_star.is_some()),
+                ("Johnson's α", references.johnson_alpha.is_some()),
+                ("α*", references.alpha_star.is_some()),
+            ]
+            .into_iter()
+            .filter_map(|(n, on)| on.then_some(n))
+            .collect();
+            if !named.is_empty() {
+                warnings.push(format!(
+                    "the closed-form references ({}) are the half-space's: the layer of {} = {} \
+                     changes them, so the ratios measure the film's effect, not the error",
+                    named.join(", "),
+                    fields::BODY_THICKNESS,
+                    num(layer.thickness)
+                ));
+            }
+            if gamma > 0.0
+                && matches!(law, AdhesionLaw::JkrLimit { .. })
+                && layer.thickness < crate::layer::MIN_ADHESIVE_THICKNESS_PER_DX * dx
+            {
+                warnings.push(format!(
+                    "under-resolved film: {} = {} spans fewer than {} elements; the criterion's κ \
+                     was calibrated on the half-space and on films of 10 elements and more; \
+                     refine {}",
+                    fields::BODY_THICKNESS,
+                    num(layer.thickness),
+                    crate::layer::MIN_ADHESIVE_THICKNESS_PER_DX,
+                    fields::GRID_DX
+                ));
+            }
         }
         // A cohesive zone loads elements up to the range above the contact: the crop keeps them.
         let range = match law {
@@ -1030,7 +1036,12 @@ fn finish_default_path(
 /// Refuses a scene whose run cannot fit the machine's memory (see [`crate::memory`]). With
 /// `steps: None` only the working fields count (checked before the surface or anything else of
 /// the grid's size is allocated); with the path's step bound, also its snapshots and records.
-fn check_memory(scene: &Scene, grid: &Grid, steps: Option<usize>) -> Result<(), SceneError> {
+fn check_memory(
+    scene: &Scene,
+    grid: &Grid,
+    steps: Option<usize>,
+    gamma_array: bool,
+) -> Result<(), SceneError> {
     let f = &scene.file;
     let (max_steps, request) = match steps {
         Some(n) => (n, (&f.output.snapshots).into()),
@@ -1038,7 +1049,8 @@ fn check_memory(scene: &Scene, grid: &Grid, steps: Option<usize>) -> Result<(), 
     };
     let mut estimate = crate::memory::estimate(grid, max_steps, &request);
     let a = &f.adhesion;
-    if a.gamma_map.is_some()
+    if gamma_array
+        || a.gamma_map.is_some()
         || a.pattern
             .is_some_and(|p| p != crate::scene::PatternKind::Uniform)
     {
@@ -1406,16 +1418,25 @@ fn base_surface(grid: Grid, geometry: &Geometry) -> Result<Surface, SceneError> 
         Geometry::Ellipsoid { radius_x, radius_y } => {
             let shape = Ellipsoid::new(radius_x, radius_y)?;
             if radius_x.max(radius_y) / radius_x.min(radius_y) > MAX_ELLIPSOID_RATIO {
-                return Err(SceneError::out_of_range(
-                    fields::GEOMETRY_RADIUS_X,
-                    radius_x,
-                    concat!(
-                        "within a factor 1e6 of ",
-                        field_name!(geometry.radius_y),
-                        " (a longer ellipsoid is a cylinder: the elliptic integrals of its \
-                         references lose every digit)"
-                    ),
-                ));
+                let (field, value, other) = if radius_x > radius_y {
+                    (
+                        fields::GEOMETRY_RADIUS_X,
+                        radius_x,
+                        fields::GEOMETRY_RADIUS_Y,
+                    )
+                } else {
+                    (
+                        fields::GEOMETRY_RADIUS_Y,
+                        radius_y,
+                        fields::GEOMETRY_RADIUS_X,
+                    )
+                };
+                return Err(SceneError::Inconsistent(format!(
+                    "{field} = {} is invalid: must be within a factor 1e6 of {other} (a longer \
+                     ellipsoid is a cylinder: the elliptic integrals of its references lose \
+                     every digit)",
+                    num(value)
+                )));
             }
             Surface::from_shape(grid, &shape)
         }
@@ -1558,6 +1579,11 @@ fn check_fits(
     // A thin film bulges around the contact: its radius reaches √(2.5Rd) (Shull's thin-film
     // limit δ → 0.4a²/R) instead of Hertz's √(Rd).
     let reach = if film { 2.5f64.sqrt() } else { 1.0 };
+    let radius_rule = if film {
+        "sqrt(2.5·R·d) (a thin film's)"
+    } else {
+        "sqrt(R·d) (Hertz)"
+    };
     // What set the deepest approach, as the message names it.
     let depth_field = if path.is_indentation() {
         fields::PROTOCOL_INDENT
@@ -1596,7 +1622,7 @@ fn check_fits(
             let n_y = count_text((2.0 * my / grid.dx()).ceil());
             return Err(SceneError::Inconsistent(format!(
                 "{size_field} = {} is too small for the ellipsoid: at {depth_field} = {} the \
-                 elliptic Hertz contact has semi-axes {} × {} that with a 30% margin need a free \
+                 contact has semi-axes {} × {} (elliptic Hertz{}) that with a 30% margin need a free \
                  grid of at least {n_x} × {n_y} elements at {dx_field} = {} (the grid is {nx} × \
                  {ny}); raise {size_field} or {shallower}",
                 if spec.n.is_some() {
@@ -1605,8 +1631,13 @@ fn check_fits(
                     format!("{nx}/{ny}")
                 },
                 num(path.max_approach),
-                num(hertz.semi_axis_x),
-                num(hertz.semi_axis_y),
+                num(reach * hertz.semi_axis_x),
+                num(reach * hertz.semi_axis_y),
+                if film {
+                    ", times √2.5 on a thin film"
+                } else {
+                    ""
+                },
                 num(grid.dx()),
                 dx_field = fields::GRID_DX
             )));
@@ -1627,7 +1658,7 @@ fn check_fits(
                 };
                 return Err(SceneError::Inconsistent(format!(
                     "{size_field} = {} is too small for the sphere: at {depth_field} = {} \
-                     the Hertz contact radius sqrt(R·d) = {hertz} plus a 30% margin needs a \
+                     the contact radius {radius_rule} = {hertz} plus a 30% margin needs a \
                      free grid of at least {n_needed} × {n_needed} elements at {dx_field} = {} \
                      (the grid is {nx} × {ny}); raise {size_field} or {shallower}",
                     if spec.n.is_some() {

@@ -245,6 +245,11 @@ def _gamma(value: Any, shape: Tuple[int, ...]) -> Tuple[float, Optional[np.ndarr
         if not mean > 0.0:
             raise _check.invalid("gamma.mean()", mean, "a number > 0" + note)
         return mean, g
+    if _check._ndim(value) > 0 and not isinstance(value, (str, bytes)):
+        raise TypeError(
+            "gamma: expected a real number (int or float) or a 2-D array of the heights' shape, "
+            f"got {_check.describe(value)}"
+        )
     return _check.positive("gamma", value, note), None
 
 
