@@ -257,7 +257,7 @@ fn read_heights(
     let shape = declared_shape(&ds, name, path)?;
     let &[nx, ny] = &shape[..] else {
         return Err(invalid(format!(
-            "dataset `{name}` has shape {shape:?}; expected 2D heights (nx, ny)"
+            "dataset `{name}` has shape {shape:?}; expected a 2D map (nx, ny)"
         )));
     };
     if shape.contains(&0) {
@@ -267,7 +267,7 @@ fn read_heights(
     }
     if let Some((gx, gy)) = expected.filter(|&e| e != (nx, ny)) {
         return Err(invalid(format!(
-            "dataset `{name}` declares a {nx} × {ny} height map, but the grid is {gx} × {gy}; \
+            "dataset `{name}` declares a {nx} × {ny} map, but the grid is {gx} × {gy}; \
              the map must have the grid's shape (nothing was read)"
         )));
     }

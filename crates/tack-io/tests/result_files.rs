@@ -432,7 +432,7 @@ fn height_map_errors_are_clear() {
     let line = Array1::from(vec![1.0, 2.0]).into_dyn();
     height_file(&path, "heights", &line.view(), Some("root"));
     assert!(
-        err(None).contains("has shape [2]; expected 2D"),
+        err(None).contains("has shape [2]; expected a 2D map"),
         "{}",
         err(None)
     );
