@@ -107,26 +107,8 @@ impl AdhesionPattern {
                 gamma_b,
                 period,
                 fraction,
-            } => {
-                check_phases(gamma_a, gamma_b)?;
-                check_period(grid, period)?;
-                if !(0.0..=1.0).contains(&fraction) {
-                    return Err(GeometryError::OutOfRange {
-                        field: fields::ADHESION_FRACTION,
-                        value: fraction,
-                        allowed: "a number from 0 to 1",
-                    });
-                }
-                Ok(Array2::from_shape_fn(grid.shape(), |(i, _)| {
-                    let t = grid.x(i) / period;
-                    if (t - t.round()).abs() < fraction / 2.0 - TIE {
-                        gamma_b
-                    } else {
-                        gamma_a
-                    }
-                }))
             }
-            Self::Rings {
+            | Self::Rings {
                 gamma_a,
                 gamma_b,
                 period,
@@ -141,8 +123,15 @@ impl AdhesionPattern {
                         allowed: "a number from 0 to 1",
                     });
                 }
+                // The distance that repeats: x for stripes, r for rings.
+                let rings = matches!(self, Self::Rings { .. });
                 Ok(Array2::from_shape_fn(grid.shape(), |(i, j)| {
-                    let t = grid.x(i).hypot(grid.y(j)) / period;
+                    let s = if rings {
+                        grid.x(i).hypot(grid.y(j))
+                    } else {
+                        grid.x(i)
+                    };
+                    let t = s / period;
                     if (t - t.round()).abs() < fraction / 2.0 - TIE {
                         gamma_b
                     } else {

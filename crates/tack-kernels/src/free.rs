@@ -23,6 +23,8 @@ pub struct FreeOperator {
     /// The preconditioner's spectrum on its own, unpadded transform grid.
     precond_hat: Vec<f64>,
     precond_fft: Fft2,
+    /// Displacement of an element's centre per unit pressure on it.
+    self_compliance: f64,
 }
 
 impl FreeOperator {
@@ -30,8 +32,33 @@ impl FreeOperator {
     pub fn new(grid: Grid, e_star: f64) -> Result<Self, KernelError> {
         let e_star = check_modulus(e_star)?;
         let (nx, ny) = grid.shape();
-        let (mx, my) = (padded_size(nx), padded_size(ny));
         let dx = grid.dx();
+        // Love's coefficient is even in both offsets: evaluate one quadrant, mirror it.
+        let quadrant = Array2::from_shape_fn((nx, ny), |(i, j)| {
+            love_rectangle(i as f64 * dx, j as f64 * dx, dx / 2.0, dx / 2.0) / e_star
+        });
+        Ok(Self::from_quadrant(
+            grid,
+            e_star,
+            &quadrant,
+            SELF_COMPLIANCE * dx / e_star,
+            |px, py| stiffness_spectrum(px, py, dx, e_star),
+        ))
+    }
+
+    /// The operator of the even influence coefficients `quadrant[[|i|, |j|]]` (offsets in
+    /// elements, the grid's shape) with `self_compliance` and the preconditioner's spectral
+    /// stiffness `precond(px, py)` on its own unpadded transform grid: any body whose
+    /// coefficients depend on the offset only (the half-space, a layer: `FreeLayerOperator`).
+    pub(crate) fn from_quadrant(
+        grid: Grid,
+        e_star: f64,
+        quadrant: &Array2<f64>,
+        self_compliance: f64,
+        precond: impl FnOnce(usize, usize) -> Array2<f64>,
+    ) -> Self {
+        let (nx, ny) = grid.shape();
+        let (mx, my) = (padded_size(nx), padded_size(ny));
         // |offset| in elements of padded index i, or None in the zero band.
         let offset = |i: usize, n: usize, m: usize| -> Option<usize> {
             if i < n {
@@ -42,10 +69,6 @@ impl FreeOperator {
                 None
             }
         };
-        // Love's coefficient is even in both offsets: evaluate one quadrant, mirror it.
-        let quadrant = Array2::from_shape_fn((nx, ny), |(i, j)| {
-            love_rectangle(i as f64 * dx, j as f64 * dx, dx / 2.0, dx / 2.0) / e_star
-        });
         let kernel = Array2::from_shape_fn((mx, my), |(i, j)| {
             match (offset(i, nx, mx), offset(j, ny, my)) {
                 (Some(ox), Some(oy)) => quadrant[[ox, oy]],
@@ -60,15 +83,16 @@ impl FreeOperator {
         // the operator's padded transform pair (`cargo xtask bench`, CG iteration table).
         let (px, py) = (fast_size(nx), fast_size(ny));
         let precond_fft = Fft2::new(px, py);
-        let precond_hat = precond_fft.prepare_kernel(&stiffness_spectrum(px, py, dx, e_star));
-        Ok(Self {
+        let precond_hat = precond_fft.prepare_kernel(&precond(px, py));
+        Self {
             grid,
             e_star,
             kernel_hat,
             fft,
             precond_hat,
             precond_fft,
-        })
+            self_compliance,
+        }
     }
 }
 
@@ -91,7 +115,7 @@ impl ElasticOperator for FreeOperator {
             .convolve(displacement, &self.precond_hat, pressure);
     }
     fn self_compliance(&self) -> f64 {
-        SELF_COMPLIANCE * self.grid.dx() / self.e_star
+        self.self_compliance
     }
 }
 

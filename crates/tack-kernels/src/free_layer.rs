@@ -22,8 +22,7 @@ use ndarray::{Array2, ArrayView2, ArrayViewMut2};
 use rayon::prelude::*;
 use tack_geometry::Grid;
 
-use crate::fft2::Fft2;
-use crate::free::{fast_size, padded_size};
+use crate::FreeOperator;
 use crate::layer::{Interface, Layer};
 use crate::love::love_rectangle;
 use crate::periodic_layer::layer_stiffness_spectrum;
@@ -195,14 +194,9 @@ pub(crate) fn layer_influence(
 /// zero-padded `mx × my` grid, so `apply` is the exact direct sum of them; the preconditioner
 /// is the layer's periodic spectral stiffness on the unpadded fast size.
 pub struct FreeLayerOperator {
-    grid: Grid,
-    e_star: f64,
+    /// The DC-FFT operator of the layer's coefficients.
+    inner: FreeOperator,
     layer: Layer,
-    self_compliance: f64,
-    kernel_hat: Vec<f64>,
-    fft: Fft2,
-    precond_hat: Vec<f64>,
-    precond_fft: Fft2,
 }
 
 impl FreeLayerOperator {
@@ -213,41 +207,13 @@ impl FreeLayerOperator {
         let e_star = check_modulus(e_star)?;
         layer.check()?;
         let (nx, ny) = grid.shape();
-        let (mx, my) = (padded_size(nx), padded_size(ny));
         let dx = grid.dx();
-        let offset = |i: usize, n: usize, m: usize| -> Option<usize> {
-            if i < n {
-                Some(i)
-            } else if i > m - n {
-                Some(m - i)
-            } else {
-                None
-            }
-        };
         let quadrant = layer_influence(nx, ny, dx, e_star, &layer);
-        let kernel = Array2::from_shape_fn((mx, my), |(i, j)| {
-            match (offset(i, nx, mx), offset(j, ny, my)) {
-                (Some(ox), Some(oy)) => quadrant[[ox, oy]],
-                _ => 0.0,
-            }
-        });
-        let mut fft = Fft2::new(mx, my);
-        let spectrum = fft.transform(kernel.view()).mapv(|c| c.re);
-        let kernel_hat = fft.prepare_kernel(&spectrum);
-        let (px, py) = (fast_size(nx), fast_size(ny));
-        let precond_fft = Fft2::new(px, py);
-        let precond_hat =
-            precond_fft.prepare_kernel(&layer_stiffness_spectrum(px, py, dx, e_star, &layer));
-        Ok(Self {
-            grid,
-            e_star,
-            layer,
-            self_compliance: quadrant[[0, 0]],
-            kernel_hat,
-            fft,
-            precond_hat,
-            precond_fft,
-        })
+        let inner =
+            FreeOperator::from_quadrant(grid, e_star, &quadrant, quadrant[[0, 0]], |px, py| {
+                layer_stiffness_spectrum(px, py, dx, e_star, &layer)
+            });
+        Ok(Self { inner, layer })
     }
 
     /// The layer.
@@ -262,20 +228,19 @@ impl ElasticOperator for FreeLayerOperator {
     }
 
     fn grid(&self) -> &Grid {
-        &self.grid
+        self.inner.grid()
     }
     fn e_star(&self) -> f64 {
-        self.e_star
+        self.inner.e_star()
     }
     fn apply(&mut self, pressure: ArrayView2<f64>, displacement: ArrayViewMut2<f64>) {
-        self.fft.convolve(pressure, &self.kernel_hat, displacement);
+        self.inner.apply(pressure, displacement);
     }
     fn precondition(&mut self, displacement: ArrayView2<f64>, pressure: ArrayViewMut2<f64>) {
-        self.precond_fft
-            .convolve(displacement, &self.precond_hat, pressure);
+        self.inner.precondition(displacement, pressure);
     }
     fn self_compliance(&self) -> f64 {
-        self.self_compliance
+        self.inner.self_compliance()
     }
 }
 

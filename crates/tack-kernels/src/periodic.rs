@@ -1,7 +1,7 @@
 //! Periodic boundaries: the spectral half-space kernel `ũ(q) = 2 p̃(q)/(E*|q|)` with the
 //! mean (q = 0) mode dropped, so displacements are zero-mean (docs/theory.md §2.3).
 
-use ndarray::{ArrayView2, ArrayViewMut2};
+use ndarray::{Array2, ArrayView2, ArrayViewMut2};
 use tack_geometry::Grid;
 
 use crate::fft2::Fft2;
@@ -27,11 +27,32 @@ impl PeriodicOperator {
     pub fn new(grid: Grid, e_star: f64) -> Result<Self, KernelError> {
         let e_star = check_modulus(e_star)?;
         let (nx, ny) = grid.shape();
-        let fft = Fft2::new(nx, ny);
         let q = wave_numbers(nx, ny, grid.dx());
         let kernel_hat = q.mapv(|q| if q > 0.0 { 2.0 / (e_star * q) } else { 0.0 });
         let inverse_hat = q.mapv(|q| e_star * q / 2.0);
         let precond_hat = stiffness_spectrum(nx, ny, grid.dx(), e_star);
+        Ok(Self::from_spectra(
+            grid,
+            e_star,
+            &kernel_hat,
+            &inverse_hat,
+            &precond_hat,
+        ))
+    }
+
+    /// The operator of the compliance spectrum `kernel_hat` (natural half-spectrum layout, 0 at
+    /// q = 0: the mean mode dropped), its inverse on zero-mean fields and the preconditioner's
+    /// stiffness: any body whose response is a function of the wave vector (the half-space, a
+    /// layer: `PeriodicLayerOperator`).
+    pub(crate) fn from_spectra(
+        grid: Grid,
+        e_star: f64,
+        kernel_hat: &Array2<f64>,
+        inverse_hat: &Array2<f64>,
+        precond_hat: &Array2<f64>,
+    ) -> Self {
+        let (nx, ny) = grid.shape();
+        let fft = Fft2::new(nx, ny);
         // Centre displacement under a unit pressure on one element, minus the dropped mean:
         // the inverse DFT at the origin of the kernel times the element's share 1/N of the load.
         let (mut total, n) = (0.0, (nx * ny) as f64);
@@ -44,15 +65,15 @@ impl PeriodicOperator {
             };
             total += weight * k;
         }
-        Ok(Self {
+        Self {
             grid,
             e_star,
-            kernel_hat: fft.prepare_kernel(&kernel_hat),
-            inverse_hat: fft.prepare_kernel(&inverse_hat),
-            precond_hat: fft.prepare_kernel(&precond_hat),
+            kernel_hat: fft.prepare_kernel(kernel_hat),
+            inverse_hat: fft.prepare_kernel(inverse_hat),
+            precond_hat: fft.prepare_kernel(precond_hat),
             self_compliance: total / n,
             fft,
-        })
+        }
     }
 }
 

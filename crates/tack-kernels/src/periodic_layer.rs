@@ -4,9 +4,8 @@
 use ndarray::{Array2, ArrayView2, ArrayViewMut2};
 use tack_geometry::Grid;
 
-use crate::fft2::Fft2;
 use crate::layer::Layer;
-use crate::{ElasticOperator, KernelError, check_modulus, wave_numbers};
+use crate::{ElasticOperator, KernelError, PeriodicOperator, check_modulus, wave_numbers};
 
 /// Layer operator for a grid that is one period of a repeated pattern: the half-space's
 /// [`crate::PeriodicOperator`] with its spectrum `2/(E*|q|)` multiplied by the layer's
@@ -21,14 +20,10 @@ use crate::{ElasticOperator, KernelError, check_modulus, wave_numbers};
 /// `solve_zero_mean` would no longer be the inverse on zero-mean fields for a frictionless
 /// base, whose mean compliance is not the k → 0 limit of its spectrum.
 pub struct PeriodicLayerOperator {
-    grid: Grid,
+    /// The spectral operator of the layer's compliance.
+    inner: PeriodicOperator,
     e_star: f64,
     layer: Layer,
-    kernel_hat: Vec<f64>,
-    inverse_hat: Vec<f64>,
-    precond_hat: Vec<f64>,
-    self_compliance: f64,
-    fft: Fft2,
 }
 
 /// The layer's spectral stiffness `E*|q|/(2S(|q|h))` on an `mx × my` transform grid of spacing
@@ -51,7 +46,6 @@ impl PeriodicLayerOperator {
         let e_star = check_modulus(e_star)?;
         layer.check()?;
         let (nx, ny) = grid.shape();
-        let fft = Fft2::new(nx, ny);
         let q = wave_numbers(nx, ny, grid.dx());
         let kernel_hat = q.mapv(|q| {
             if q > 0.0 {
@@ -62,25 +56,12 @@ impl PeriodicLayerOperator {
         });
         let inverse_hat = kernel_hat.mapv(|k| if k > 0.0 { 1.0 / k } else { 0.0 });
         let precond_hat = layer_stiffness_spectrum(nx, ny, grid.dx(), e_star, &layer);
-        // As for the half-space: the inverse DFT at the origin of the kernel times 1/N.
-        let (mut total, n) = (0.0, (nx * ny) as f64);
-        for ((_, j), &k) in kernel_hat.indexed_iter() {
-            let weight = if j == 0 || (ny % 2 == 0 && j == ny / 2) {
-                1.0
-            } else {
-                2.0
-            };
-            total += weight * k;
-        }
+        let inner =
+            PeriodicOperator::from_spectra(grid, e_star, &kernel_hat, &inverse_hat, &precond_hat);
         Ok(Self {
-            grid,
+            inner,
             e_star,
             layer,
-            kernel_hat: fft.prepare_kernel(&kernel_hat),
-            inverse_hat: fft.prepare_kernel(&inverse_hat),
-            precond_hat: fft.prepare_kernel(&precond_hat),
-            self_compliance: total / n,
-            fft,
         })
     }
 
@@ -102,27 +83,26 @@ impl ElasticOperator for PeriodicLayerOperator {
     }
 
     fn grid(&self) -> &Grid {
-        &self.grid
+        self.inner.grid()
     }
     fn e_star(&self) -> f64 {
         self.e_star
     }
     fn apply(&mut self, pressure: ArrayView2<f64>, displacement: ArrayViewMut2<f64>) {
-        self.fft.convolve(pressure, &self.kernel_hat, displacement);
+        self.inner.apply(pressure, displacement);
     }
     fn self_compliance(&self) -> f64 {
-        self.self_compliance
+        self.inner.self_compliance()
     }
     fn precondition(&mut self, displacement: ArrayView2<f64>, pressure: ArrayViewMut2<f64>) {
-        self.fft.convolve(displacement, &self.precond_hat, pressure);
+        self.inner.precondition(displacement, pressure);
     }
     fn solve_zero_mean(
         &mut self,
         displacement: ArrayView2<f64>,
         pressure: ArrayViewMut2<f64>,
     ) -> bool {
-        self.fft.convolve(displacement, &self.inverse_hat, pressure);
-        true
+        self.inner.solve_zero_mean(displacement, pressure)
     }
 }
 

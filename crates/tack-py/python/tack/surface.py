@@ -10,7 +10,7 @@ raises ``TypeError`` and a bad value :class:`tack.TackError`, each naming the ar
 
 from __future__ import annotations
 
-from typing import Optional, Tuple, Union
+from typing import Any, Optional, Tuple, Union
 
 import numpy as np
 
@@ -134,6 +134,24 @@ def ellipsoid(shape: Shape, *, dx: float, radius_x: float, radius_y: float) -> n
     )
 
 
+def _two_phase(
+    kind: str, shape: Shape, dx: float, gamma: float, gamma_b: float, period: float, **extra: Any
+) -> np.ndarray:
+    """The two-phase pattern ``kind`` (``tack::geometry::AdhesionPattern``), its arguments
+    checked in order (``extra``: real numbers)."""
+    nx, ny = _shape(shape)
+    return _tack.gamma_pattern(
+        nx,
+        ny,
+        dx=_check.positive("dx", dx),
+        kind=kind,
+        gamma_a=_check.non_negative("gamma", gamma),
+        gamma_b=_check.non_negative("gamma_b", gamma_b),
+        period=_check.positive("period", period),
+        **{name: _check.real(name, value) for name, value in extra.items()},
+    )
+
+
 def stripes(
     shape: Shape,
     *,
@@ -143,20 +161,11 @@ def stripes(
     period: float,
     fraction: float = 0.5,
 ) -> np.ndarray:
-    """A work of adhesion in stripes along x, for :func:`tack.pull_off`'s ``gamma``: ``gamma_b``
-    on the share ``fraction`` of each ``period`` centred on x = k*period, ``gamma`` elsewhere
-    (a scene's ``adhesion.pattern = "stripes"``; an element takes the value at its centre)."""
-    nx, ny = _shape(shape)
-    return _tack.gamma_pattern(
-        nx,
-        ny,
-        dx=_check.positive("dx", dx),
-        kind="stripes",
-        gamma_a=_check.non_negative("gamma", gamma),
-        gamma_b=_check.non_negative("gamma_b", gamma_b),
-        period=_check.positive("period", period),
-        fraction=_check.real("fraction", fraction),
-    )
+    """A work of adhesion in stripes across x (bands parallel to y), for
+    :func:`tack.pull_off`'s ``gamma``: ``gamma_b`` on the share ``fraction`` of each ``period``
+    centred on x = k*period, ``gamma`` elsewhere (a scene's ``adhesion.pattern = "stripes"``;
+    an element takes the value at its centre)."""
+    return _two_phase("stripes", shape, dx, gamma, gamma_b, period, fraction=fraction)
 
 
 def rings(
@@ -171,17 +180,7 @@ def rings(
     """A work of adhesion in rings about the origin: ``gamma_b`` on a central disc of radius
     ``fraction*period/2`` and on rings about r = k*period, ``gamma`` elsewhere
     (``adhesion.pattern = "rings"``)."""
-    nx, ny = _shape(shape)
-    return _tack.gamma_pattern(
-        nx,
-        ny,
-        dx=_check.positive("dx", dx),
-        kind="rings",
-        gamma_a=_check.non_negative("gamma", gamma),
-        gamma_b=_check.non_negative("gamma_b", gamma_b),
-        period=_check.positive("period", period),
-        fraction=_check.real("fraction", fraction),
-    )
+    return _two_phase("rings", shape, dx, gamma, gamma_b, period, fraction=fraction)
 
 
 def checkerboard(
@@ -189,16 +188,7 @@ def checkerboard(
 ) -> np.ndarray:
     """A work of adhesion in squares of side ``period/2``, ``gamma`` on the one centred at the
     origin, ``gamma_b`` on its neighbours (``adhesion.pattern = "checkerboard"``)."""
-    nx, ny = _shape(shape)
-    return _tack.gamma_pattern(
-        nx,
-        ny,
-        dx=_check.positive("dx", dx),
-        kind="checkerboard",
-        gamma_a=_check.non_negative("gamma", gamma),
-        gamma_b=_check.non_negative("gamma_b", gamma_b),
-        period=_check.positive("period", period),
-    )
+    return _two_phase("checkerboard", shape, dx, gamma, gamma_b, period)
 
 
 def gamma_random(
