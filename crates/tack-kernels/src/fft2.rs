@@ -3,8 +3,10 @@
 //! Rows (the contiguous axis) go through real FFTs; the half spectrum is then transposed so
 //! that the complex FFTs along the other axis run on contiguous memory, all columns in one
 //! batched rustfft call. Kernels are stored in that transposed layout with the inverse
-//! normalisation `1/(mx·my)` folded in, so a convolution is: row r2c, transpose, column FFT,
-//! multiply, column inverse FFT, transpose, row c2r. Zero-padded rows are skipped.
+//! normalisation `1/(mx·my)` folded in, so a convolution is: row r2c; then, per block of
+//! columns while it is in cache, gather (transpose), column FFT, multiply, column inverse FFT;
+//! then gather the rows and row c2r. Zero-padded rows are skipped on the way in, and only the
+//! rows wanted are gathered and transformed on the way out.
 //!
 //! Threads: rows, columns and transpose blocks are split into contiguous lanes run on the
 //! current rayon pool (`rayon::ThreadPool::install` chooses it). Every row and column is
@@ -13,7 +15,8 @@
 
 use std::sync::Arc;
 
-use ndarray::{Array2, ArrayView2, ArrayViewMut2};
+use ndarray::parallel::prelude::*;
+use ndarray::{Array2, ArrayView2, ArrayViewMut2, Axis};
 use rayon::prelude::*;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::num_complex::Complex;
@@ -28,19 +31,24 @@ pub struct Fft2 {
     mx: usize,
     my: usize,
     mh: usize,
-    real: Array2<f64>,
+    /// Half spectra of the rows, row after row (`mx × mh`; rows `..nx` in use).
     rows: Vec<Complex<f64>>,
+    /// The same, column after column (`mh × mx`).
     cols: Vec<Complex<f64>>,
     r2c: Arc<dyn RealToComplex<f64>>,
     c2r: Arc<dyn ComplexToReal<f64>>,
     fwd: Arc<dyn Fft<f64>>,
     inv: Arc<dyn Fft<f64>>,
-    /// One row scratch and one column scratch per lane (grown to the pool's thread count).
-    scratch: Vec<(Scratch, Scratch)>,
+    /// Scratch of each lane (grown to the pool's thread count).
+    lanes: Vec<Lane>,
 }
 
-/// A transform's scratch buffer.
-type Scratch = Vec<Complex<f64>>;
+/// One lane's scratch: a real row, and the row and column transforms' scratch.
+struct Lane {
+    real: Vec<f64>,
+    row: Vec<Complex<f64>>,
+    col: Vec<Complex<f64>>,
+}
 
 /// Grids with fewer elements than this run on one lane (threads would cost more than they save).
 const PARALLEL_MIN: usize = 128 * 128;
@@ -60,14 +68,13 @@ impl Fft2 {
             mx,
             my,
             mh,
-            real: Array2::zeros((mx, my)),
             rows: vec![zero; mx * mh],
             cols: vec![zero; mh * mx],
             r2c,
             c2r,
             fwd,
             inv,
-            scratch: Vec::new(),
+            lanes: Vec::new(),
         }
     }
 
@@ -82,14 +89,18 @@ impl Fft2 {
         } else {
             1
         };
-        while self.scratch.len() < lanes {
+        while self.lanes.len() < lanes {
             let zero = Complex::new(0.0, 0.0);
-            let rows = self.r2c.get_scratch_len().max(self.c2r.get_scratch_len());
-            let cols = self
+            let row = self.r2c.get_scratch_len().max(self.c2r.get_scratch_len());
+            let col = self
                 .fwd
                 .get_inplace_scratch_len()
                 .max(self.inv.get_inplace_scratch_len());
-            self.scratch.push((vec![zero; rows], vec![zero; cols]));
+            self.lanes.push(Lane {
+                real: vec![0.0; self.my],
+                row: vec![zero; row],
+                col: vec![zero; col],
+            });
         }
         lanes
     }
@@ -113,180 +124,212 @@ impl Fft2 {
 
     /// Unnormalised spectrum of a full-size real array, natural layout `(mx, my/2 + 1)`.
     pub fn transform(&mut self, input: ArrayView2<f64>) -> Array2<Complex<f64>> {
-        self.real.assign(&input);
-        self.forward(self.mx);
+        assert_eq!(input.dim(), (self.mx, self.my), "transform input shape");
+        let lanes = self.lanes();
+        self.rows_forward(input, lanes);
+        self.columns(self.mx, lanes, |block, fwd, _, _, scratch| {
+            fwd.process_with_scratch(block, scratch)
+        });
         Array2::from_shape_fn((self.mx, self.mh), |(i, j)| self.cols[j * self.mx + i])
     }
 
     /// `out = first nx × ny block of ifft(fft(input zero-padded to mx × my) · kernel)`, with
-    /// `kernel` from [`Self::prepare_kernel`].
-    pub fn convolve(
-        &mut self,
-        input: ArrayView2<f64>,
-        kernel: &[f64],
-        mut out: ArrayViewMut2<f64>,
-    ) {
+    /// `kernel` from [`Self::prepare_kernel`]; `out` has the shape of `input`.
+    pub fn convolve(&mut self, input: ArrayView2<f64>, kernel: &[f64], out: ArrayViewMut2<f64>) {
         let (nx, ny) = input.dim();
-        self.real.slice_mut(ndarray::s![..nx, ..]).fill(0.0);
-        self.real.slice_mut(ndarray::s![..nx, ..ny]).assign(&input);
-        self.forward(nx);
-        let multiply = |c: &mut [Complex<f64>], k: &[f64]| {
-            c.iter_mut().zip(k).for_each(|(c, &k)| *c *= k);
-        };
-        if self.lanes() == 1 {
-            multiply(&mut self.cols, kernel);
-        } else {
-            self.cols
-                .par_chunks_mut(self.mx * 64)
-                .zip(kernel.par_chunks(self.mx * 64))
-                .for_each(|(c, k)| multiply(c, k));
-        }
-        self.inverse(nx);
-        out.assign(&self.real.slice(ndarray::s![..nx, ..ny]));
+        assert!(nx <= self.mx && ny <= self.my, "input larger than the grid");
+        assert_eq!(out.dim(), (nx, ny), "output shape");
+        assert_eq!(
+            kernel.len(),
+            self.mh * self.mx,
+            "kernel from prepare_kernel"
+        );
+        let (mx, lanes) = (self.mx, self.lanes());
+        self.rows_forward(input, lanes);
+        // Per block of columns while it is in cache: forward FFT, kernel, inverse FFT.
+        self.columns(nx, lanes, |block, fwd, inv, j0, scratch| {
+            fwd.process_with_scratch(block, scratch);
+            let k = &kernel[j0 * mx..j0 * mx + block.len()];
+            block.iter_mut().zip(k).for_each(|(c, &k)| *c *= k);
+            inv.process_with_scratch(block, scratch);
+        });
+        self.rows_inverse(nx, Some(out), lanes);
     }
 
     /// A forward and an inverse transform of the whole grid with nothing in between and no
-    /// rows skipped: the floor every FFT operator pays (for benchmarks).
+    /// rows skipped: the floor every FFT operator pays (for benchmarks). The real rows are
+    /// zeros, and the inverse's rows are computed and dropped.
     pub fn round_trip(&mut self) {
-        self.forward(self.mx);
-        self.inverse(self.mx);
+        let lanes = self.lanes();
+        let zeros = Array2::zeros((0, 0));
+        self.rows_forward_with(self.mx, zeros.view(), lanes);
+        self.columns(self.mx, lanes, |block, fwd, inv, _, scratch| {
+            fwd.process_with_scratch(block, scratch);
+            inv.process_with_scratch(block, scratch);
+        });
+        self.rows_inverse(self.mx, None, lanes);
     }
 
-    /// Spectrum of `self.real` (rows `nx..` taken as zero) into `self.cols`.
-    fn forward(&mut self, nx: usize) {
-        let (mx, my, mh) = (self.mx, self.my, self.mh);
-        let lanes = self.lanes();
+    /// Half spectra of the rows of `input` (zero-padded to `my`) into rows `..nx` of `rows`.
+    fn rows_forward(&mut self, input: ArrayView2<f64>, lanes: usize) {
+        self.rows_forward_with(input.nrows(), input, lanes);
+    }
+
+    /// Rows `..nx` of `rows` from the rows of `input` zero-padded to `my` (rows of `input`
+    /// beyond its own taken as zero).
+    fn rows_forward_with(&mut self, nx: usize, input: ArrayView2<f64>, lanes: usize) {
+        let mh = self.mh;
         let r2c = &self.r2c;
-        let rows_fft = |real: &mut [f64], rows: &mut [Complex<f64>], scratch: &mut Scratch| {
-            for (row, out) in real.chunks_exact_mut(my).zip(rows.chunks_exact_mut(mh)) {
-                r2c.process_with_scratch(row, out, scratch)
+        let band = |first: usize, rows: &mut [Complex<f64>], lane: &mut Lane| {
+            for (k, spec) in rows.chunks_exact_mut(mh).enumerate() {
+                let i = first + k;
+                let real = &mut lane.real;
+                let filled = if i < input.nrows() {
+                    let row = input.row(i);
+                    real.iter_mut().zip(row).for_each(|(r, &v)| *r = v);
+                    row.len()
+                } else {
+                    0
+                };
+                real[filled..].fill(0.0);
+                r2c.process_with_scratch(real, spec, &mut lane.row)
                     .expect("planned lengths");
             }
         };
-        let real = &mut self.real.as_slice_mut().expect("standard layout")[..nx * my];
         let rows = &mut self.rows[..nx * mh];
-        in_row_bands(real, rows, (my, mh), &mut self.scratch, lanes, rows_fft);
-        transpose(&self.rows, &mut self.cols, nx, mh, mx, lanes);
-        let fwd = &self.fwd;
-        in_column_bands(
-            &mut self.cols,
-            mx,
-            &mut self.scratch,
-            lanes,
-            |cols, scratch| fwd.process_with_scratch(cols, scratch),
-        );
+        if lanes == 1 {
+            band(0, rows, &mut self.lanes[0]);
+        } else {
+            let per = nx.div_ceil(lanes).max(1);
+            rows.par_chunks_mut(per * mh)
+                .zip(self.lanes.par_iter_mut())
+                .enumerate()
+                .for_each(|(b, (rows, lane))| band(b * per, rows, lane));
+        }
     }
 
-    /// Inverse of `self.cols` into rows `..nx` of `self.real`.
-    fn inverse(&mut self, nx: usize) {
-        let (mx, mh, my) = (self.mx, self.mh, self.my);
-        let lanes = self.lanes();
-        let inv = &self.inv;
-        in_column_bands(
-            &mut self.cols,
-            mx,
-            &mut self.scratch,
-            lanes,
-            |cols, scratch| inv.process_with_scratch(cols, scratch),
-        );
-        transpose(&self.cols, &mut self.rows, mh, mx, mh, lanes);
-        let c2r = &self.c2r;
-        let rows_ifft = |real: &mut [f64], rows: &mut [Complex<f64>], scratch: &mut Scratch| {
-            for (row, spec) in real.chunks_exact_mut(my).zip(rows.chunks_exact_mut(mh)) {
+    /// Each lane takes its band of columns and, block by block, gathers them from rows `..nx`
+    /// of `rows` (zero below) and runs `f(block, forward plan, inverse plan, first column,
+    /// scratch)` on them while they are in cache.
+    fn columns(
+        &mut self,
+        nx: usize,
+        lanes: usize,
+        f: impl Fn(&mut [Complex<f64>], &dyn Fft<f64>, &dyn Fft<f64>, usize, &mut Vec<Complex<f64>>)
+        + Sync,
+    ) {
+        let (mx, mh) = (self.mx, self.mh);
+        let (fwd, inv, rows) = (self.fwd.as_ref(), self.inv.as_ref(), &self.rows);
+        let band = |first: usize, cols: &mut [Complex<f64>], scratch: &mut Vec<Complex<f64>>| {
+            for (b, block) in cols.chunks_mut(BLOCK * mx).enumerate() {
+                let j0 = first + b * BLOCK;
+                gather_columns(rows, block, nx, mh, mx, j0);
+                f(block, fwd, inv, j0, scratch);
+            }
+        };
+        if lanes == 1 {
+            band(0, &mut self.cols, &mut self.lanes[0].col);
+        } else {
+            let per = mh.div_ceil(lanes);
+            self.cols
+                .par_chunks_mut(per * mx)
+                .zip(self.lanes.par_iter_mut())
+                .enumerate()
+                .for_each(|(b, (cols, lane))| band(b * per, cols, &mut lane.col));
+        }
+    }
+
+    /// Rows `..nx` of the inverse: each lane gathers its band of rows from `cols`, runs the
+    /// inverse real FFTs and writes each row's first `out.ncols()` values to `out` (dropped
+    /// without one).
+    fn rows_inverse(&mut self, nx: usize, out: Option<ArrayViewMut2<f64>>, lanes: usize) {
+        let (mx, my, mh) = (self.mx, self.my, self.mh);
+        let (c2r, cols) = (&self.c2r, &self.cols);
+        let band = |first: usize,
+                    rows: &mut [Complex<f64>],
+                    mut out: Option<ArrayViewMut2<f64>>,
+                    lane: &mut Lane| {
+            gather_rows(cols, rows, mx, mh, first);
+            for (k, spec) in rows.chunks_exact_mut(mh).enumerate() {
                 // A real signal's DC (and even-length Nyquist) bins are real; drop round-off.
                 spec[0].im = 0.0;
                 if my % 2 == 0 {
                     spec[mh - 1].im = 0.0;
                 }
-                c2r.process_with_scratch(spec, row, scratch)
+                c2r.process_with_scratch(spec, &mut lane.real, &mut lane.row)
                     .expect("planned lengths");
-            }
-        };
-        let real = &mut self.real.as_slice_mut().expect("standard layout")[..nx * my];
-        let rows = &mut self.rows[..nx * mh];
-        in_row_bands(real, rows, (my, mh), &mut self.scratch, lanes, rows_ifft);
-    }
-}
-
-/// Runs `f` on the real rows (length `my`) and their half spectra (length `mh`), `(my, mh)`
-/// = `row_lengths`, split into `lanes` contiguous bands of whole rows, each with its lane's
-/// row scratch; one lane runs on the calling thread.
-fn in_row_bands(
-    real: &mut [f64],
-    rows: &mut [Complex<f64>],
-    (my, mh): (usize, usize),
-    scratch: &mut [(Scratch, Scratch)],
-    lanes: usize,
-    f: impl Fn(&mut [f64], &mut [Complex<f64>], &mut Scratch) + Sync,
-) {
-    if lanes == 1 {
-        f(real, rows, &mut scratch[0].0);
-    } else {
-        let per = (real.len() / my).div_ceil(lanes).max(1);
-        real.par_chunks_mut(per * my)
-            .zip(rows.par_chunks_mut(per * mh))
-            .zip(scratch.par_iter_mut())
-            .for_each(|((real, rows), (scratch, _))| f(real, rows, scratch));
-    }
-}
-
-/// Runs `f` on the columns (each `mx` entries, stored one after another in `cols`) split into
-/// `lanes` contiguous bands of whole columns, each with its lane's column scratch; one lane
-/// runs on the calling thread.
-fn in_column_bands(
-    cols: &mut [Complex<f64>],
-    mx: usize,
-    scratch: &mut [(Scratch, Scratch)],
-    lanes: usize,
-    f: impl Fn(&mut [Complex<f64>], &mut Scratch) + Sync,
-) {
-    if lanes == 1 {
-        f(cols, &mut scratch[0].1);
-    } else {
-        let per = (cols.len() / mx).div_ceil(lanes);
-        cols.par_chunks_mut(per * mx)
-            .zip(scratch.par_iter_mut())
-            .for_each(|(cols, (_, scratch))| f(cols, scratch));
-    }
-}
-
-/// Writes the transpose of the first `rows` rows of the row-major `src` (row length `cols`)
-/// into `dst` (row length `dst_stride`), zero-filling `dst` columns `rows..dst_stride`. The
-/// destination rows are split into `lanes` contiguous bands written in parallel (pure copies).
-fn transpose(
-    src: &[Complex<f64>],
-    dst: &mut [Complex<f64>],
-    rows: usize,
-    cols: usize,
-    dst_stride: usize,
-    lanes: usize,
-) {
-    let per = cols.div_ceil(lanes).div_ceil(BLOCK).max(1) * BLOCK;
-    let band_copy = |band: usize, dst: &mut [Complex<f64>]| {
-        let first = band * per;
-        let last = (first + per).min(cols);
-        for j0 in (first..last).step_by(BLOCK) {
-            for i0 in (0..rows).step_by(BLOCK) {
-                for j in j0..(j0 + BLOCK).min(last) {
-                    let d = &mut dst[(j - first) * dst_stride..];
-                    for i in i0..(i0 + BLOCK).min(rows) {
-                        d[i] = src[i * cols + j];
-                    }
+                if let Some(out) = out.as_mut() {
+                    out.row_mut(k)
+                        .iter_mut()
+                        .zip(&lane.real)
+                        .for_each(|(o, &v)| *o = v);
                 }
             }
-            for j in j0..(j0 + BLOCK).min(last) {
-                let k = j - first;
-                dst[k * dst_stride + rows..(k + 1) * dst_stride].fill(Complex::new(0.0, 0.0));
+        };
+        let rows = &mut self.rows[..nx * mh];
+        if lanes == 1 {
+            band(0, rows, out, &mut self.lanes[0]);
+            return;
+        }
+        let per = nx.div_ceil(lanes).max(1);
+        match out {
+            Some(mut out) => out
+                .axis_chunks_iter_mut(Axis(0), per)
+                .into_par_iter()
+                .zip(rows.par_chunks_mut(per * mh))
+                .zip(self.lanes.par_iter_mut())
+                .enumerate()
+                .for_each(|(b, ((out, rows), lane))| band(b * per, rows, Some(out), lane)),
+            None => rows
+                .par_chunks_mut(per * mh)
+                .zip(self.lanes.par_iter_mut())
+                .enumerate()
+                .for_each(|(b, (rows, lane))| band(b * per, rows, None, lane)),
+        }
+    }
+}
+
+/// Fills `block` (whole columns of length `mx`, the first being column `j0`) from the first
+/// `nx` rows of the row-major `rows` (row length `mh`), zero below row `nx`; blocked for cache.
+fn gather_columns(
+    rows: &[Complex<f64>],
+    block: &mut [Complex<f64>],
+    nx: usize,
+    mh: usize,
+    mx: usize,
+    j0: usize,
+) {
+    let width = block.len() / mx;
+    for i0 in (0..nx).step_by(BLOCK) {
+        for k in 0..width {
+            let col = &mut block[k * mx..];
+            for i in i0..(i0 + BLOCK).min(nx) {
+                col[i] = rows[i * mh + j0 + k];
             }
         }
-    };
-    let dst = &mut dst[..cols * dst_stride];
-    if lanes == 1 {
-        band_copy(0, dst);
-    } else {
-        dst.par_chunks_mut(per * dst_stride)
-            .enumerate()
-            .for_each(|(band, dst)| band_copy(band, dst));
+    }
+    for col in block.chunks_exact_mut(mx) {
+        col[nx..].fill(Complex::new(0.0, 0.0));
+    }
+}
+
+/// Fills `rows` (whole rows of length `mh`, the first being row `first`) from the columns
+/// stored one after another in `cols` (column length `mx`); blocked for cache.
+fn gather_rows(
+    cols: &[Complex<f64>],
+    rows: &mut [Complex<f64>],
+    mx: usize,
+    mh: usize,
+    first: usize,
+) {
+    let height = rows.len() / mh;
+    for j0 in (0..mh).step_by(BLOCK) {
+        for k in 0..height {
+            let row = &mut rows[k * mh..];
+            for j in j0..(j0 + BLOCK).min(mh) {
+                row[j] = cols[j * mx + first + k];
+            }
+        }
     }
 }
 

@@ -333,13 +333,17 @@ impl AdhesiveSolver {
         let mut detach_margin;
         // `work.disp` and the gap are up to date only inside the last inexact round's window.
         let mut stale = false;
+        // A window known to hold every bonded element and every non-zero pressure (`None`: the
+        // whole grid): after an inexact sub-grid round only its window can have changed, so
+        // the next round's bookkeeping scans that instead of the grid.
+        let mut extent: Option<Window> = None;
         loop {
             if rounds == self.options.max_active_set_iterations {
                 converged = false;
                 break;
             }
             rounds += 1;
-            let n_bonded = self.bonded.iter().filter(|&&b| b).count();
+            let (tight, n_bonded) = bounding_box(&self.bonded, extent.as_ref());
             if periodic && n_bonded == n {
                 let map = self.patterned.then_some(self.tension.view());
                 match self.base.full_contact_or_weakest(closed, sigma_c, map) {
@@ -353,7 +357,8 @@ impl AdhesiveSolver {
                     }
                 }
             }
-            let fingerprint = hash_mask(&self.bonded);
+            let fingerprint = hash_box(&self.bonded, tight.as_ref());
+            let window = self.subgrid_around(tight);
             if !exact && just_changed && !inexact_visited.insert(fingerprint) {
                 // Inexact rounds came back to a set: finish the step with exact rounds only.
                 (inexact_tolerance, exact) = (None, true);
@@ -373,7 +378,7 @@ impl AdhesiveSolver {
                 // window, so only elements there may attach; the exact round checks them all.
                 // Margins scale with the round's tolerance; without adhesion the equilibrium is
                 // unique (a convex problem), so no decision needs one.
-                let (c, w) = self.solve_bonded(d, level, false);
+                let (c, w) = self.solve_bonded(d, level, false, window, extent.as_ref());
                 cg_total += c.iterations;
                 if sigma_c > 0.0 || self.patterned {
                     let relative = level / LOOSE_REFERENCE_TOLERANCE;
@@ -388,12 +393,14 @@ impl AdhesiveSolver {
                 }
                 fresh = w;
             } else {
-                let (c, _) = self.solve_bonded(d, self.options.cg.tolerance, true);
+                let (c, _) =
+                    self.solve_bonded(d, self.options.cg.tolerance, true, window, extent.as_ref());
                 cg_total += c.iterations;
                 worst = worst.max(c.residual);
                 converged &= c.converged;
             }
             stale = fresh.is_some();
+            extent = fresh;
             match fresh {
                 None => self.base.update_gap(d),
                 Some(w) => self.base.update_gap_in(d, &w),
@@ -505,18 +512,22 @@ impl AdhesiveSolver {
     /// same). With `full`, `work.disp = K p` on the whole grid afterwards (one full-grid product
     /// after a sub-grid solve) and `None` is returned; without it, a sub-grid solve only brings
     /// `work.disp` up to date inside the returned window.
+    ///
+    /// `window` is the sub-grid ([`Self::subgrid_around`] the bonded set), and `extent` a
+    /// window holding every non-zero pressure (`None`: anywhere).
     fn solve_bonded(
         &mut self,
         d: f64,
         tolerance: f64,
         full: bool,
+        window: Option<Window>,
+        extent: Option<&Window>,
     ) -> (Convergence, Option<Window>) {
         let cg = SolverOptions {
             tolerance,
             ..self.options.cg
         };
         let pre = self.options.preconditioned;
-        let window = self.bonded_window();
         let base = &mut self.base;
         let Some(window) = window else {
             let c = pcg(
@@ -552,7 +563,13 @@ impl AdhesiveSolver {
             &cg,
             pre,
         );
-        base.pressure.fill(0.0);
+        match extent {
+            Some(e) => base
+                .pressure
+                .slice_mut(ndarray::s![e.i0..e.i1, e.j0..e.j1])
+                .fill(0.0),
+            None => base.pressure.fill(0.0),
+        }
         base.pressure.slice_mut(block).assign(&sub.pressure);
         if full {
             base.op
@@ -564,33 +581,22 @@ impl AdhesiveSolver {
         }
     }
 
-    /// The sub-grid to solve on: the bonded set's bounding box, grown to the largest size with
-    /// the same FFT length (so few distinct sub-operators are built), or `None` when the grid is
-    /// periodic, sub-grids are switched off, or the box's transform would not be clearly
-    /// cheaper than the grid's.
-    fn bonded_window(&self) -> Option<Window> {
-        self.subgrid_of(&self.bonded)
+    /// The sub-grid around the `true` elements of `mask` (see [`Self::subgrid_around`]).
+    pub(crate) fn subgrid_of(&self, mask: &Array2<bool>) -> Option<Window> {
+        self.subgrid_around(bounding_box(mask, None).0)
     }
 
-    /// The sub-grid around the `true` elements of `mask` (see [`Self::bonded_window`]).
-    pub(crate) fn subgrid_of(&self, mask: &Array2<bool>) -> Option<Window> {
+    /// The sub-grid to solve on around the bounding box `tight` of a set: the box grown to the
+    /// largest size with the same FFT length (so few distinct sub-operators are built), or
+    /// `None` when the set is empty, the grid is periodic, sub-grids are switched off, or the
+    /// box's transform would not be clearly cheaper than the grid's.
+    pub(crate) fn subgrid_around(&self, tight: Option<Window>) -> Option<Window> {
         let grid = self.base.grid();
         if grid.boundary() != Boundary::Free || !self.options.bonded_subgrid {
             return None;
         }
         let (nx, ny) = grid.shape();
-        let (mut i0, mut i1, mut j0, mut j1) = (usize::MAX, 0, usize::MAX, 0);
-        for (i, row) in mask.outer_iter().enumerate() {
-            let row = row.to_slice().expect("standard layout");
-            if let Some(first) = row.iter().position(|&b| b) {
-                let last = row.iter().rposition(|&b| b).unwrap_or(first);
-                (i0, i1) = (i0.min(i), i + 1);
-                (j0, j1) = (j0.min(first), j1.max(last + 1));
-            }
-        }
-        if i1 == 0 {
-            return None;
-        }
+        let Window { i0, i1, j0, j1 } = tight?;
         let grow = |lo: usize, hi: usize, n: usize| {
             let size = (padded_size(hi - lo) / 2).clamp(hi - lo, n);
             let start = lo.min(n - size);
@@ -645,10 +651,46 @@ impl AdhesiveSolver {
 /// A sub-grid is used when its transform costs less than this fraction of the full grid's.
 const SUBGRID_COST_RATIO: f64 = 0.8;
 
-/// Deterministic fingerprint of a bonded set (for cycle detection within one step).
-/// The mask is packed into 64-bit words (element order) and those are hashed.
-pub(crate) fn hash_mask(mask: &Array2<bool>) -> u64 {
-    hash_masks(&[mask])
+/// The bounding box of the `true` elements of `mask` that lie in `within` (the whole grid when
+/// `None`), and their number; `None` when there are none.
+pub(crate) fn bounding_box(
+    mask: &Array2<bool>,
+    within: Option<&Window>,
+) -> (Option<Window>, usize) {
+    let (nx, ny) = mask.dim();
+    let w = within.copied().unwrap_or(Window {
+        i0: 0,
+        i1: nx,
+        j0: 0,
+        j1: ny,
+    });
+    let (mut i0, mut i1, mut j0, mut j1) = (usize::MAX, 0, usize::MAX, 0);
+    let mut count = 0;
+    for i in w.i0..w.i1 {
+        let row = &mask.row(i).to_slice().expect("standard layout")[w.j0..w.j1];
+        if let Some(first) = row.iter().position(|&b| b) {
+            let last = row.iter().rposition(|&b| b).unwrap_or(first);
+            count += row[first..=last].iter().filter(|&&b| b).count();
+            (i0, i1) = (i0.min(i), i + 1);
+            (j0, j1) = (j0.min(w.j0 + first), j1.max(w.j0 + last + 1));
+        }
+    }
+    let tight = (count > 0).then_some(Window { i0, i1, j0, j1 });
+    (tight, count)
+}
+
+/// Deterministic fingerprint of a set from its bounding box `tight` ([`bounding_box`]): the
+/// box and the mask inside it, packed into 64-bit words row by row, hashed.
+fn hash_box(mask: &Array2<bool>, tight: Option<&Window>) -> u64 {
+    let mut h = DefaultHasher::new();
+    if let Some(w) = tight {
+        (w.i0, w.i1, w.j0, w.j1).hash(&mut h);
+        for i in w.i0..w.i1 {
+            let row = &mask.row(i).to_slice().expect("standard layout")[w.j0..w.j1];
+            pack_into(row, &mut h);
+        }
+    }
+    h.finish()
 }
 
 /// Deterministic fingerprint of several masks of one grid (the Dugdale law's two sets).
@@ -661,7 +703,11 @@ pub(crate) fn hash_masks(masks: &[&Array2<bool>]) -> u64 {
 }
 
 fn hash_into(mask: &Array2<bool>, h: &mut DefaultHasher) {
-    let bits = mask.as_slice().expect("standard layout");
+    pack_into(mask.as_slice().expect("standard layout"), h);
+}
+
+/// Hashes `bits` packed into 64-bit words.
+fn pack_into(bits: &[bool], h: &mut DefaultHasher) {
     for chunk in bits.chunks(64) {
         let word = chunk
             .iter()
