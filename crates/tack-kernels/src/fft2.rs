@@ -50,8 +50,12 @@ struct Lane {
     col: Vec<Complex<f64>>,
 }
 
+/// Bands per thread of a parallel region: a thread that starts late (woken from sleep) takes
+/// fewer bands instead of holding the region up.
+const BANDS_PER_THREAD: usize = 4;
+
 /// Grids with fewer elements than this run on one lane (threads would cost more than they save).
-const PARALLEL_MIN: usize = 128 * 128;
+const PARALLEL_MIN: usize = 64 * 64;
 
 impl Fft2 {
     /// Plans the transforms of an `mx × my` real grid.
@@ -84,8 +88,9 @@ impl Fft2 {
     /// scratch the first time a pool of that size is seen.
     fn lanes(&mut self) -> usize {
         let inside = rayon::current_thread_index().is_some();
-        let lanes = if inside && self.mx * self.my >= PARALLEL_MIN {
-            rayon::current_num_threads().clamp(1, self.mh.min(self.mx))
+        let threads = rayon::current_num_threads();
+        let lanes = if inside && threads > 1 && self.mx * self.my >= PARALLEL_MIN {
+            (BANDS_PER_THREAD * threads).clamp(1, self.mh.min(self.mx))
         } else {
             1
         };

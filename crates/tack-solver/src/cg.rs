@@ -50,7 +50,7 @@ impl PcgWork {
 const CHUNK: usize = 8192;
 
 /// Vectors shorter than this run their chunks on the calling thread.
-const PARALLEL_MIN: usize = 128 * 128;
+const PARALLEL_MIN: usize = 64 * 64;
 
 /// Whether vectors of `len` elements run their chunks in parallel: long ones, and only inside
 /// a rayon pool (a hand-off from an outside thread per loop costs more than it saves).
