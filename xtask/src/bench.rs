@@ -24,6 +24,15 @@ pub fn median_time(mut f: impl FnMut()) -> f64 {
     times[reps / 2]
 }
 
+/// Runs `f` and measures the peak heap bytes it held above what was allocated before it (the
+/// xtask's allocator counts every allocation: `peakmem-alloc`).
+fn with_peak<T>(f: impl FnOnce() -> Result<T>) -> Result<(T, Option<f64>)> {
+    use peakmem_alloc::PeakMemAllocTrait;
+    crate::GLOBAL.reset_peak_memory();
+    let out = f()?;
+    Ok((out, Some(crate::GLOBAL.get_peak_memory() as f64)))
+}
+
 /// Forward + inverse real 2D FFT of an `mx × my` array with the operators' own engine and
 /// nothing skipped: the floor any FFT operator pays.
 fn bare_fft_pair(mx: usize, my: usize) -> impl FnMut() {
@@ -263,6 +272,8 @@ fn rough_sphere_path(n: usize, seed: u64, crop: bool, subgrid: bool) -> Result<(
 /// run; writes `results/bench.json`. `--full` adds a_c/Δx = 80 and the 1024² operator.
 pub fn all(args: &[String]) -> Result<()> {
     let full = args.iter().any(|a| a == "--full");
+    // 4096² rough-sphere pull-off (hours on 2 cores) only when asked.
+    let huge = args.iter().any(|a| a == "--4096");
     let mut rows = Vec::new();
 
     println!("1. operator application vs bare FFT round trip of the same padded size");
@@ -353,7 +364,12 @@ pub fn all(args: &[String]) -> Result<()> {
         "4. sphere + random roughness (H = 0.5, L = R, a_c ≈ 0.078 R) pull-off: scaling with n"
     );
     let threads = rayon::current_num_threads();
-    pull_off_scaling(&[128, 256, 512, 1024], threads, &mut rows)?;
+    let sizes: &[usize] = if huge {
+        &[128, 256, 512, 1024, 2048, 4096]
+    } else {
+        &[128, 256, 512, 1024, 2048]
+    };
+    pull_off_scaling(sizes, threads, &mut rows)?;
     println!("   previous version (every detach/attach round solved to 1e-9), one thread:");
     for n in [256, 512] {
         pull_off_before_after(n, &mut rows)?;
@@ -395,10 +411,10 @@ pub fn all(args: &[String]) -> Result<()> {
     }
 
     println!("6. periodic rough non-adhesive contact (H = 0.8, ~7% contact), cold start");
-    periodic_scaling(&[256, 512, 1024, 2048], 1024, &mut rows)?;
+    periodic_scaling(&[256, 512, 1024, 2048, 4096], 1024, &mut rows)?;
 
-    println!("7. one run on 1 and 2 threads");
-    thread_speed_up(&mut rows)?;
+    println!("7. one run on 1 and 2 threads (every step compared bit for bit)");
+    thread_speed_up(&[512, 1024], &[1024, 2048], &mut rows)?;
 
     println!("8. free Hertz, 1024², both methods");
     rows.extend(hertz_only(1024)?);
@@ -555,6 +571,10 @@ struct PullOffRun {
     rounds: usize,
     steps: usize,
     force: f64,
+    /// Every step's force, approach and bonded count, hashed bit for bit.
+    curve: u64,
+    /// Peak resident bytes the run added (see [`with_peak`]).
+    peak_bytes: Option<f64>,
 }
 
 fn rough_sphere_pull_off(n: usize, threads: usize, exact_rounds: bool) -> Result<PullOffRun> {
@@ -567,9 +587,11 @@ fn timed_pull_off(scene: &tack::Scene, threads: usize) -> Result<PullOffRun> {
         threads: Some(threads),
         ..tack::RunOptions::default()
     };
-    let t = Instant::now();
-    let out = tack::run(scene, &options, &mut ())?;
-    let seconds = t.elapsed().as_secs_f64();
+    let ((out, seconds), peak_bytes) = with_peak(|| {
+        let t = Instant::now();
+        let out = tack::run(scene, &options, &mut ())?;
+        Ok((out, t.elapsed().as_secs_f64()))
+    })?;
     anyhow::ensure!(
         out.path.completed && out.path.all_converged(),
         "{}²: not converged",
@@ -586,6 +608,15 @@ fn timed_pull_off(scene: &tack::Scene, threads: usize) -> Result<PullOffRun> {
             .sum(),
         steps: out.path.records.len(),
         force: out.path.pull_off_force(),
+        curve: {
+            use std::hash::{DefaultHasher, Hash, Hasher};
+            let mut h = DefaultHasher::new();
+            for r in &out.path.records {
+                (r.force.to_bits(), r.approach.to_bits(), r.n_bonded).hash(&mut h);
+            }
+            h.finish()
+        },
+        peak_bytes,
     })
 }
 
@@ -599,22 +630,34 @@ fn pull_off_scaling(sizes: &[usize], threads: usize, rows: &mut Vec<Row>) -> Res
         t_pair * 1e3
     );
     println!(
-        "   {:>6} {:>9} {:>9} {:>8} {:>6} {:>10} {:>12} {:>14}",
-        "n", "time [s]", "× prev n", "CG", "steps", "rounds", "1024² pairs", "F_pull-off"
+        "   {:>6} {:>9} {:>9} {:>8} {:>6} {:>10} {:>12} {:>14} {:>9} {:>7}",
+        "n",
+        "time [s]",
+        "× prev n",
+        "CG",
+        "steps",
+        "rounds",
+        "1024² pairs",
+        "F_pull-off",
+        "peak [MB]",
+        "B/elem"
     );
     let mut prev: Option<f64> = None;
     for &n in sizes {
         let r = rough_sphere_pull_off(n, threads, false)?;
         let growth = prev.map_or(f64::NAN, |p| r.seconds / p);
         prev = Some(r.seconds);
+        let peak = r.peak_bytes.unwrap_or(f64::NAN);
+        let per_element = peak / (n * n) as f64;
         println!(
-            "   {n:>6} {:>9.2} {growth:>9.2} {:>8} {:>6} {:>10} {:>12.0} {:>14.7e}",
+            "   {n:>6} {:>9.2} {growth:>9.2} {:>8} {:>6} {:>10} {:>12.0} {:>14.7e} {:>9.0} {per_element:>7.0}",
             r.seconds,
             r.cg,
             r.steps,
             r.rounds,
             r.seconds / t_pair,
-            r.force
+            r.force,
+            peak / 1e6
         );
         rows.push(Row {
             table: "pull_off_scaling",
@@ -629,6 +672,8 @@ fn pull_off_scaling(sizes: &[usize], threads: usize, rows: &mut Vec<Row>) -> Res
                 ("fft_pairs_1024", r.seconds / t_pair),
                 ("pull_off_force", r.force),
                 ("threads", threads as f64),
+                ("peak_bytes", peak),
+                ("bytes_per_element", per_element),
             ],
         });
     }
@@ -696,8 +741,8 @@ fn periodic_rough(n: usize) -> Result<(tack_geometry::Surface, f64)> {
 fn periodic_scaling(sizes: &[usize], pk_max: usize, rows: &mut Vec<Row>) -> Result<()> {
     use tack_solver::ContactMethod;
     println!(
-        "   {:>6} {:>16} {:>9} {:>6} {:>10} {:>9} {:>16}",
-        "n", "method", "time [s]", "CG", "pairs (n²)", "contact", "force"
+        "   {:>6} {:>16} {:>9} {:>6} {:>10} {:>9} {:>16} {:>9} {:>7}",
+        "n", "method", "time [s]", "CG", "pairs (n²)", "contact", "force", "peak [MB]", "B/elem"
     );
     for &n in sizes {
         let (surface, d) = periodic_rough(n)?;
@@ -706,13 +751,17 @@ fn periodic_scaling(sizes: &[usize], pk_max: usize, rows: &mut Vec<Row>) -> Resu
             if method == ContactMethod::PolonskyKeer && n > pk_max {
                 continue;
             }
-            let (secs, its, frac, force, ok) = contact_solve(&surface, d, method, true, true)?;
+            let ((secs, its, frac, force, ok), peak) =
+                with_peak(|| contact_solve(&surface, d, method, true, true))?;
             anyhow::ensure!(ok, "{n}² {method:?}: not converged");
+            let peak = peak.unwrap_or(f64::NAN);
+            let per_element = peak / (n * n) as f64;
             println!(
-                "   {n:>6} {:>16} {secs:>9.3} {its:>6} {:>10.1} {:>8.2}% {force:>16.9e}",
+                "   {n:>6} {:>16} {secs:>9.3} {its:>6} {:>10.1} {:>8.2}% {force:>16.9e} {:>9.0} {per_element:>7.0}",
                 format!("{method:?}"),
                 secs / t_pair,
-                100.0 * frac
+                100.0 * frac,
+                peak / 1e6
             );
             rows.push(Row {
                 table: "periodic_contact",
@@ -724,6 +773,8 @@ fn periodic_scaling(sizes: &[usize], pk_max: usize, rows: &mut Vec<Row>) -> Resu
                     ("fft_pairs", secs / t_pair),
                     ("contact_fraction", frac),
                     ("force", force),
+                    ("peak_bytes", peak),
+                    ("bytes_per_element", per_element),
                 ],
             });
         }
@@ -731,42 +782,50 @@ fn periodic_scaling(sizes: &[usize], pk_max: usize, rows: &mut Vec<Row>) -> Resu
     Ok(())
 }
 
-/// Table C: 1 against 2 threads on one run (bit-identical results required).
-fn thread_speed_up(rows: &mut Vec<Row>) -> Result<()> {
+/// Table C: 1 against 2 threads on one run; every step's force, approach and bonded count
+/// (rough sphere) and the force (periodic contact) must agree bit for bit.
+fn thread_speed_up(rough: &[usize], periodic: &[usize], rows: &mut Vec<Row>) -> Result<()> {
     use tack_solver::ContactMethod;
-    let one = rough_sphere_pull_off(512, 1, false)?;
-    let two = rough_sphere_pull_off(512, 2, false)?;
-    anyhow::ensure!(
-        one.force.to_bits() == two.force.to_bits() && one.cg == two.cg,
-        "512² rough sphere: 1 and 2 threads differ"
-    );
-    let (surface, d) = periodic_rough(1024)?;
-    let in_pool = |threads: usize| -> Result<(f64, usize, f64, f64, bool)> {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()?;
-        pool.install(|| contact_solve(&surface, d, ContactMethod::ActiveSet, true, true))
-    };
-    let (p1, p2) = (in_pool(1)?, in_pool(2)?);
-    anyhow::ensure!(
-        p1.3.to_bits() == p2.3.to_bits(),
-        "1024² periodic: 1 and 2 threads differ"
-    );
-    for (label, t1, t2) in [
-        ("512² rough-sphere pull-off", one.seconds, two.seconds),
-        ("1024² periodic contact", p1.0, p2.0),
-    ] {
+    let mut cases = Vec::new();
+    for &n in rough {
+        let one = rough_sphere_pull_off(n, 1, false)?;
+        let two = rough_sphere_pull_off(n, 2, false)?;
+        let same = one.curve == two.curve && one.cg == two.cg;
+        anyhow::ensure!(same, "{n}² rough sphere: 1 and 2 threads differ");
+        cases.push((
+            format!("{n}² rough-sphere pull-off"),
+            one.seconds,
+            two.seconds,
+        ));
+    }
+    for &n in periodic {
+        let (surface, d) = periodic_rough(n)?;
+        let in_pool = |threads: usize| -> Result<(f64, usize, f64, f64, bool)> {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()?;
+            pool.install(|| contact_solve(&surface, d, ContactMethod::ActiveSet, true, true))
+        };
+        let (p1, p2) = (in_pool(1)?, in_pool(2)?);
+        anyhow::ensure!(
+            p1.3.to_bits() == p2.3.to_bits() && p1.1 == p2.1,
+            "{n}² periodic: 1 and 2 threads differ"
+        );
+        cases.push((format!("{n}² periodic contact"), p1.0, p2.0));
+    }
+    for (label, t1, t2) in cases {
         println!(
             "   {label:<28} 1 thread {t1:7.2} s, 2 threads {t2:7.2} s: {:.2}× (bit-identical)",
             t1 / t2
         );
         rows.push(Row {
             table: "threads",
-            label: label.into(),
+            label,
             fields: vec![
                 ("one_thread", t1),
                 ("two_threads", t2),
                 ("speed_up", t1 / t2),
+                ("bit_identical", 1.0),
             ],
         });
     }
@@ -889,4 +948,25 @@ fn dugdale_tables(args: &[String], rows: &mut Vec<Row>) -> Result<()> {
         dug.seconds / jkr.seconds
     );
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_peak_counts_what_a_run_held_not_what_came_before() {
+        // Other tests allocate on other threads meanwhile: 64 MiB against loose bounds.
+        let size = 64usize << 20;
+        let before = vec![1u8; size];
+        let ((), peak) = with_peak(|| {
+            let held = vec![1u8; size];
+            std::hint::black_box(&held);
+            Ok(())
+        })
+        .unwrap();
+        std::hint::black_box(&before);
+        let peak = peak.unwrap() / size as f64;
+        assert!((0.75..1.5).contains(&peak), "{peak} × the allocation");
+    }
 }

@@ -15,6 +15,11 @@ mod validation;
 
 use anyhow::{Result, bail};
 
+/// Every allocation is counted, so `cargo xtask bench` can report each run's peak heap bytes.
+#[global_allocator]
+static GLOBAL: &peakmem_alloc::PeakMemAlloc<std::alloc::System> =
+    &peakmem_alloc::INSTRUMENTED_SYSTEM;
+
 const USAGE: &str = "usage: cargo xtask <command>
 
 commands:
@@ -36,9 +41,11 @@ commands:
                            against the FFT floor; Dugdale vs zero-range rough sphere at 256²
   bench-rough [N]          sphere + H = 0.5 roughness pull-off on an N² L = R grid (default
                           512): plain, cropped, sub-grid CG, both
-  bench [--full]          every speed table (operator, CG iteration, JKR path, rough sphere
-                          with/without crop and sub-grid CG, 15-realization sweep point on 1
-                          and 2 threads); writes results/bench.json
+  bench [--full] [--4096] every speed table (operator, CG iteration, JKR path, rough-sphere
+                          pull-off 128² … 2048² with peak heap bytes per element, 4096² with
+                          --4096; inexact against exact rounds; 15-realization sweep point and
+                          one run on 1 and 2 threads, compared bit for bit; periodic contact
+                          256² … 4096²; free Hertz); writes results/bench.json
   convergence [N...]      pull-off convergence on smooth, wavy (α = 0.5, 1) and band-limited
                           rough spheres (H = 0.3, 0.7, three seeds) at n = 64 128 256 512 (or
                           the N given): Richardson, observed order, error estimate against the

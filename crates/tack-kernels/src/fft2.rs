@@ -8,10 +8,11 @@
 //! then gather the rows and row c2r. Zero-padded rows are skipped on the way in, and only the
 //! rows wanted are gathered and transformed on the way out.
 //!
-//! Threads: rows, columns and transpose blocks are split into contiguous lanes run on the
-//! current rayon pool (`rayon::ThreadPool::install` chooses it). Every row and column is
-//! transformed by the same plan with the same arithmetic whatever lane it falls in, so the
-//! result is bit-identical for any thread count; there are no reductions.
+//! Threads: each of the three regions splits its rows or columns into contiguous bands (4 per
+//! thread, so a thread that starts late takes fewer) run on the current rayon pool
+//! (`rayon::ThreadPool::install` chooses it). Every row and column is transformed by the same
+//! plan with the same arithmetic whatever band it falls in, so the result is bit-identical for
+//! any thread count; there are no reductions.
 
 use std::sync::Arc;
 

@@ -16,10 +16,13 @@ pub(crate) fn free_operator(shape: (usize, usize), dx: f64, e_star: f64) -> Free
 }
 
 /// Sub-problems keyed by their shape (an operator with its FFT plans, spectra and buffers is
-/// costly to build); at most `capacity` are kept: a new shape beyond that starts afresh.
+/// costly to build); at most `capacity` are kept: a new shape beyond that replaces the one
+/// used least recently.
 pub(crate) struct SubgridCache<T> {
-    entries: HashMap<(usize, usize), T>,
+    /// Each shape's sub-problem and the use count when it was last asked for.
+    entries: HashMap<(usize, usize), (T, u64)>,
     capacity: usize,
+    uses: u64,
 }
 
 impl<T> SubgridCache<T> {
@@ -27,6 +30,7 @@ impl<T> SubgridCache<T> {
         Self {
             entries: HashMap::new(),
             capacity: capacity.max(1),
+            uses: 0,
         }
     }
 
@@ -36,10 +40,20 @@ impl<T> SubgridCache<T> {
         shape: (usize, usize),
         build: impl FnOnce() -> T,
     ) -> &mut T {
+        self.uses += 1;
         if !self.entries.contains_key(&shape) && self.entries.len() >= self.capacity {
-            self.entries.clear();
+            let oldest = self
+                .entries
+                .iter()
+                .min_by_key(|(_, (_, used))| *used)
+                .map(|(k, _)| *k);
+            if let Some(k) = oldest {
+                self.entries.remove(&k);
+            }
         }
-        self.entries.entry(shape).or_insert_with(build)
+        let entry = self.entries.entry(shape).or_insert_with(|| (build(), 0));
+        entry.1 = self.uses;
+        &mut entry.0
     }
 
     /// Number of cached sub-problems.
@@ -55,19 +69,29 @@ mod tests {
     use tack_kernels::ElasticOperator;
 
     #[test]
-    fn builds_once_per_shape_and_starts_afresh_beyond_capacity() {
+    fn builds_once_per_shape_and_replaces_the_least_recently_used() {
         let mut cache = SubgridCache::new(2);
         let mut built = 0;
-        for shape in [(3, 4), (3, 4), (5, 5), (3, 4), (6, 2), (6, 2)] {
+        for shape in [
+            (3, 4),
+            (3, 4),
+            (5, 5),
+            (3, 4),
+            (6, 2),
+            (6, 2),
+            (3, 4),
+            (5, 5),
+        ] {
             let v = cache.get_or_insert_with(shape, || {
                 built += 1;
                 shape.0 * shape.1
             });
             assert_eq!(*v, shape.0 * shape.1);
         }
-        // (3,4) and (5,5) built once each; (6,2) is a third shape: the cache is cleared.
-        assert_eq!(built, 3);
-        assert_eq!(cache.len(), 1);
+        // (3,4) and (5,5) built once; (6,2) replaces (5,5), the least recently used, so (3,4)
+        // is still there and (5,5) is built again (replacing (6,2)).
+        assert_eq!(built, 4);
+        assert_eq!(cache.len(), 2);
         let op = free_operator((4, 7), 0.5, 2.0);
         assert_eq!(op.grid().shape(), (4, 7));
         assert_eq!((op.grid().dx(), op.e_star()), (0.5, 2.0));
