@@ -26,11 +26,11 @@ pub fn median_time(mut f: impl FnMut()) -> f64 {
 
 /// Runs `f` and measures the peak heap bytes it held above what was allocated before it (the
 /// xtask's allocator counts every allocation: `peakmem-alloc`).
-fn with_peak<T>(f: impl FnOnce() -> Result<T>) -> Result<(T, Option<f64>)> {
+fn with_peak<T>(f: impl FnOnce() -> Result<T>) -> Result<(T, f64)> {
     use peakmem_alloc::PeakMemAllocTrait;
     crate::GLOBAL.reset_peak_memory();
     let out = f()?;
-    Ok((out, Some(crate::GLOBAL.get_peak_memory() as f64)))
+    Ok((out, crate::GLOBAL.get_peak_memory() as f64))
 }
 
 /// Forward + inverse real 2D FFT of an `mx × my` array with the operators' own engine and
@@ -573,8 +573,8 @@ struct PullOffRun {
     force: f64,
     /// Every step's force, approach and bonded count, hashed bit for bit.
     curve: u64,
-    /// Peak resident bytes the run added (see [`with_peak`]).
-    peak_bytes: Option<f64>,
+    /// Peak heap bytes the run held (see [`with_peak`]).
+    peak_bytes: f64,
 }
 
 fn rough_sphere_pull_off(n: usize, threads: usize, exact_rounds: bool) -> Result<PullOffRun> {
@@ -647,7 +647,7 @@ fn pull_off_scaling(sizes: &[usize], threads: usize, rows: &mut Vec<Row>) -> Res
         let r = rough_sphere_pull_off(n, threads, false)?;
         let growth = prev.map_or(f64::NAN, |p| r.seconds / p);
         prev = Some(r.seconds);
-        let peak = r.peak_bytes.unwrap_or(f64::NAN);
+        let peak = r.peak_bytes;
         let per_element = peak / (n * n) as f64;
         println!(
             "   {n:>6} {:>9.2} {growth:>9.2} {:>8} {:>6} {:>10} {:>12.0} {:>14.7e} {:>9.0} {per_element:>7.0}",
@@ -754,7 +754,6 @@ fn periodic_scaling(sizes: &[usize], pk_max: usize, rows: &mut Vec<Row>) -> Resu
             let ((secs, its, frac, force, ok), peak) =
                 with_peak(|| contact_solve(&surface, d, method, true, true))?;
             anyhow::ensure!(ok, "{n}² {method:?}: not converged");
-            let peak = peak.unwrap_or(f64::NAN);
             let per_element = peak / (n * n) as f64;
             println!(
                 "   {n:>6} {:>16} {secs:>9.3} {its:>6} {:>10.1} {:>8.2}% {force:>16.9e} {:>9.0} {per_element:>7.0}",
@@ -966,7 +965,7 @@ mod tests {
         })
         .unwrap();
         std::hint::black_box(&before);
-        let peak = peak.unwrap() / size as f64;
+        let peak = peak / size as f64;
         assert!((0.75..1.5).contains(&peak), "{peak} × the allocation");
     }
 }

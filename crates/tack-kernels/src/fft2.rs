@@ -296,7 +296,7 @@ impl Fft2 {
 }
 
 /// Fills `block` (whole columns of length `mx`, the first being column `j0`) from the first
-/// `nx` rows of the row-major `rows` (row length `mh`), zero below row `nx`; blocked for cache.
+/// `nx` rows of the row-major `rows` (row length `mh`), zero below row `nx`.
 fn gather_columns(
     rows: &[Complex<f64>],
     block: &mut [Complex<f64>],
@@ -305,22 +305,14 @@ fn gather_columns(
     mx: usize,
     j0: usize,
 ) {
-    let width = block.len() / mx;
-    for i0 in (0..nx).step_by(BLOCK) {
-        for k in 0..width {
-            let col = &mut block[k * mx..];
-            for i in i0..(i0 + BLOCK).min(nx) {
-                col[i] = rows[i * mh + j0 + k];
-            }
-        }
-    }
+    gather(rows, mh, j0, block, mx, nx);
     for col in block.chunks_exact_mut(mx) {
         col[nx..].fill(Complex::new(0.0, 0.0));
     }
 }
 
 /// Fills `rows` (whole rows of length `mh`, the first being row `first`) from the columns
-/// stored one after another in `cols` (column length `mx`); blocked for cache.
+/// stored one after another in `cols` (column length `mx`).
 fn gather_rows(
     cols: &[Complex<f64>],
     rows: &mut [Complex<f64>],
@@ -328,12 +320,25 @@ fn gather_rows(
     mh: usize,
     first: usize,
 ) {
-    let height = rows.len() / mh;
-    for j0 in (0..mh).step_by(BLOCK) {
-        for k in 0..height {
-            let row = &mut rows[k * mh..];
-            for j in j0..(j0 + BLOCK).min(mh) {
-                row[j] = cols[j * mx + first + k];
+    gather(cols, mx, first, rows, mh, mh);
+}
+
+/// A blocked transpose: line `k` of `dst` (lines `dst_stride` apart) gets, at `i < len`, entry
+/// `first + k` of line `i` of `src` (lines `src_stride` apart), for every line of `dst`.
+fn gather(
+    src: &[Complex<f64>],
+    src_stride: usize,
+    first: usize,
+    dst: &mut [Complex<f64>],
+    dst_stride: usize,
+    len: usize,
+) {
+    let lines = dst.len() / dst_stride;
+    for i0 in (0..len).step_by(BLOCK) {
+        for k in 0..lines {
+            let line = &mut dst[k * dst_stride..];
+            for i in i0..(i0 + BLOCK).min(len) {
+                line[i] = src[i * src_stride + first + k];
             }
         }
     }
