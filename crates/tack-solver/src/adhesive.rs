@@ -79,11 +79,11 @@ pub struct AdhesiveOptions {
 }
 
 /// The inexact rounds' tolerance tightens by this factor each time a round finds nothing.
-const LOOSE_TIGHTENING: f64 = 100.0;
+pub(crate) const LOOSE_TIGHTENING: f64 = 100.0;
 
 /// The tolerance [`LOOSE_DETACH_MARGIN`] was measured at; margins scale with a round's
 /// tolerance relative to it.
-const LOOSE_REFERENCE_TOLERANCE: f64 = 1e-3;
+pub(crate) const LOOSE_REFERENCE_TOLERANCE: f64 = 1e-3;
 
 /// Relative tension margin `m` of an inexact round: it detaches `p < −σ_c (1 + m)` only. With
 /// `round_tolerance = 1e-3`, `m = 0.001` let a Kendall punch at a/Δx = 20 pull off 0.6% early
