@@ -831,16 +831,21 @@ fn thread_speed_up(rough: &[usize], periodic: &[usize], rows: &mut Vec<Row>) -> 
     Ok(())
 }
 
-/// One Dugdale smooth-sphere cycle for `cargo xtask bench-dugdale`: R = E* = γ = 1 at Maugis
-/// λ = 3.48 (Tabor μ = λ/1.16 = 3) on an `n²` free grid of half-width 3, from out of range to
-/// d = 1 and back in steps of 0.02 until the zone lets go. Returns (seconds, steps, CG, rounds,
-/// F/F_MD − 1).
-fn dugdale_sphere(n: usize) -> Result<(f64, usize, usize, usize, f64)> {
+/// Maugis λ of the Dugdale bench sphere: Tabor μ = 3 (λ = 1.16 μ).
+const DUGDALE_LAMBDA: f64 = 3.0 * 1.16;
+
+/// One Dugdale smooth-sphere run for `cargo xtask bench-dugdale`: R = E* = γ = 1 at Maugis
+/// λ = 3.48 (Tabor μ = λ/1.16 = 3) on an `n²` free grid of half-width 3. With `cycle`, from out
+/// of range to d = 1 and back in steps of 0.02 until the zone lets go; without, the pull-off
+/// protocol ([`ApproachPath::pull_off_only`]): one step to d = 1, retraction in steps of 0.1
+/// while the force is compressive, then of 0.02. Returns (seconds, steps, CG, rounds, pull-off
+/// force).
+fn dugdale_sphere(n: usize, cycle: bool) -> Result<(f64, usize, usize, usize, f64)> {
     use tack_geometry::{Sphere, Surface};
     use tack_solver::{
         AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, SnapshotRequest,
     };
-    let lambda = 3.0 * 1.16;
+    let lambda = DUGDALE_LAMBDA;
     let sigma0 = lambda / tack_analytics::maugis_lambda(1.0, 1.0, 1.0, 1.0);
     let grid = Grid::square(n, 6.0 / n as f64, Boundary::Free)?;
     let surface = Surface::from_shape(grid, &Sphere::new(1.0)?);
@@ -849,26 +854,29 @@ fn dugdale_sphere(n: usize) -> Result<(f64, usize, usize, usize, f64)> {
     let law = AdhesionLaw::Dugdale { sigma0 };
     let mut solver = AdhesiveSolver::with_law(op, &surface, 1.0, law, AdhesiveOptions::default())?;
     let step = 0.02;
-    let path = ApproachPath {
-        start: -1.0 / sigma0 - step,
-        max_approach: 1.0,
-        load_step: step,
-        unload_step: step,
-        coarse_unload_step: None,
-        retract_to: None,
-        max_steps: 100_000,
+    let path = if cycle {
+        ApproachPath {
+            start: -1.0 / sigma0 - step,
+            max_approach: 1.0,
+            load_step: step,
+            unload_step: step,
+            coarse_unload_step: None,
+            retract_to: None,
+            max_steps: 100_000,
+        }
+    } else {
+        ApproachPath::pull_off_only(1.0, 0.1, step)?
     };
     let r = solver.run_path(&path, &SnapshotRequest::None, &mut ())?;
     let seconds = t.elapsed().as_secs_f64();
     anyhow::ensure!(r.completed && r.all_converged(), "{n}²: not converged");
-    let f_md = std::f64::consts::PI * tack_analytics::maugis_pull_off_hat(lambda);
     let rounds = r.records.iter().map(|s| s.active_set_iterations).sum();
     Ok((
         seconds,
         r.records.len(),
         r.cg_iterations(),
         rounds,
-        r.pull_off_force() / f_md - 1.0,
+        r.pull_off_force(),
     ))
 }
 
@@ -881,8 +889,8 @@ fn dugdale_rough(n: usize) -> Result<PullOffRun> {
     timed_pull_off(&scene, rayon::current_num_threads())
 }
 
-/// `cargo xtask bench-dugdale [N...]`: the Dugdale smooth-sphere cycle at Tabor μ = 3 on each
-/// `N²` (default 128 256 512) against the bare FFT pair of its padded size, and the Dugdale
+/// `cargo xtask bench-dugdale [N...]`: the Dugdale smooth sphere at Tabor μ = 3 on each `N²`,
+/// the cycle and the pull-off protocol, (default 128 256 512) against the bare FFT pair of its padded size, and the Dugdale
 /// rough-sphere pull-off at 256² against the JKR-limit run of the same scene and path.
 pub fn dugdale(args: &[String]) -> Result<()> {
     let mut rows = Vec::new();
@@ -895,32 +903,46 @@ fn dugdale_tables(args: &[String], rows: &mut Vec<Row>) -> Result<()> {
     } else {
         args.iter().map(|a| a.parse()).collect::<Result<_, _>>()?
     };
-    println!("D1. Dugdale smooth sphere, Tabor μ = 3 (λ = 3.48), cycle in steps of 0.02 d̂");
+    let f_md = std::f64::consts::PI * tack_analytics::maugis_pull_off_hat(DUGDALE_LAMBDA);
     println!(
-        "   {:>5} {:>9} {:>6} {:>7} {:>7} {:>11} {:>10}",
-        "n", "time [s]", "steps", "CG", "rounds", "FFT pairs", "F/F_MD − 1"
+        "D1. Dugdale smooth sphere, Tabor μ = 3 (λ = 3.48): the cycle in steps of 0.02 d̂, and"
+    );
+    println!(
+        "    the pull-off protocol (one step to d = 1, retraction in steps of 0.1, 0.02 once tensile)"
+    );
+    println!(
+        "   {:>5} {:>8} {:>9} {:>6} {:>7} {:>7} {:>11} {:>10}",
+        "n", "run", "time [s]", "steps", "CG", "rounds", "FFT pairs", "F/F_MD − 1"
     );
     for &n in &sizes {
-        let (seconds, steps, cg, rounds, err) = dugdale_sphere(n)?;
         let m = tack_kernels::padded_size(n);
         let t_pair = median_time(bare_fft_pair(m, m));
-        println!(
-            "   {n:>5} {seconds:>9.2} {steps:>6} {cg:>7} {rounds:>7} {:>11.0} {err:>+10.4}",
-            seconds / t_pair
-        );
-        rows.push(Row {
-            table: "dugdale_sphere",
-            label: format!("{n}²"),
-            fields: vec![
-                ("n", n as f64),
-                ("seconds", seconds),
-                ("steps", steps as f64),
-                ("cg_iterations", cg as f64),
-                ("rounds", rounds as f64),
-                ("fft_pairs", seconds / t_pair),
-                ("pull_off_error", err),
-            ],
-        });
+        for (run, cycle) in [("cycle", true), ("pull-off", false)] {
+            let (seconds, steps, cg, rounds, force) = dugdale_sphere(n, cycle)?;
+            let err = force / f_md - 1.0;
+            println!(
+                "   {n:>5} {run:>8} {seconds:>9.2} {steps:>6} {cg:>7} {rounds:>7} {:>11.0} {err:>+10.4}",
+                seconds / t_pair
+            );
+            rows.push(Row {
+                table: if cycle {
+                    "dugdale_sphere"
+                } else {
+                    "dugdale_sphere_pull_off"
+                },
+                label: format!("{n}²"),
+                fields: vec![
+                    ("n", n as f64),
+                    ("seconds", seconds),
+                    ("steps", steps as f64),
+                    ("cg_iterations", cg as f64),
+                    ("rounds", rounds as f64),
+                    ("fft_pairs", seconds / t_pair),
+                    ("pull_off_force", force),
+                    ("pull_off_error", err),
+                ],
+            });
+        }
     }
     println!("D2. rough sphere 256² (bench scene, seed 1): Dugdale λ = 3 vs the zero-range run");
     let jkr = rough_sphere_pull_off(256, rayon::current_num_threads(), false)?;

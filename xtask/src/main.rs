@@ -37,8 +37,9 @@ commands:
                           pull-off error at a_c/dx = 5 10 20 40 80 (or the ratios given)
   bench-contact [N]        non-adhesive contact: N² periodic rough surface (H = 0.8, ~7%
                           contact) and N² free Hertz, plain / coarse-to-fine / cropped
-  bench-dugdale [N...]     Dugdale smooth sphere at Tabor mu = 3 on N² (default 128 256 512)
-                           against the FFT floor; Dugdale vs zero-range rough sphere at 256²
+  bench-dugdale [N...]     Dugdale smooth sphere at Tabor mu = 3 on N² (default 128 256 512),
+                           cycle and pull-off protocol, against the FFT floor; Dugdale vs
+                           zero-range rough sphere at 256²
   bench-rough [N]          sphere + H = 0.5 roughness pull-off on an N² L = R grid (default
                           512): plain, cropped, sub-grid CG, both
   bench [--full] [--4096] every speed table (operator, CG iteration, JKR path, rough-sphere
