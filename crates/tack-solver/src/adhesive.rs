@@ -17,7 +17,7 @@ use tack_geometry::{Boundary, Surface, Window};
 use tack_kernels::{ElasticOperator, FreeOperator, padded_size};
 
 use crate::base::SolverBase;
-use crate::cg::{PcgWork, Work, pcg};
+use crate::cg::{PcgWork, Work, assign, pcg};
 use crate::clusters::count_clusters;
 use crate::law::Cohesive;
 use crate::state::Convergence;
@@ -412,7 +412,6 @@ impl AdhesiveSolver {
                 converged = false;
                 break;
             }
-            let mut changed = false;
             // After an inexact sub-grid round only its window can change: every bonded element
             // lies inside it, and only elements there may attach.
             let block = match fresh {
@@ -424,20 +423,29 @@ impl AdhesiveSolver {
                 .tension
                 .broadcast(self.bonded.dim())
                 .expect("a 1 × 1 array or the grid's shape");
-            Zip::from(self.bonded.slice_mut(block))
+            let zip = Zip::from(self.bonded.slice_mut(block))
                 .and(self.base.pressure.slice_mut(block))
                 .and(self.base.gap.slice(block))
-                .and(tension.slice(block))
-                .for_each(|b, p, &g, &s| {
-                    if *b && *p < -s * (1.0 + margin) - floor {
-                        *b = false;
-                        *p = 0.0;
-                        changed = true;
-                    } else if !*b && g < attach_below {
-                        *b = true;
-                        changed = true;
-                    }
-                });
+                .and(tension.slice(block));
+            // Each element's test reads only that element: the split over threads cannot
+            // change the outcome.
+            let judge = |changed: bool, b: &mut bool, p: &mut f64, &g: &f64, &s: &f64| {
+                if *b && *p < -s * (1.0 + margin) - floor {
+                    *b = false;
+                    *p = 0.0;
+                    true
+                } else if !*b && g < attach_below {
+                    *b = true;
+                    true
+                } else {
+                    changed
+                }
+            };
+            let changed = if crate::cg::parallel(zip.size()) {
+                zip.par_fold(|| false, judge, |a, b| a || b)
+            } else {
+                zip.fold(false, judge)
+            };
             just_changed = changed;
             if changed {
                 exact = inexact_tolerance.is_none();
@@ -552,9 +560,9 @@ impl AdhesiveSolver {
             .boxes
             .get_or_insert_with(shape, || SubProblem::new(shape, dx, e_star));
         let block = ndarray::s![window.i0..window.i1, window.j0..window.j1];
-        sub.pressure.assign(&base.pressure.slice(block));
-        sub.heights.assign(&base.surface.heights().slice(block));
-        sub.bonded.assign(&self.bonded.slice(block));
+        assign(sub.pressure.view_mut(), base.pressure.slice(block));
+        assign(sub.heights.view_mut(), base.surface.heights().slice(block));
+        assign(sub.bonded.view_mut(), self.bonded.slice(block));
         let out = pcg(
             &mut sub.op,
             sub.heights.view(),
@@ -573,13 +581,13 @@ impl AdhesiveSolver {
                 .fill(0.0),
             None => base.pressure.fill(0.0),
         }
-        base.pressure.slice_mut(block).assign(&sub.pressure);
+        assign(base.pressure.slice_mut(block), sub.pressure.view());
         if full {
             base.op
                 .apply(base.pressure.view(), base.work.disp.view_mut());
             (out, None)
         } else {
-            base.work.disp.slice_mut(block).assign(&sub.work.disp);
+            assign(base.work.disp.slice_mut(block), sub.work.disp.view());
             (out, Some(window))
         }
     }

@@ -66,19 +66,23 @@ impl SolverBase {
 
     /// `gap = f − d + disp` at every element (`disp = K p` from the last product).
     pub(crate) fn update_gap(&mut self, d: f64) {
-        Zip::from(&mut self.gap)
-            .and(self.surface.heights())
-            .and(&self.work.disp)
-            .for_each(|g, &f, &u| *g = f - d + u);
+        gap_of(
+            self.gap.view_mut(),
+            self.surface.heights().view(),
+            self.work.disp.view(),
+            d,
+        );
     }
 
     /// `gap = f − d + disp` inside the window `w` only.
     pub(crate) fn update_gap_in(&mut self, d: f64, w: &tack_geometry::Window) {
         let block = ndarray::s![w.i0..w.i1, w.j0..w.j1];
-        Zip::from(self.gap.slice_mut(block))
-            .and(self.surface.heights().slice(block))
-            .and(self.work.disp.slice(block))
-            .for_each(|g, &f, &u| *g = f - d + u);
+        gap_of(
+            self.gap.slice_mut(block),
+            self.surface.heights().slice(block),
+            self.work.disp.slice(block),
+            d,
+        );
     }
 
     /// Periodic grids: fills `pressure` with the zero-mean pressure that closes every gap
@@ -178,4 +182,15 @@ const COARSEST: usize = 32;
 
 fn mean_height(surface: &Surface) -> f64 {
     surface.heights().mean().unwrap_or(0.0)
+}
+
+/// `g = f − d + u` element by element, in parallel on long grids (the same bits either way).
+fn gap_of(gap: ndarray::ArrayViewMut2<f64>, f: ArrayView2<f64>, u: ArrayView2<f64>, d: f64) {
+    let zip = Zip::from(gap).and(f).and(u);
+    let set = |g: &mut f64, &f: &f64, &u: &f64| *g = f - d + u;
+    if crate::cg::parallel(zip.size()) {
+        zip.par_for_each(set);
+    } else {
+        zip.for_each(set);
+    }
 }

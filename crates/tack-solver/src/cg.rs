@@ -3,7 +3,7 @@
 //! solver ([`pcg`]). The non-adhesive solver's constrained CG (Polonsky–Keer) projects onto
 //! `p ≥ 0` inside its iteration and lives in `contact.rs`.
 
-use ndarray::{Array2, ArrayView2, ArrayViewMut2};
+use ndarray::{Array2, ArrayView2, ArrayViewMut2, Zip};
 use tack_kernels::ElasticOperator;
 
 use crate::SolverOptions;
@@ -54,8 +54,18 @@ const PARALLEL_MIN: usize = 64 * 64;
 
 /// Whether vectors of `len` elements run their chunks in parallel: long ones, and only inside
 /// a rayon pool (a hand-off from an outside thread per loop costs more than it saves).
-fn parallel(len: usize) -> bool {
+pub(crate) fn parallel(len: usize) -> bool {
     len >= PARALLEL_MIN && rayon::current_thread_index().is_some()
+}
+
+/// `dst = src` element by element, in parallel on long arrays (a copy: the same bits either way).
+pub(crate) fn assign<T: Copy + Send + Sync>(dst: ArrayViewMut2<T>, src: ArrayView2<T>) {
+    let zip = Zip::from(dst).and(src);
+    if parallel(zip.size()) {
+        zip.par_for_each(|a, &b| *a = b);
+    } else {
+        zip.for_each(|a, &b| *a = b);
+    }
 }
 
 /// Sums `f` over the chunks of `0..len` (see [`CHUNK`]), in parallel on the current rayon pool
@@ -127,41 +137,50 @@ pub(crate) fn pcg_holding(
     let len = heights.len();
     let f = flat(&heights);
     let c = bonded.as_slice().expect("contiguous mask");
-    {
-        let p = pressure.as_slice_mut().expect("contiguous pressure");
-        match held
+    // One pass: zero the pressure off the bonded (and held) elements, and gather the bonded
+    // count, height range and Σ(d − f)² per chunk (the sum in chunk order, as `chunk_sum`).
+    let stats: Vec<(usize, f64, f64, f64)> = {
+        use rayon::prelude::*;
+        let h = held
             .as_ref()
-            .map(|h| h.as_slice().expect("contiguous mask"))
-        {
-            None => p.iter_mut().zip(c).for_each(|(p, &b)| {
-                if !b {
-                    *p = 0.0
+            .map(|h| h.as_slice().expect("contiguous mask"));
+        let body = |k: usize, p: &mut [f64]| {
+            let base = k * CHUNK;
+            let (mut n, mut hi, mut lo, mut s) = (0usize, f64::NEG_INFINITY, f64::INFINITY, 0.0);
+            for (i, p) in p.iter_mut().enumerate() {
+                let e = base + i;
+                if c[e] {
+                    let fe = f[e];
+                    n += 1;
+                    hi = hi.max(fe);
+                    lo = lo.min(fe);
+                    s += (d - fe) * (d - fe);
+                } else if h.is_none_or(|h| !h[e]) {
+                    *p = 0.0;
                 }
-            }),
-            Some(h) => p.iter_mut().zip(c).zip(h).for_each(|((p, &b), &h)| {
-                if !b && !h {
-                    *p = 0.0
-                }
-            }),
-        }
-    }
-    let (mut n_c, mut fmax, mut fmin) = (0usize, f64::NEG_INFINITY, f64::INFINITY);
-    for (&f, &b) in f.iter().zip(c) {
-        if b {
-            n_c += 1;
-            fmax = fmax.max(f);
-            fmin = fmin.min(f);
-        }
-    }
-    let b2 = chunk_sum(len, |r| {
-        let mut s = 0.0;
-        for (&f, &b) in f[r.clone()].iter().zip(&c[r]) {
-            if b {
-                s += (d - f) * (d - f);
             }
+            (n, hi, lo, s)
+        };
+        let p = pressure.as_slice_mut().expect("contiguous pressure");
+        if parallel(len) {
+            p.par_chunks_mut(CHUNK)
+                .enumerate()
+                .map(|(k, p)| body(k, p))
+                .collect()
+        } else {
+            p.chunks_mut(CHUNK)
+                .enumerate()
+                .map(|(k, p)| body(k, p))
+                .collect()
         }
-        s
-    });
+    };
+    let (mut n_c, mut fmax, mut fmin, mut b2) = (0usize, f64::NEG_INFINITY, f64::INFINITY, 0.0);
+    for &(n, hi, lo, s) in &stats {
+        n_c += n;
+        fmax = fmax.max(hi);
+        fmin = fmin.min(lo);
+        b2 += s;
+    }
     let scale = (b2 / n_c as f64)
         .sqrt()
         .max(1e-3 * (fmax - fmin))

@@ -30,7 +30,7 @@ use crate::adhesive::{
     LOOSE_ATTACH_MARGIN, LOOSE_DETACH_MARGIN, LOOSE_REFERENCE_TOLERANCE, LOOSE_TIGHTENING,
     SubProblem, hash_masks,
 };
-use crate::cg::{PcgWork, Work, pcg_holding};
+use crate::cg::{PcgWork, Work, assign, pcg_holding};
 use crate::state::Convergence;
 use crate::{AdhesiveSolver, SolverOptions, StepRecord};
 
@@ -140,39 +140,47 @@ impl AdhesiveSolver {
                 Some(w) => ndarray::s![w.i0..w.i1, w.j0..w.j1],
                 None => ndarray::s![.., ..],
             };
-            let mut changed = false;
             let coh = self.cohesive.as_mut().expect("the Dugdale law");
             let tension = self
                 .tension
                 .broadcast(self.bonded.dim())
                 .expect("a 1 × 1 array or the grid's shape");
-            Zip::from(self.bonded.slice_mut(block))
+            let zip = Zip::from(self.bonded.slice_mut(block))
                 .and(coh.zone.slice_mut(block))
                 .and(self.base.pressure.slice_mut(block))
                 .and(self.base.gap.slice(block))
-                .and(tension.slice(block))
-                .for_each(|b, z, p, &g, &s| {
+                .and(tension.slice(block));
+            // Each element's tests read only that element: the split over threads cannot
+            // change the outcome.
+            let judge =
+                |changed: bool, b: &mut bool, z: &mut bool, p: &mut f64, &g: &f64, &s: &f64| {
                     if *b {
                         if *p < -s - p_margin {
                             (*b, *z, *p) = (false, true, -s);
-                            changed = true;
+                            return true;
                         }
                     } else if *z {
                         if g < -g_margin {
                             (*b, *z) = (true, false);
-                            changed = true;
+                            return true;
                         } else if g > range + r_margin {
                             (*z, *p) = (false, 0.0);
-                            changed = true;
+                            return true;
                         }
                     } else if g < -g_margin {
                         *b = true;
-                        changed = true;
+                        return true;
                     } else if g < range - r_margin {
                         (*z, *p) = (true, -s);
-                        changed = true;
+                        return true;
                     }
-                });
+                    changed
+                };
+            let changed = if crate::cg::parallel(zip.size()) {
+                zip.par_fold(|| false, judge, |a, b| a || b)
+            } else {
+                zip.fold(false, judge)
+            };
             just_changed = changed;
             if changed {
                 exact = inexact_tolerance.is_none();
@@ -252,10 +260,10 @@ impl AdhesiveSolver {
         let zone = sub
             .zone
             .get_or_insert_with(|| Array2::from_elem(shape, false));
-        zone.assign(&coh.zone.slice(block));
-        sub.pressure.assign(&base.pressure.slice(block));
-        sub.heights.assign(&base.surface.heights().slice(block));
-        sub.bonded.assign(&self.bonded.slice(block));
+        assign(zone.view_mut(), coh.zone.slice(block));
+        assign(sub.pressure.view_mut(), base.pressure.slice(block));
+        assign(sub.heights.view_mut(), base.surface.heights().slice(block));
+        assign(sub.bonded.view_mut(), self.bonded.slice(block));
         let out = solve_with_zone(
             &mut sub.op,
             sub.heights.view(),
@@ -270,13 +278,13 @@ impl AdhesiveSolver {
             pre,
         );
         base.pressure.fill(0.0);
-        base.pressure.slice_mut(block).assign(&sub.pressure);
+        assign(base.pressure.slice_mut(block), sub.pressure.view());
         if full {
             base.op
                 .apply(base.pressure.view(), base.work.disp.view_mut());
             (out, None)
         } else {
-            base.work.disp.slice_mut(block).assign(&sub.work.disp);
+            assign(base.work.disp.slice_mut(block), sub.work.disp.view());
             (out, Some(window))
         }
     }
