@@ -592,11 +592,6 @@ impl AdhesiveSolver {
         }
     }
 
-    /// The sub-grid around the `true` elements of `mask` (see [`Self::subgrid_around`]).
-    pub(crate) fn subgrid_of(&self, mask: &Array2<bool>) -> Option<Window> {
-        self.subgrid_around(bounding_box(mask, None).0)
-    }
-
     /// The sub-grid to solve on around the bounding box `tight` of a set: the box grown to the
     /// largest size with the same FFT length (so few distinct sub-operators are built), or
     /// `None` when the set is empty, the grid is periodic, sub-grids are switched off, or the
@@ -704,17 +699,21 @@ fn hash_box(mask: &Array2<bool>, tight: Option<&Window>) -> u64 {
     h.finish()
 }
 
-/// Deterministic fingerprint of several masks of one grid (the Dugdale law's two sets).
-pub(crate) fn hash_masks(masks: &[&Array2<bool>]) -> u64 {
+/// Deterministic fingerprint of several masks of one grid (the Dugdale law's two sets) whose
+/// `true` elements all lie in the box `tight` (the box of their union, [`bounding_box`]): the
+/// box and each mask inside it, packed into 64-bit words row by row, hashed.
+pub(crate) fn hash_masks_in(masks: &[&Array2<bool>], tight: Option<&Window>) -> u64 {
     let mut h = DefaultHasher::new();
-    for mask in masks {
-        hash_into(mask, &mut h);
+    if let Some(w) = tight {
+        (w.i0, w.i1, w.j0, w.j1).hash(&mut h);
+        for mask in masks {
+            for i in w.i0..w.i1 {
+                let row = &mask.row(i).to_slice().expect("standard layout")[w.j0..w.j1];
+                pack_into(row, &mut h);
+            }
+        }
     }
     h.finish()
-}
-
-fn hash_into(mask: &Array2<bool>, h: &mut DefaultHasher) {
-    pack_into(mask.as_slice().expect("standard layout"), h);
 }
 
 /// Hashes `bits` packed into 64-bit words.
@@ -795,6 +794,15 @@ mod tests {
         assert_ne!(hash_box(&other, box2.as_ref()), print);
         let empty = Array2::from_elem((40, 50), false);
         assert_eq!(bounding_box(&empty, None), (None, 0));
+        // Two masks (the Dugdale law's contact and zone) over the box of their union: moving
+        // an element from one mask to the other changes the fingerprint, the box does not.
+        let pair = hash_masks_in(&[&mask, &empty], whole.as_ref());
+        let mut zone = empty.clone();
+        zone[[12, 25]] = true;
+        let mut contact = mask.clone();
+        contact[[12, 25]] = false;
+        assert_ne!(hash_masks_in(&[&contact, &zone], whole.as_ref()), pair);
+        assert_eq!(hash_masks_in(&[&mask, &empty], whole.as_ref()), pair);
     }
 
     /// Every round solved to the CG tolerance: the round counts below are the exact algorithm's.

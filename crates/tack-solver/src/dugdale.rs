@@ -28,7 +28,7 @@ use tack_kernels::ElasticOperator;
 
 use crate::adhesive::{
     LOOSE_ATTACH_MARGIN, LOOSE_DETACH_MARGIN, LOOSE_REFERENCE_TOLERANCE, LOOSE_TIGHTENING,
-    SubProblem, hash_masks,
+    SubProblem, bounding_box, hash_masks_in,
 };
 use crate::cg::{PcgWork, Work, assign, pcg_holding};
 use crate::state::Convergence;
@@ -47,7 +47,6 @@ impl AdhesiveSolver {
     /// One approach step under the Dugdale law (module docs); `d` is validated.
     pub(crate) fn step_dugdale(&mut self, d: f64) -> StepRecord {
         let periodic = self.base.periodic();
-        let n = self.base.heights().len();
         let (sigma0, range) = {
             let c = self.cohesive.as_ref().expect("the Dugdale law");
             (c.sigma0, c.range)
@@ -76,14 +75,15 @@ impl AdhesiveSolver {
         let mut just_changed = true;
         // `work.disp` and the gap are up to date only inside the last inexact round's window.
         let mut stale = false;
+        // A window known to hold every loaded element (`None`: the whole grid).
+        let mut extent: Option<Window> = None;
         loop {
             if rounds == self.options.max_active_set_iterations {
                 converged = false;
                 break;
             }
             rounds += 1;
-            let n_bonded = self.bonded.iter().filter(|&&b| b).count();
-            if periodic && n_bonded == n {
+            if periodic && self.bonded.iter().all(|&b| b) {
                 // Full contact: as under the criterion, with σ0 the greatest tension; the
                 // released element joins the zone.
                 let map = self.patterned.then_some(self.tension.view());
@@ -99,18 +99,35 @@ impl AdhesiveSolver {
                     }
                 }
             }
-            let zone = &self.cohesive.as_ref().expect("the Dugdale law").zone;
-            let fingerprint = hash_masks(&[&self.bonded, zone]);
+            // The loaded set (contact or zone), its bounding box and fingerprint, searched only
+            // in `extent`: after an inexact sub-grid round every loaded element lies in its
+            // window.
+            let (tight, fingerprint) = {
+                let coh = self.cohesive.as_mut().expect("the Dugdale law");
+                let block = match extent {
+                    Some(w) => ndarray::s![w.i0..w.i1, w.j0..w.j1],
+                    None => ndarray::s![.., ..],
+                };
+                Zip::from(coh.loaded.slice_mut(block))
+                    .and(self.bonded.slice(block))
+                    .and(coh.zone.slice(block))
+                    .for_each(|l, &b, &z| *l = b || z);
+                let (tight, _) = bounding_box(&coh.loaded, extent.as_ref());
+                let fingerprint = hash_masks_in(&[&self.bonded, &coh.zone], tight.as_ref());
+                (tight, fingerprint)
+            };
+            let window = self.subgrid_around(tight);
             if !exact && just_changed && !inexact_visited.insert(fingerprint) {
                 // Inexact rounds came back to a pair of sets: exact rounds only from here.
                 (inexact_tolerance, exact) = (None, true);
             }
             let cycle = exact && !visited.insert(fingerprint);
             let (c, fresh) = if exact {
-                self.solve_cohesive(d, tolerance, true)
+                self.solve_cohesive(d, tolerance, true, window, extent.as_ref())
             } else {
-                self.solve_cohesive(d, level, false)
+                self.solve_cohesive(d, level, false, window, extent.as_ref())
             };
+            extent = fresh;
             cg_total += c.iterations;
             if exact {
                 worst = worst.max(c.residual);
@@ -214,21 +231,14 @@ impl AdhesiveSolver {
         d: f64,
         tolerance: f64,
         full: bool,
+        window: Option<Window>,
+        extent: Option<&Window>,
     ) -> (Convergence, Option<Window>) {
         let cg = SolverOptions {
             tolerance,
             ..self.options.cg
         };
         let pre = self.options.preconditioned;
-        let window = {
-            let coh = self.cohesive.as_mut().expect("the Dugdale law");
-            Zip::from(&mut coh.loaded)
-                .and(&self.bonded)
-                .and(&coh.zone)
-                .for_each(|l, &b, &z| *l = b || z);
-            let coh = self.cohesive.as_ref().expect("the Dugdale law");
-            self.subgrid_of(&coh.loaded)
-        };
         let coh = self.cohesive.as_ref().expect("the Dugdale law");
         let base = &mut self.base;
         let tension = self
@@ -277,7 +287,13 @@ impl AdhesiveSolver {
             &cg,
             pre,
         );
-        base.pressure.fill(0.0);
+        match extent {
+            Some(e) => base
+                .pressure
+                .slice_mut(ndarray::s![e.i0..e.i1, e.j0..e.j1])
+                .fill(0.0),
+            None => base.pressure.fill(0.0),
+        }
         assign(base.pressure.slice_mut(block), sub.pressure.view());
         if full {
             base.op
