@@ -222,10 +222,12 @@ impl AdhesiveSolver {
         &mut self.cohesive.as_mut().expect("the Dugdale law").zone
     }
 
-    /// Solves the contact set with the zone's tension held: `pressure` holds `p_C` on the
-    /// contact, `−σ0` on the zone and 0 elsewhere, `work.disp = K p` on the whole grid. On free
-    /// grids whose loaded elements fill little of the grid, the solve runs on a sub-grid around
-    /// them (exact, as for the criterion) and one full-grid product follows.
+    /// Solves the contact set with the zone's tension held, to `tolerance`: `pressure` holds
+    /// `p_C` on the contact, `−σ0` on the zone and 0 elsewhere. On free grids whose loaded
+    /// elements fill little of the grid, the solve runs on the sub-grid `window` around them
+    /// (exact, as for the criterion; `extent` holds every non-zero pressure before it). With
+    /// `full` (or without a sub-grid) `work.disp = K p` on the whole grid afterwards and `None`
+    /// is returned; otherwise `work.disp` is up to date only in the returned window.
     fn solve_cohesive(
         &mut self,
         d: f64,
