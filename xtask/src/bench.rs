@@ -837,9 +837,9 @@ const DUGDALE_LAMBDA: f64 = 3.0 * 1.16;
 /// One Dugdale smooth-sphere run for `cargo xtask bench-dugdale`: R = E* = γ = 1 at Maugis
 /// λ = 3.48 (Tabor μ = λ/1.16 = 3) on an `n²` free grid of half-width 3. With `cycle`, from out
 /// of range to d = 1 and back in steps of 0.02 until the zone lets go; without, the pull-off
-/// protocol ([`ApproachPath::pull_off_only`]): one step to d = 1, retraction in steps of 0.1
-/// while the force is compressive, then of 0.02. Returns (seconds, steps, CG, rounds, pull-off
-/// force).
+/// protocol ([`tack_solver::ApproachPath::pull_off_only`]): one step to d = 1, retraction in
+/// steps of 0.1 while the force is compressive, then of 0.02. Returns (seconds, steps, CG,
+/// rounds, pull-off force).
 fn dugdale_sphere(n: usize, cycle: bool) -> Result<(f64, usize, usize, usize, f64)> {
     use tack_geometry::{Sphere, Surface};
     use tack_solver::{

@@ -42,16 +42,18 @@ pub enum IoError {
         /// The length of `approach`.
         expected: usize,
     },
-    /// A height map holds a NaN or infinite value.
+    /// A height or work-of-adhesion map holds a NaN or infinite value.
     #[error(
-        "{}: dataset `{dataset}` holds the non-finite height {value} at index [{}, {}]",
+        "{}: dataset `{dataset}` holds the non-finite {quantity} {value} at index [{}, {}]",
         path.display(), index[0], index[1]
     )]
     NonFinite {
         /// The file.
         path: PathBuf,
-        /// The height dataset.
+        /// The map's dataset.
         dataset: String,
+        /// What the map holds: `height` or `work of adhesion`.
+        quantity: &'static str,
         /// The first bad element, in row-major order.
         index: [usize; 2],
         /// Its value.

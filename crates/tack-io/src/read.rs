@@ -38,14 +38,21 @@ pub fn read_result(path: &Path) -> Result<RunResult, IoError> {
     let curve = read_curve(&file, path, &mut budget)?;
     let surface = if file.link_exists("surface/heights") {
         let bound = Bound::Ours(&mut budget);
-        Some(read_heights(&file, "/surface/heights", None, bound, path)?)
+        Some(read_heights(
+            &file,
+            "/surface/heights",
+            None,
+            bound,
+            path,
+            HEIGHT,
+        )?)
     } else {
         None
     };
     let surface_shape = surface.as_ref().map(|(h, _)| h.dim());
     let gamma = if file.link_exists("surface/gamma") {
         let bound = Bound::Ours(&mut budget);
-        Some(read_heights(&file, "/surface/gamma", surface_shape, bound, path)?.0)
+        Some(read_heights(&file, "/surface/gamma", surface_shape, bound, path, GAMMA)?.0)
     } else {
         None
     };
@@ -156,8 +163,20 @@ pub fn read_height_map_h5(
     dataset: Option<&str>,
     shape: Option<(usize, usize)>,
 ) -> Result<(Array2<f64>, f64), IoError> {
-    read_map_h5(path, dataset, shape, ["heights", "/surface/heights"])
+    read_map_h5(
+        path,
+        dataset,
+        shape,
+        ["heights", "/surface/heights"],
+        HEIGHT,
+    )
 }
+
+/// What a height map holds, for its errors.
+const HEIGHT: &str = "height";
+
+/// What a work-of-adhesion map holds, for its errors.
+const GAMMA: &str = "work of adhesion";
 
 /// A work-of-adhesion map from an HDF5 file: [`read_height_map_h5`] with the default datasets
 /// `gamma`, then `/surface/gamma` (the map of tack's own result files), never the heights.
@@ -166,7 +185,7 @@ pub fn read_gamma_map_h5(
     dataset: Option<&str>,
     shape: Option<(usize, usize)>,
 ) -> Result<(Array2<f64>, f64), IoError> {
-    read_map_h5(path, dataset, shape, ["gamma", "/surface/gamma"])
+    read_map_h5(path, dataset, shape, ["gamma", "/surface/gamma"], GAMMA)
 }
 
 fn read_map_h5(
@@ -174,6 +193,7 @@ fn read_map_h5(
     dataset: Option<&str>,
     shape: Option<(usize, usize)>,
     defaults: [&str; 2],
+    quantity: &'static str,
 ) -> Result<(Array2<f64>, f64), IoError> {
     let file = open(path)?;
     let name = match dataset {
@@ -186,7 +206,7 @@ fn read_map_h5(
                 what: format!("dataset `{}` (nor `{}`)", defaults[0], defaults[1]),
             })?,
     };
-    read_heights(&file, name, shape, Bound::Foreign, path)
+    read_heights(&file, name, shape, Bound::Foreign, path, quantity)
 }
 
 /// Checks that `dx` (of the heights `dataset`) is a finite positive spacing.
@@ -234,12 +254,14 @@ fn stored_plainly(ds: &hdf5::Dataset, name: &str, path: &Path) -> Result<bool, I
     Ok(layout && dcpl.filters().is_empty() && dcpl.external().is_empty())
 }
 
+/// A 2D f64 map `name` (heights or γ: `quantity`, for the errors) and its `dx`.
 fn read_heights(
     file: &File,
     name: &str,
     expected: Option<(usize, usize)>,
     bound: Bound<'_>,
     path: &Path,
+    quantity: &'static str,
 ) -> Result<(Array2<f64>, f64), IoError> {
     let invalid = |what: String| IoError::Invalid {
         path: path.to_owned(),
@@ -295,6 +317,7 @@ fn read_heights(
         return Err(IoError::NonFinite {
             path: path.to_owned(),
             dataset: name.to_owned(),
+            quantity,
             index: [i, j],
             value,
         });

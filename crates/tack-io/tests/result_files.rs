@@ -8,8 +8,8 @@ use std::sync::{PoisonError, RwLock, RwLockReadGuard, RwLockWriteGuard};
 
 use ndarray::{Array1, Array2, array};
 use tack_io::{
-    Curve, IoError, Provenance, RunResult, Snapshot, Summary, describe, read_height_map_h5,
-    read_result, write_result,
+    Curve, IoError, Provenance, RunResult, Snapshot, Summary, describe, read_gamma_map_h5,
+    read_height_map_h5, read_result, write_result,
 };
 
 /// HDF5 opens files without close-on-exec and holds a lock on them while open, so a child
@@ -442,6 +442,15 @@ fn height_map_errors_are_clear() {
     let msg = err(None);
     assert!(
         msg.contains("non-finite height NaN at index [1, 1]") && msg.contains("map.h5"),
+        "{msg}"
+    );
+    // A γ map names what it holds, not heights.
+    height_file(&path, "gamma", &bad.view(), Some("dataset"));
+    let msg = read_gamma_map_h5(&path, None, None)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        msg.contains("non-finite work of adhesion NaN at index [1, 1]"),
         "{msg}"
     );
 }
