@@ -9,7 +9,7 @@
 //! bonded set visited in the step; a revisit stops the loop and the step reports
 //! `converged = false`. The loop is also capped.
 
-use std::collections::HashSet;
+use crate::rounds::Rounds;
 use std::hash::{DefaultHasher, Hash, Hasher};
 
 use ndarray::{Array2, ArrayView2, Zip};
@@ -77,9 +77,6 @@ pub struct AdhesiveOptions {
     /// iteration count changes.
     pub nested_start: bool,
 }
-
-/// The inexact rounds' tolerance tightens by this factor each time a round finds nothing.
-pub(crate) const LOOSE_TIGHTENING: f64 = 100.0;
 
 /// The tolerance [`LOOSE_DETACH_MARGIN`] was measured at; margins scale with a round's
 /// tolerance relative to it.
@@ -308,7 +305,6 @@ impl AdhesiveSolver {
         let periodic = self.base.periodic();
         let n = self.base.heights().len();
         let (mut cg_total, mut worst, mut converged, mut full) = (0, 0.0f64, true, false);
-        let mut visited = HashSet::new();
         let mut rounds = 0;
         let closed = self.base.closed(d);
         if closed {
@@ -322,17 +318,7 @@ impl AdhesiveSolver {
         }
         let sigma_c = self.sigma_c;
         // Inexact rounds until one finds nothing clear, then an exact round on the same set.
-        let mut inexact_tolerance = self
-            .options
-            .round_tolerance
-            .filter(|&t| t > self.options.cg.tolerance);
-        let mut inexact_visited = HashSet::new();
-        let mut exact = inexact_tolerance.is_none();
-        // The inexact rounds' tolerance: it tightens 100× whenever a round finds nothing clear
-        // and returns to `round_tolerance` when a round changes the set.
-        let mut level = inexact_tolerance.unwrap_or(0.0);
-        // Whether the last round changed the set (a set is revisited only after a change).
-        let mut just_changed = true;
+        let mut schedule = Rounds::new(self.options.round_tolerance, self.options.cg.tolerance);
         let mut detach_margin;
         // `work.disp` and the gap are up to date only inside the last inexact round's window.
         let mut stale = false;
@@ -362,11 +348,8 @@ impl AdhesiveSolver {
             }
             let fingerprint = hash_box(&self.bonded, tight.as_ref());
             let window = self.subgrid_around(tight);
-            if !exact && just_changed && !inexact_visited.insert(fingerprint) {
-                // Inexact rounds came back to a set: finish the step with exact rounds only.
-                (inexact_tolerance, exact) = (None, true);
-            }
-            let cycle = exact && !visited.insert(fingerprint);
+            let cycle = schedule.visit(fingerprint);
+            let (exact, level) = (schedule.exact, schedule.level);
             let mut attach_below = 0.0;
             // Detach where `p < −σ·(1 + margin) − floor`: the margin of inexact rounds, and on a
             // map a floor of the reference's margin, so elements of little γ keep one too.
@@ -446,15 +429,8 @@ impl AdhesiveSolver {
             } else {
                 zip.fold(false, judge)
             };
-            just_changed = changed;
-            if changed {
-                exact = inexact_tolerance.is_none();
-                level = inexact_tolerance.unwrap_or(0.0);
-            } else if exact {
+            if schedule.done(changed) {
                 break;
-            } else {
-                level /= LOOSE_TIGHTENING;
-                exact = level <= self.options.cg.tolerance;
             }
         }
         if stale {
@@ -574,22 +550,14 @@ impl AdhesiveSolver {
             &cg,
             pre,
         );
-        match extent {
-            Some(e) => base
-                .pressure
-                .slice_mut(ndarray::s![e.i0..e.i1, e.j0..e.j1])
-                .fill(0.0),
-            None => base.pressure.fill(0.0),
-        }
-        assign(base.pressure.slice_mut(block), sub.pressure.view());
-        if full {
-            base.op
-                .apply(base.pressure.view(), base.work.disp.view_mut());
-            (out, None)
-        } else {
-            assign(base.work.disp.slice_mut(block), sub.work.disp.view());
-            (out, Some(window))
-        }
+        let fresh = base.adopt_subgrid(
+            &window,
+            extent,
+            sub.pressure.view(),
+            sub.work.disp.view(),
+            full,
+        );
+        (out, fresh)
     }
 
     /// The sub-grid to solve on around the bounding box `tight` of a set: the box grown to the

@@ -3,11 +3,11 @@
 //! `g = f − d + K p`; the periodic full-contact field; the integrals of a record.
 
 use ndarray::{Array2, ArrayView2, Zip};
-use tack_geometry::{Boundary, Grid, Surface};
+use tack_geometry::{Boundary, Grid, Surface, Window};
 use tack_kernels::ElasticOperator;
 
 use crate::SolverError;
-use crate::cg::Work;
+use crate::cg::{Work, assign};
 use crate::state::Totals;
 
 /// Operator, surface, fields and CG vectors of one solver.
@@ -74,8 +74,41 @@ impl SolverBase {
         );
     }
 
+    /// Takes a sub-grid solve on `window` back into the grid: the pressure is cleared over
+    /// `extent` (a window holding every non-zero pressure before; `None`: the grid) and the
+    /// sub-grid's `pressure` copied in. With `full`, `work.disp = K p` on the whole grid and
+    /// `None` is returned; otherwise the sub-grid's `disp` (its `K p`, exact there: every
+    /// non-zero pressure lies in the window) is copied in and `window` returned, the one
+    /// region where `work.disp` is up to date.
+    pub(crate) fn adopt_subgrid(
+        &mut self,
+        window: &Window,
+        extent: Option<&Window>,
+        pressure: ArrayView2<f64>,
+        disp: ArrayView2<f64>,
+        full: bool,
+    ) -> Option<Window> {
+        match extent {
+            Some(e) => self
+                .pressure
+                .slice_mut(ndarray::s![e.i0..e.i1, e.j0..e.j1])
+                .fill(0.0),
+            None => self.pressure.fill(0.0),
+        }
+        let block = ndarray::s![window.i0..window.i1, window.j0..window.j1];
+        assign(self.pressure.slice_mut(block), pressure);
+        if full {
+            self.op
+                .apply(self.pressure.view(), self.work.disp.view_mut());
+            None
+        } else {
+            assign(self.work.disp.slice_mut(block), disp);
+            Some(*window)
+        }
+    }
+
     /// `gap = f − d + disp` inside the window `w` only.
-    pub(crate) fn update_gap_in(&mut self, d: f64, w: &tack_geometry::Window) {
+    pub(crate) fn update_gap_in(&mut self, d: f64, w: &Window) {
         let block = ndarray::s![w.i0..w.i1, w.j0..w.j1];
         gap_of(
             self.gap.slice_mut(block),

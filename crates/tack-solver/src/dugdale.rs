@@ -21,14 +21,14 @@
 //! one finds nothing, the tolerance tightens until the exact round, which judges the whole
 //! grid without those margins; so every step ends on an exact solve and an exact test.
 
+use crate::rounds::Rounds;
 use ndarray::{Array2, ArrayView2, ArrayViewMut2, Zip};
-use std::collections::HashSet;
 use tack_geometry::Window;
 use tack_kernels::ElasticOperator;
 
 use crate::adhesive::{
-    LOOSE_ATTACH_MARGIN, LOOSE_DETACH_MARGIN, LOOSE_REFERENCE_TOLERANCE, LOOSE_TIGHTENING,
-    SubProblem, bounding_box, hash_masks_in,
+    LOOSE_ATTACH_MARGIN, LOOSE_DETACH_MARGIN, LOOSE_REFERENCE_TOLERANCE, SubProblem, bounding_box,
+    hash_masks_in,
 };
 use crate::cg::{PcgWork, Work, assign, pcg_holding};
 use crate::state::Convergence;
@@ -53,7 +53,6 @@ impl AdhesiveSolver {
         };
         let tolerance = self.options.cg.tolerance;
         let (mut cg_total, mut worst, mut converged, mut full) = (0, 0.0f64, true, false);
-        let mut visited = HashSet::new();
         let mut rounds = 0;
         let closed = self.base.closed(d);
         if closed {
@@ -64,15 +63,11 @@ impl AdhesiveSolver {
         // criterion): the tolerance starts at `round_tolerance / DUGDALE_ROUND_FACTOR`,
         // tightens 100× whenever an inexact round finds nothing and returns to its start when
         // a round changes a set.
-        let mut inexact_tolerance = self
+        let start = self
             .options
             .round_tolerance
-            .map(|t| t / DUGDALE_ROUND_FACTOR)
-            .filter(|&t| t > tolerance);
-        let mut inexact_visited = HashSet::new();
-        let mut exact = inexact_tolerance.is_none();
-        let mut level = inexact_tolerance.unwrap_or(0.0);
-        let mut just_changed = true;
+            .map(|t| t / DUGDALE_ROUND_FACTOR);
+        let mut schedule = Rounds::new(start, tolerance);
         // `work.disp` and the gap are up to date only inside the last inexact round's window.
         let mut stale = false;
         // A window known to hold every loaded element (`None`: the whole grid).
@@ -117,11 +112,8 @@ impl AdhesiveSolver {
                 (tight, fingerprint)
             };
             let window = self.subgrid_around(tight);
-            if !exact && just_changed && !inexact_visited.insert(fingerprint) {
-                // Inexact rounds came back to a pair of sets: exact rounds only from here.
-                (inexact_tolerance, exact) = (None, true);
-            }
-            let cycle = exact && !visited.insert(fingerprint);
+            let cycle = schedule.visit(fingerprint);
+            let (exact, level) = (schedule.exact, schedule.level);
             let (c, fresh) = if exact {
                 self.solve_cohesive(d, tolerance, true, window, extent.as_ref())
             } else {
@@ -198,15 +190,8 @@ impl AdhesiveSolver {
             } else {
                 zip.fold(false, judge)
             };
-            just_changed = changed;
-            if changed {
-                exact = inexact_tolerance.is_none();
-                level = inexact_tolerance.unwrap_or(0.0);
-            } else if exact {
+            if schedule.done(changed) {
                 break;
-            } else {
-                level /= LOOSE_TIGHTENING;
-                exact = level <= tolerance;
             }
         }
         if stale {
@@ -289,22 +274,14 @@ impl AdhesiveSolver {
             &cg,
             pre,
         );
-        match extent {
-            Some(e) => base
-                .pressure
-                .slice_mut(ndarray::s![e.i0..e.i1, e.j0..e.j1])
-                .fill(0.0),
-            None => base.pressure.fill(0.0),
-        }
-        assign(base.pressure.slice_mut(block), sub.pressure.view());
-        if full {
-            base.op
-                .apply(base.pressure.view(), base.work.disp.view_mut());
-            (out, None)
-        } else {
-            assign(base.work.disp.slice_mut(block), sub.work.disp.view());
-            (out, Some(window))
-        }
+        let fresh = base.adopt_subgrid(
+            &window,
+            extent,
+            sub.pressure.view(),
+            sub.work.disp.view(),
+            full,
+        );
+        (out, fresh)
     }
 }
 

@@ -95,6 +95,7 @@ mod extrapolate;
 mod law;
 mod options;
 mod path;
+mod rounds;
 mod state;
 mod subgrid;
 mod validate;
