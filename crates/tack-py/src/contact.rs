@@ -4,6 +4,7 @@ use numpy::{IntoPyArray, PyArray2, PyReadonlyArray2};
 use pyo3::prelude::*;
 use tack::fields;
 use tack::geometry::{Boundary, Grid, Surface};
+use tack::kernels::{Interface, Layer};
 use tack::solver::{ContactSolver, ContactState, SolverOptions};
 
 use crate::errors::{Names, value_error, value_error_named};
@@ -18,6 +19,8 @@ const CONTACT_NAMES: Names = &[
     (fields::GRID_DX, "dx"),
     (fields::SOLVER_TOLERANCE, "tolerance"),
     (fields::SOLVER_MAX_ITERATIONS, "max_iterations"),
+    (fields::BODY_THICKNESS, "thickness"),
+    (fields::BODY_POISSON, "poisson"),
 ];
 
 /// Equilibrium of non-adhesive contact at one prescribed approach.
@@ -100,9 +103,11 @@ impl ContactResult {
 
 /// Solves non-adhesive contact of `heights` at each approach in turn (warm-started) on
 /// `threads` threads (default: every core; results are the same bits on any count); signals
-/// are checked between approaches.
+/// are checked between approaches. With `thickness` the body is an elastic layer of that
+/// thickness and Poisson ratio `poisson` on a rigid base (`interface`: `"bonded"`, the
+/// default, or `"frictionless"`), `e_star` its `E/(1 − ν²)`; without, a half-space.
 #[pyfunction]
-#[pyo3(signature = (heights, *, dx, e_star, approaches, periodic=false, tolerance=None, max_iterations=None, threads=None))]
+#[pyo3(signature = (heights, *, dx, e_star, approaches, periodic=false, tolerance=None, max_iterations=None, threads=None, thickness=None, poisson=None, interface=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn contact(
     py: Python<'_>,
@@ -114,8 +119,12 @@ pub fn contact(
     tolerance: Option<f64>,
     max_iterations: Option<usize>,
     threads: Option<i64>,
+    thickness: Option<f64>,
+    poisson: Option<f64>,
+    interface: Option<String>,
 ) -> PyResult<Vec<ContactResult>> {
     let threads = crate::run::check_threads(threads)?;
+    let layer = layer_of(thickness, poisson, interface.as_deref())?;
     let pool = tack::engine::thread_pool("threads", threads).map_err(value_error)?;
     let named = |e: &dyn std::fmt::Display| value_error_named(e, CONTACT_NAMES);
     let heights = heights.as_array().to_owned();
@@ -138,7 +147,11 @@ pub fn contact(
         let (nx, ny) = heights.dim();
         let grid = Grid::new(nx, ny, dx, boundary).map_err(|e| named(&e))?;
         let surface = Surface::new(grid, heights).map_err(|e| named(&e))?;
-        let op = tack::kernels::operator_for(grid, e_star).map_err(|e| named(&e))?;
+        let op = match &layer {
+            Some(layer) => tack::kernels::layer_operator_for(grid, e_star, layer),
+            None => tack::kernels::operator_for(grid, e_star),
+        }
+        .map_err(|e| named(&e))?;
         let mut solver = ContactSolver::new(op, &surface, options).map_err(|e| named(&e))?;
         let mut states = Vec::with_capacity(approaches.len());
         for (k, &d) in approaches.iter().enumerate() {
@@ -157,4 +170,51 @@ pub fn contact(
         .into_iter()
         .map(|s| ContactResult::new(py, s))
         .collect())
+}
+
+/// The layer of `tack.contact`'s `thickness`, `poisson` and `interface` (`None`: a
+/// half-space); `poisson` and `interface` only with `thickness`, `poisson` required there.
+fn layer_of(
+    thickness: Option<f64>,
+    poisson: Option<f64>,
+    interface: Option<&str>,
+) -> PyResult<Option<Layer>> {
+    let Some(thickness) = thickness else {
+        if poisson.is_some() || interface.is_some() {
+            let name = if poisson.is_some() {
+                "poisson"
+            } else {
+                "interface"
+            };
+            return Err(value_error(format!(
+                "{name} is given without thickness: it describes a layer, which needs \
+                 thickness (> 0); leave it out for a half-space"
+            )));
+        }
+        return Ok(None);
+    };
+    let Some(poisson) = poisson else {
+        return Err(value_error(
+            "poisson is missing: a layer (thickness given) needs its Poisson ratio, a number \
+             in (-1, 0.5]",
+        ));
+    };
+    let interface = match interface.unwrap_or("bonded") {
+        "bonded" => Interface::Bonded,
+        "frictionless" => Interface::Frictionless,
+        other => {
+            return Err(value_error(format!(
+                "interface = {other:?} is invalid: must be \"bonded\" or \"frictionless\""
+            )));
+        }
+    };
+    let layer = Layer {
+        thickness,
+        poisson,
+        interface,
+    };
+    layer
+        .check()
+        .map_err(|e| value_error_named(&e, CONTACT_NAMES))?;
+    Ok(Some(layer))
 }

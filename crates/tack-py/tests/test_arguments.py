@@ -63,6 +63,20 @@ def test_contact_numbers_refuse_other_types(argument, value):
     assert_names(info, argument)
 
 
+@pytest.mark.parametrize("value", ["0.5", True, 1j, [0.5]], ids=repr)
+@pytest.mark.parametrize("argument", ["thickness", "poisson"])
+def test_contact_layer_numbers_refuse_other_types(argument, value):
+    with pytest.raises(TypeError) as info:
+        tack.contact(SMALL, **{**CONTACT, "thickness": 0.5, "poisson": 0.3, argument: value})
+    assert_names(info, argument)
+
+
+def test_contact_interface_refuses_other_types():
+    with pytest.raises(TypeError) as info:
+        tack.contact(SMALL, **{**CONTACT, "thickness": 0.5, "poisson": 0.3, "interface": 1})
+    assert_names(info, "interface")
+
+
 @pytest.mark.parametrize("value", ["0.01", b"0.01", None, True, 1j, ["0.01"], [0.01, 1j],
                                    [True, False], [0.01, None]], ids=repr)
 def test_contact_approach_refuses_other_types(value):
@@ -361,6 +375,12 @@ def test_pull_off_values_name_the_argument(changes, message):
         ({"tolerance": 2.0}, "tolerance = 2 is invalid: must be a number in (0, 1)"),
         ({"max_iterations": 0}, "max_iterations = 0 is invalid: must be an integer ≥ 1"),
         ({"approach": float("inf")}, "approach = inf is invalid"),
+        ({"thickness": 0.0, "poisson": 0.3}, "thickness = 0 is invalid: must be a finite number > 0"),
+        ({"poisson": 0.7, "thickness": 0.5}, "poisson = 0.7 is invalid: must be a number in (-1, 0.5]"),
+        ({"poisson": None, "thickness": 0.5}, "poisson is missing"),
+        ({"poisson": 0.3}, "poisson is given without thickness"),
+        ({"interface": "bonded"}, "interface is given without thickness"),
+        ({"interface": "glued", "thickness": 0.5, "poisson": 0.3}, "interface = glued is invalid"),
     ],
 )
 def test_contact_values_name_the_argument(changes, message):

@@ -38,6 +38,25 @@ def test_contact_over_several_approaches_follows_hertz():
     np.testing.assert_allclose(forces, expected, rtol=0.03)
 
 
+def test_contact_on_a_layer_tends_to_the_half_space_and_stiffens_as_it_thins():
+    # Hertz contact, a ≈ 0.1 at d = 0.01 (R = 1): a film 100 a thick answers as the
+    # half-space (its correction is of order a/h), a thinner bonded incompressible film is
+    # stiffer (a rigid base under it), and a frictionless base is softer than a bonded one.
+    dx = 0.01
+    heights = tack.surface.sphere(41, dx=dx, radius=1.0)
+    d = 0.01
+    half = tack.contact(heights, dx=dx, e_star=1.0, approach=d).force
+    def layer(h, nu, interface="bonded"):
+        s = tack.contact(heights, dx=dx, e_star=1.0, approach=d, thickness=h, poisson=nu,
+                         interface=interface)
+        assert s.converged
+        return s.force
+    thick = layer(10.0, 0.5)
+    assert half < thick < 1.02 * half
+    assert layer(0.2, 0.5) > 1.2 * half
+    assert layer(0.2, 0.3, "frictionless") < layer(0.2, 0.3, "bonded")
+
+
 def test_contact_gives_the_same_bits_on_any_thread_count():
     # 128² periodic: large enough for the FFTs to run in lanes on 2 threads.
     dx = 1.0 / 128

@@ -389,6 +389,9 @@ def contact(
     tolerance: Optional[float] = ...,
     max_iterations: Optional[int] = ...,
     threads: Optional[int] = ...,
+    thickness: Optional[float] = ...,
+    poisson: Optional[float] = ...,
+    interface: Optional[str] = ...,
 ) -> ContactResult: ...
 @overload
 def contact(
@@ -401,6 +404,9 @@ def contact(
     tolerance: Optional[float] = ...,
     max_iterations: Optional[int] = ...,
     threads: Optional[int] = ...,
+    thickness: Optional[float] = ...,
+    poisson: Optional[float] = ...,
+    interface: Optional[str] = ...,
 ) -> "list[ContactResult]": ...
 def contact(
     heights: Any,
@@ -412,6 +418,9 @@ def contact(
     tolerance: Optional[float] = None,
     max_iterations: Optional[int] = None,
     threads: Optional[int] = None,
+    thickness: Optional[float] = None,
+    poisson: Optional[float] = None,
+    interface: Optional[str] = None,
 ) -> Union[ContactResult, "list[ContactResult]"]:
     """Frictionless non-adhesive contact of a height array pressed by ``approach``.
 
@@ -427,6 +436,12 @@ def contact(
             1``, default 1e-10; ``max_iterations >= 1``, default 5000).
         threads: threads of the solve, 1..``MAX_THREADS`` (default: every core); the result is
             the same bits on any count.
+        thickness: make the body an elastic layer of this thickness (> 0) on a rigid base
+            instead of a half-space (``e_star`` is then the layer's E/(1 - nu^2); a scene's
+            ``[body] kind = "layer"``, docs/theory.md §2.5).
+        poisson: the layer's Poisson ratio nu, in (-1, 0.5]; required with ``thickness``.
+        interface: how the layer meets the base: ``"bonded"`` (welded, the default) or
+            ``"frictionless"``; with ``thickness`` only.
 
     Returns:
         A :class:`ContactResult` (``pressure`` and ``gap`` arrays of the heights' shape,
@@ -466,10 +481,24 @@ def contact(
         tolerance=_check.optional(_check.fraction, "tolerance", tolerance),
         max_iterations=_check.optional(_check.count, "max_iterations", max_iterations),
         threads=_threads(threads),
+        thickness=_check.optional(_check.positive, "thickness", thickness),
+        poisson=_check.optional(_check.real, "poisson", poisson),
+        interface=_interface(interface),
     )
     states = _tack.contact(array, approaches=approaches, **args)
     _warn_full_contact(states, array)
     return states[0] if scalar else states
+
+
+def _interface(interface: Any) -> Optional[str]:
+    """``interface`` of :func:`contact`: None, ``"bonded"`` or ``"frictionless"``."""
+    if interface is None:
+        return None
+    if not isinstance(interface, str):
+        raise TypeError(f"interface: expected a str, got {_check.describe(interface)}")
+    if interface not in ("bonded", "frictionless"):
+        raise _check.invalid("interface", interface, '"bonded" or "frictionless"')
+    return interface
 
 
 class FullContactWarning(UserWarning):

@@ -126,6 +126,9 @@ def contact(
     tolerance: Optional[float] = ...,
     max_iterations: Optional[int] = ...,
     threads: Optional[int] = ...,
+    thickness: Optional[float] = ...,
+    poisson: Optional[float] = ...,
+    interface: Optional[str] = ...,
 ) -> List[ContactResult]: ...
 def rough(
     nx: int,
