@@ -4,7 +4,6 @@ use numpy::{IntoPyArray, PyArray2, PyReadonlyArray2};
 use pyo3::prelude::*;
 use tack::fields;
 use tack::geometry::{Boundary, Grid, Surface};
-use tack::kernels::{Interface, Layer};
 use tack::solver::{ContactSolver, ContactState, SolverOptions};
 
 use crate::errors::{Names, value_error, value_error_named};
@@ -124,7 +123,7 @@ pub fn contact(
     interface: Option<String>,
 ) -> PyResult<Vec<ContactResult>> {
     let threads = crate::run::check_threads(threads)?;
-    let layer = layer_of(thickness, poisson, interface.as_deref())?;
+    let layer = crate::body::layer_of(thickness, poisson, interface.as_deref())?;
     let pool = tack::engine::thread_pool("threads", threads).map_err(value_error)?;
     let named = |e: &dyn std::fmt::Display| value_error_named(e, CONTACT_NAMES);
     let heights = heights.as_array().to_owned();
@@ -170,51 +169,4 @@ pub fn contact(
         .into_iter()
         .map(|s| ContactResult::new(py, s))
         .collect())
-}
-
-/// The layer of `tack.contact`'s `thickness`, `poisson` and `interface` (`None`: a
-/// half-space); `poisson` and `interface` only with `thickness`, `poisson` required there.
-fn layer_of(
-    thickness: Option<f64>,
-    poisson: Option<f64>,
-    interface: Option<&str>,
-) -> PyResult<Option<Layer>> {
-    let Some(thickness) = thickness else {
-        if poisson.is_some() || interface.is_some() {
-            let name = if poisson.is_some() {
-                "poisson"
-            } else {
-                "interface"
-            };
-            return Err(value_error(format!(
-                "{name} is given without thickness: it describes a layer, which needs \
-                 thickness (> 0); leave it out for a half-space"
-            )));
-        }
-        return Ok(None);
-    };
-    let Some(poisson) = poisson else {
-        return Err(value_error(
-            "poisson is missing: a layer (thickness given) needs its Poisson ratio, a number \
-             in (-1, 0.5]",
-        ));
-    };
-    let interface = match interface.unwrap_or("bonded") {
-        "bonded" => Interface::Bonded,
-        "frictionless" => Interface::Frictionless,
-        other => {
-            return Err(value_error(format!(
-                "interface = {other:?} is invalid: must be \"bonded\" or \"frictionless\""
-            )));
-        }
-    };
-    let layer = Layer {
-        thickness,
-        poisson,
-        interface,
-    };
-    layer
-        .check()
-        .map_err(|e| value_error_named(&e, CONTACT_NAMES))?;
-    Ok(Some(layer))
 }

@@ -7,6 +7,7 @@
 //! (`surface`, `analytics`), and the exceptions (`errors`).
 
 mod analytics;
+mod body;
 mod contact;
 mod errors;
 mod guard;

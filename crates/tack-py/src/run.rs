@@ -39,6 +39,8 @@ const PULL_OFF_NAMES: Names = &[
     (fields::ADHESION_SIGMA0, "sigma0"),
     (fields::ADHESION_MODEL, "model"),
     (fields::OUTPUT_SNAPSHOTS, "snapshots"),
+    (fields::BODY_THICKNESS, "thickness"),
+    (fields::BODY_POISSON, "poisson"),
     (
         "the non-adhesive tack_solver::ContactSolver",
         "tack.contact",
@@ -197,7 +199,7 @@ fn command_line(py: Python<'_>) -> String {
 
 /// The pull-off of a body given as heights (`tack::heights::pull_off`).
 #[pyfunction]
-#[pyo3(signature = (heights, *, dx, e_star, gamma, gamma_map=None, periodic=false, radius=None, max_approach=None, unload_step=None, coarse_unload_step=None, kappa=None, model="jkr_limit", sigma0=None, snapshots=None, threads=None, progress=None))]
+#[pyo3(signature = (heights, *, dx, e_star, gamma, gamma_map=None, periodic=false, radius=None, max_approach=None, unload_step=None, coarse_unload_step=None, kappa=None, model="jkr_limit", sigma0=None, snapshots=None, threads=None, progress=None, thickness=None, poisson=None, interface=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn pull_off(
     py: Python<'_>,
@@ -217,8 +219,23 @@ pub fn pull_off(
     snapshots: Option<Bound<'_, PyAny>>,
     threads: Option<i64>,
     progress: Option<Py<PyAny>>,
+    thickness: Option<f64>,
+    poisson: Option<f64>,
+    interface: Option<String>,
 ) -> PyResult<Result> {
     let threads = check_threads(threads)?;
+    let body = match crate::body::layer_of(thickness, poisson, interface.as_deref())? {
+        None => tack::scene::BodySpec::default(),
+        Some(layer) => tack::scene::BodySpec {
+            kind: tack::scene::BodyKind::Layer,
+            thickness: Some(layer.thickness),
+            poisson: Some(layer.poisson),
+            interface: Some(match layer.interface {
+                tack::kernels::Interface::Bonded => tack::scene::InterfaceKind::Bonded,
+                tack::kernels::Interface::Frictionless => tack::scene::InterfaceKind::Frictionless,
+            }),
+        },
+    };
     let snapshots = match snapshots {
         None => tack::scene::Snapshots::PullOff,
         Some(value) => {
@@ -257,6 +274,7 @@ pub fn pull_off(
         },
         snapshots,
         gamma_map: gamma_map.map(|g| g.as_array().to_owned()),
+        body,
     };
     let heights = heights.as_array().to_owned();
     let options = RunOptions {

@@ -207,6 +207,25 @@ def test_pull_off_of_a_sphere_given_as_an_array(tmp_path):
     assert again.pull_off_ratio == pytest.approx(result.pull_off_ratio, rel=0.02)
 
 
+def test_pull_off_on_a_layer_runs_the_scene_body_and_tends_to_the_half_space():
+    # The same sphere as above on a film 100 a_c thick (a_c ≈ 3.3): the pull-off of the
+    # half-space within 2%, the layer in the summary, the half-space references flagged.
+    dx, radius = 0.45, 8.0
+    heights = tack.surface.sphere(32, dx=dx, radius=radius)
+    half = tack.pull_off(heights, dx=dx, e_star=1.0, gamma=0.125, snapshots="none")
+    film = tack.pull_off(heights, dx=dx, e_star=1.0, gamma=0.125, snapshots="none",
+                         thickness=330.0, poisson=0.5)
+    assert film.summary["layer_thickness"] == 330.0
+    assert film.summary["layer_poisson"] == 0.5
+    assert "kind = \"layer\"" in film.scene
+    assert any("half-space" in w for w in film.summary["warnings"])
+    assert film.pull_off_force == pytest.approx(half.pull_off_force, rel=0.02)
+    with pytest.raises(tack.TackError, match="^poisson is missing"):
+        tack.pull_off(heights, dx=dx, e_star=1.0, gamma=0.125, thickness=1.0)
+    with pytest.raises(tack.TackError, match="^thickness = -1 is invalid"):
+        tack.pull_off(heights, dx=dx, e_star=1.0, gamma=0.125, thickness=-1.0, poisson=0.3)
+
+
 def test_pull_off_of_a_rough_sphere_is_deterministic():
     n, radius = 64, 1.0
     dx = radius / n

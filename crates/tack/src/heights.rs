@@ -113,6 +113,8 @@ pub struct PullOffSpec {
     /// The work of adhesion per element, the heights' shape (`None`: [`PullOffSpec::gamma`]
     /// everywhere). [`PullOffSpec::gamma`] stays the reference of the path and of F_JKR.
     pub gamma_map: Option<Array2<f64>>,
+    /// The elastic body (`[body]`): the half-space (default) or a layer on a rigid base.
+    pub body: crate::scene::BodySpec,
 }
 
 impl PullOffSpec {
@@ -131,6 +133,7 @@ impl PullOffSpec {
             adhesion: AdhesionSpec::default(),
             snapshots: Snapshots::PullOff,
             gamma_map: None,
+            body: crate::scene::BodySpec::default(),
         }
     }
 }
@@ -279,7 +282,7 @@ pub fn pull_off_scene(
         crate::pull_off_path::load_plan(first_touch, max_approach, unload_step, range);
     let file = SceneSchema {
         adhesion: spec.adhesion.clone(),
-        body: crate::scene::BodySpec::default(),
+        body: spec.body,
         version: SCENE_VERSION,
         material: Material {
             e_star: spec.e_star,

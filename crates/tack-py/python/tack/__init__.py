@@ -270,6 +270,9 @@ def pull_off(
     snapshots: Union[str, int, Sequence[int]] = "pull_off",
     threads: Optional[int] = None,
     progress: Progress = False,
+    thickness: Optional[float] = None,
+    poisson: Optional[float] = None,
+    interface: Optional[str] = None,
 ) -> Result:
     """Pulls a rigid body given as a height array off the elastic half-space (JKR-limit
     adhesion) and returns the :class:`Result` of the run.
@@ -309,6 +312,10 @@ def pull_off(
             step and the last contact), ``"all"``, ``"none"``, every k-th step (an int) or a
             list of step indices.
         threads, progress: as for :func:`run`.
+        thickness, poisson, interface: an elastic layer on a rigid base instead of the
+            half-space, as for :func:`contact` (a scene's ``[body] kind = "layer"``; the
+            closed-form references such as ``f_jkr`` stay the half-space's, and the result
+            says so in a warning).
 
     The default path (the paper's rough-sphere runs): with d_s = (R gamma^2/E*^2)^(1/3), one
     load step to ``max_approach = apex + top of the roughness + 3 d_s`` (apex and roughness
@@ -352,6 +359,9 @@ def pull_off(
         sigma0=_check.optional(_check.positive, "sigma0", sigma0),
         snapshots=_snapshots(snapshots),
         threads=_threads(threads),
+        thickness=_check.optional(_check.positive, "thickness", thickness),
+        poisson=_check.optional(_check.real, "poisson", poisson),
+        interface=_interface(interface),
     )
     callback = _progress(progress)
     try:

@@ -111,9 +111,14 @@ def pull_off(
     unload_step: Optional[float] = ...,
     coarse_unload_step: Optional[float] = ...,
     kappa: Optional[float] = ...,
+    model: str = ...,
+    sigma0: Optional[float] = ...,
     snapshots: Any = ...,
     threads: Optional[int] = ...,
     progress: Optional[Callable[[Dict[str, Any]], Any]] = ...,
+    thickness: Optional[float] = ...,
+    poisson: Optional[float] = ...,
+    interface: Optional[str] = ...,
 ) -> Result: ...
 def read(path: Union[str, os.PathLike[str]]) -> Result: ...
 def contact(
