@@ -374,6 +374,46 @@ mod tests {
     }
 
     #[test]
+    fn a_layer_spec_becomes_the_scene_body_and_its_problem() {
+        let heights = sphere(32, 0.45, 8.0);
+        let body = crate::scene::BodySpec {
+            kind: crate::scene::BodyKind::Layer,
+            thickness: Some(2.0),
+            poisson: Some(0.4),
+            interface: Some(crate::scene::InterfaceKind::Frictionless),
+        };
+        let spec = PullOffSpec {
+            body,
+            ..PullOffSpec::new(0.45, 1.0, 0.125)
+        };
+        let plan = pull_off_scene(&heights, &spec).unwrap();
+        assert_eq!(plan.scene.file.body, body);
+        assert!(
+            plan.scene.text.contains("kind = \"layer\""),
+            "{}",
+            plan.scene.text
+        );
+        let layer = problem(&plan.scene, &plan.body(&heights))
+            .unwrap()
+            .layer
+            .unwrap();
+        assert_eq!((layer.thickness, layer.poisson), (2.0, 0.4));
+        // A bad layer is refused by the scene's checks, naming the field.
+        let bad = PullOffSpec {
+            body: crate::scene::BodySpec {
+                thickness: Some(-1.0),
+                ..body
+            },
+            ..spec
+        };
+        let e = pull_off_scene(&heights, &bad)
+            .and_then(|p| problem(&p.scene, &p.body(&heights)).map(|_| ()))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("body.thickness = -1"), "{e}");
+    }
+
+    #[test]
     fn a_sphere_given_as_heights_runs_like_the_sphere_scene() {
         let (n, dx, radius) = (32, 0.45, 8.0);
         let heights = sphere(n, dx, radius);
