@@ -535,10 +535,7 @@ impl AdhesiveSolver {
         let sub = self
             .boxes
             .get_or_insert_with(shape, || SubProblem::new(shape, dx, e_star));
-        let block = ndarray::s![window.i0..window.i1, window.j0..window.j1];
-        assign(sub.pressure.view_mut(), base.pressure.slice(block));
-        assign(sub.heights.view_mut(), base.surface.heights().slice(block));
-        assign(sub.bonded.view_mut(), self.bonded.slice(block));
+        sub.load(base, &self.bonded, &window);
         let out = pcg(
             &mut sub.op,
             sub.heights.view(),
@@ -718,6 +715,14 @@ impl SubProblem {
             bonded: Array2::from_elem(shape, false),
             zone: None,
         }
+    }
+
+    /// Copies the pressure, heights and bonded set of `window` in from the whole grid.
+    pub(crate) fn load(&mut self, base: &SolverBase, bonded: &Array2<bool>, window: &Window) {
+        let block = ndarray::s![window.i0..window.i1, window.j0..window.j1];
+        assign(self.pressure.view_mut(), base.pressure.slice(block));
+        assign(self.heights.view_mut(), base.surface.heights().slice(block));
+        assign(self.bonded.view_mut(), bonded.slice(block));
     }
 }
 

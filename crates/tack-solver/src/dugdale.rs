@@ -254,13 +254,11 @@ impl AdhesiveSolver {
             .boxes
             .get_or_insert_with(shape, || SubProblem::new(shape, dx, e_star));
         let block = ndarray::s![window.i0..window.i1, window.j0..window.j1];
+        sub.load(base, &self.bonded, &window);
         let zone = sub
             .zone
             .get_or_insert_with(|| Array2::from_elem(shape, false));
         assign(zone.view_mut(), coh.zone.slice(block));
-        assign(sub.pressure.view_mut(), base.pressure.slice(block));
-        assign(sub.heights.view_mut(), base.surface.heights().slice(block));
-        assign(sub.bonded.view_mut(), self.bonded.slice(block));
         let out = solve_with_zone(
             &mut sub.op,
             sub.heights.view(),
