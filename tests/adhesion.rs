@@ -28,6 +28,7 @@ fn path(start: f64, max: f64, load: f64, unload: f64) -> ApproachPath {
         load_step: load,
         unload_step: unload,
         coarse_unload_step: None,
+        refine_pull_off: false,
         retract_to: None,
         max_steps: 1_000_000,
     }

@@ -43,6 +43,7 @@ fn cropped_sphere_with_roughness_gives_the_same_curve() {
         load_step: 0.002,
         unload_step: 0.0005,
         coarse_unload_step: None,
+        refine_pull_off: false,
         retract_to: None,
         max_steps: 10_000,
     };

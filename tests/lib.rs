@@ -66,6 +66,7 @@ impl JkrSphere {
             load_step: self.max_approach / 20.0,
             unload_step: self.unload_step,
             coarse_unload_step: self.coarse_unload_step,
+            refine_pull_off: false,
             retract_to: None,
             max_steps: 100_000,
         };

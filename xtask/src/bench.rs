@@ -254,6 +254,7 @@ fn rough_sphere_path(n: usize, seed: u64, crop: bool, subgrid: bool) -> Result<(
         load_step: 0.002,
         unload_step: 0.0005,
         coarse_unload_step: None,
+        refine_pull_off: false,
         retract_to: None,
         max_steps: 10_000,
     };
@@ -831,16 +832,24 @@ fn thread_speed_up(rough: &[usize], periodic: &[usize], rows: &mut Vec<Row>) -> 
     Ok(())
 }
 
+/// The paths of `cargo xtask bench-dugdale`'s smooth sphere.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum DugdaleRun {
+    /// From out of range to d = 1 and back, steps of 0.02.
+    Cycle,
+    /// `ApproachPath::pull_off_only(1, 0.1, 0.02)`.
+    PullOff,
+    /// `ApproachPath::pull_off_refined(1, 0.2, 0.02)`.
+    Refined,
+}
+
 /// Maugis λ of the Dugdale bench sphere: Tabor μ = 3 (λ = 1.16 μ).
 const DUGDALE_LAMBDA: f64 = 3.0 * 1.16;
 
 /// One Dugdale smooth-sphere run for `cargo xtask bench-dugdale`: R = E* = γ = 1 at Maugis
-/// λ = 3.48 (Tabor μ = λ/1.16 = 3) on an `n²` free grid of half-width 3. With `cycle`, from out
-/// of range to d = 1 and back in steps of 0.02 until the zone lets go; without, the pull-off
-/// protocol ([`tack_solver::ApproachPath::pull_off_only`]): one step to d = 1, retraction in
-/// steps of 0.1 while the force is compressive, then of 0.02. Returns (seconds, steps, CG,
-/// rounds, pull-off force).
-fn dugdale_sphere(n: usize, cycle: bool) -> Result<(f64, usize, usize, usize, f64)> {
+/// λ = 3.48 (Tabor μ = λ/1.16 = 3) on an `n²` free grid of half-width 3, on the path `run`
+/// ([`DugdaleRun`]). Returns (seconds, steps, CG, rounds, pull-off force).
+fn dugdale_sphere(n: usize, run: DugdaleRun) -> Result<(f64, usize, usize, usize, f64)> {
     use tack_geometry::{Sphere, Surface};
     use tack_solver::{
         AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, SnapshotRequest,
@@ -854,18 +863,21 @@ fn dugdale_sphere(n: usize, cycle: bool) -> Result<(f64, usize, usize, usize, f6
     let law = AdhesionLaw::Dugdale { sigma0 };
     let mut solver = AdhesiveSolver::with_law(op, &surface, 1.0, law, AdhesiveOptions::default())?;
     let step = 0.02;
-    let path = if cycle {
+    let path = if run == DugdaleRun::Cycle {
         ApproachPath {
             start: -1.0 / sigma0 - step,
             max_approach: 1.0,
             load_step: step,
             unload_step: step,
             coarse_unload_step: None,
+            refine_pull_off: false,
             retract_to: None,
             max_steps: 100_000,
         }
-    } else {
+    } else if run == DugdaleRun::PullOff {
         ApproachPath::pull_off_only(1.0, 0.1, step)?
+    } else {
+        ApproachPath::pull_off_refined(1.0, 0.2, step)?
     };
     let r = solver.run_path(&path, &SnapshotRequest::None, &mut ())?;
     let seconds = t.elapsed().as_secs_f64();
@@ -911,25 +923,28 @@ fn dugdale_tables(args: &[String], rows: &mut Vec<Row>) -> Result<()> {
         "    the pull-off protocol (one step to d = 1, retraction in steps of 0.1, 0.02 once tensile)"
     );
     println!(
+        "    and refined (steps of 0.2 all the way, the brackets that may hold the pull-off retraced by 0.02)"
+    );
+    println!(
         "   {:>5} {:>8} {:>9} {:>6} {:>7} {:>7} {:>11} {:>10}",
         "n", "run", "time [s]", "steps", "CG", "rounds", "FFT pairs", "F/F_MD − 1"
     );
     for &n in &sizes {
         let m = tack_kernels::padded_size(n);
         let t_pair = median_time(bare_fft_pair(m, m));
-        for (run, cycle) in [("cycle", true), ("pull-off", false)] {
-            let (seconds, steps, cg, rounds, force) = dugdale_sphere(n, cycle)?;
+        for (label, run, table) in [
+            ("cycle", DugdaleRun::Cycle, "dugdale_sphere"),
+            ("pull-off", DugdaleRun::PullOff, "dugdale_sphere_pull_off"),
+            ("refined", DugdaleRun::Refined, "dugdale_sphere_refined"),
+        ] {
+            let (seconds, steps, cg, rounds, force) = dugdale_sphere(n, run)?;
             let err = force / f_md - 1.0;
             println!(
-                "   {n:>5} {run:>8} {seconds:>9.2} {steps:>6} {cg:>7} {rounds:>7} {:>11.0} {err:>+10.4}",
+                "   {n:>5} {label:>8} {seconds:>9.2} {steps:>6} {cg:>7} {rounds:>7} {:>11.0} {err:>+10.4}",
                 seconds / t_pair
             );
             rows.push(Row {
-                table: if cycle {
-                    "dugdale_sphere"
-                } else {
-                    "dugdale_sphere_pull_off"
-                },
+                table,
                 label: format!("{n}²"),
                 fields: vec![
                     ("n", n as f64),

@@ -169,6 +169,7 @@ scene_fields! {
     PROTOCOL_LOAD_STEP = protocol.load_step,
     PROTOCOL_UNLOAD_STEP = protocol.unload_step,
     PROTOCOL_COARSE_UNLOAD_STEP = protocol.coarse_unload_step,
+    PROTOCOL_REFINE_PULL_OFF = protocol.refine_pull_off,
     PROTOCOL_RETRACT_TO = protocol.retract_to,
     PROTOCOL_MAX_STEPS = protocol.max_steps,
     OUTPUT_SNAPSHOTS = output.snapshots,
@@ -428,6 +429,11 @@ pub const FIELDS: &[Field] = &[
         "approach decrement while retracting and the force is still compressive",
     ),
     f(
+        PROTOCOL_REFINE_PULL_OFF,
+        Kind::Bool,
+        "coarse steps throughout the retraction, the pull-off's brackets retraced in fine steps",
+    ),
+    f(
         PROTOCOL_RETRACT_TO,
         Kind::Number,
         "stop retracting below this approach",
@@ -472,7 +478,7 @@ mod tests {
             );
             assert!(!f.meaning.is_empty(), "{}", f.name);
         }
-        assert_eq!(FIELDS.len(), 56);
+        assert_eq!(FIELDS.len(), 57);
     }
 
     #[test]

@@ -34,6 +34,7 @@ const PULL_OFF_NAMES: Names = &[
     (fields::GRID_DX, "dx"),
     (fields::PROTOCOL_MAX_APPROACH, "max_approach"),
     (fields::PROTOCOL_COARSE_UNLOAD_STEP, "coarse_unload_step"),
+    (fields::PROTOCOL_REFINE_PULL_OFF, "refine_pull_off"),
     (fields::PROTOCOL_UNLOAD_STEP, "unload_step"),
     (fields::SOLVER_KAPPA, "kappa"),
     (fields::ADHESION_SIGMA0, "sigma0"),
@@ -199,7 +200,7 @@ fn command_line(py: Python<'_>) -> String {
 
 /// The pull-off of a body given as heights (`tack::heights::pull_off`).
 #[pyfunction]
-#[pyo3(signature = (heights, *, dx, e_star, gamma, gamma_map=None, periodic=false, radius=None, max_approach=None, unload_step=None, coarse_unload_step=None, kappa=None, model="jkr_limit", sigma0=None, snapshots=None, threads=None, progress=None, thickness=None, poisson=None, interface=None))]
+#[pyo3(signature = (heights, *, dx, e_star, gamma, gamma_map=None, periodic=false, radius=None, max_approach=None, unload_step=None, coarse_unload_step=None, refine_pull_off=false, kappa=None, model="jkr_limit", sigma0=None, snapshots=None, threads=None, progress=None, thickness=None, poisson=None, interface=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn pull_off(
     py: Python<'_>,
@@ -213,6 +214,7 @@ pub fn pull_off(
     max_approach: Option<f64>,
     unload_step: Option<f64>,
     coarse_unload_step: Option<f64>,
+    refine_pull_off: bool,
     kappa: Option<f64>,
     model: &str,
     sigma0: Option<f64>,
@@ -266,6 +268,7 @@ pub fn pull_off(
         max_approach,
         unload_step,
         coarse_unload_step,
+        refine_pull_off,
         kappa,
         adhesion: tack::AdhesionSpec {
             model,

@@ -122,6 +122,8 @@ def test_flags_refuse_other_types(value):
         tack.contact(SMALL, **CONTACT, periodic=value)
     with pytest.raises(TypeError, match="^periodic: expected a bool"):
         tack.pull_off(SPHERE, **PULL_OFF, periodic=value)
+    with pytest.raises(TypeError, match="^refine_pull_off: expected a bool"):
+        tack.pull_off(SPHERE, **PULL_OFF, refine_pull_off=value)
     with pytest.raises(TypeError, match="^richardson: expected a bool"):
         tack.run("no/such/scene.toml", richardson=value)
     # numpy bools are bools.

@@ -207,6 +207,19 @@ def test_pull_off_of_a_sphere_given_as_an_array(tmp_path):
     assert again.pull_off_ratio == pytest.approx(result.pull_off_ratio, rel=0.02)
 
 
+def test_refined_retraction_finds_the_fine_pull_off_in_fewer_steps():
+    dx = 0.25
+    heights = tack.surface.sphere(64, dx=dx, radius=8.0) + tack.surface.random(
+        64, dx=dx, rms=0.3, hurst=0.5, seed=2
+    )
+    common = dict(dx=dx, e_star=1.0, gamma=0.125, radius=8.0, unload_step=0.01, snapshots="none")
+    fine = tack.pull_off(heights, **common, coarse_unload_step=0.01)
+    refined = tack.pull_off(heights, **common, coarse_unload_step=0.1, refine_pull_off=True)
+    assert refined.pull_off_force == pytest.approx(fine.pull_off_force, rel=2e-3)
+    assert len(refined) < len(fine) / 2
+    assert "refine_pull_off = true" in refined.scene
+
+
 def test_pull_off_on_a_layer_runs_the_scene_body_and_tends_to_the_half_space():
     # The same sphere as above on a film 100 a_c thick (a_c ≈ 3.3): the pull-off of the
     # half-space within 2%, the layer in the summary, the half-space references flagged.

@@ -128,8 +128,8 @@ pub struct AdhesiveSolver {
     /// Bonded-set CGs on sub-grids of a free grid, by shape.
     pub(crate) boxes: SubgridCache<SubProblem>,
     /// Pressure and approach of the previous step, for the secant predictor.
-    history: Option<(Array2<f64>, f64)>,
-    last_approach: Option<f64>,
+    pub(crate) history: Option<(Array2<f64>, f64)>,
+    pub(crate) last_approach: Option<f64>,
     /// The Dugdale law's cohesive zone and scratch (`None`: the zero-range criterion).
     pub(crate) cohesive: Option<Cohesive>,
 }

@@ -72,6 +72,7 @@
 //!     load_step: 0.3,
 //!     unload_step: 0.02,
 //!     coarse_unload_step: Some(0.3),
+//!     refine_pull_off: false,
 //!     retract_to: None,
 //!     max_steps: 10_000,
 //! };
@@ -86,6 +87,7 @@
 mod adhesive;
 mod base;
 mod cg;
+mod checkpoint;
 mod clusters;
 mod contact;
 mod crop;
@@ -103,6 +105,7 @@ mod validate;
 pub use adhesive::{
     AdhesiveOptions, AdhesiveSolver, KAPPA, KAPPA_LINE, LOOSE_ATTACH_MARGIN, LOOSE_DETACH_MARGIN,
 };
+pub use checkpoint::SolverState;
 pub use clusters::count_clusters;
 pub use contact::{ContactMethod, ContactSolver};
 pub use crop::{adhesive_reach, contact_window, touches_edge};

@@ -32,6 +32,24 @@ pub enum SolverError {
         /// Shape of the grid.
         grid: (usize, usize),
     },
+    /// A setting that only works together with another one.
+    #[error("{field} = true needs {needs}")]
+    Needs {
+        /// The setting given.
+        field: &'static str,
+        /// What it needs.
+        needs: &'static str,
+    },
+    /// A [`SolverState`](crate::SolverState) restored into a solver it does not fit.
+    #[error(
+        "the saved solver state ({state}) does not fit this solver ({solver}): restore a state saved from the same grid and adhesion law"
+    )]
+    StateMismatch {
+        /// The saved state's grid shape and law.
+        state: String,
+        /// The solver's grid shape and law.
+        solver: String,
+    },
     /// The surface and the operator live on different grids.
     #[error("the surface grid {surface:?} does not match the operator grid {operator:?}")]
     GridMismatch {

@@ -5,7 +5,7 @@
 use ndarray::Array2;
 use tack_fields::{self as fields, field_name};
 
-use crate::{AdhesiveSolver, SolverError, StepRecord, validate};
+use crate::{AdhesiveSolver, SolverError, SolverState, StepRecord, validate};
 
 /// A load–unload path under approach control.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -24,6 +24,25 @@ pub struct ApproachPath {
     /// and continues at `d₀ − k·unload_step`, k = 1, 2, … (the pull-off lies in the tensile
     /// part). A coarse step that jumps over the whole tensile part misses the pull-off.
     pub coarse_unload_step: Option<f64>,
+    /// Refined retraction (needs `coarse_unload_step`): coarse steps throughout the retraction,
+    /// and every coarse bracket that may hold the pull-off retraced in steps of `unload_step`
+    /// from the solver state saved at its start. Every approach is `max_approach −
+    /// n·unload_step` for a whole `n` (the coarse step is rounded to a whole number of unload
+    /// steps), so a retraced stretch solves exactly the fine path's approaches.
+    ///
+    /// A bracket is the two coarse steps around step `i` when either
+    /// - `F_i` is a local minimum of the force (`F_i < F_{i−1}`, `F_i ≤ F_{i+1}`, `F_i < 0`; a
+    ///   lost contact counts as `F = 0`) within one coarse change `F_{i−1} − F_i` of the least
+    ///   force kept so far, or
+    /// - one of the three forces is within `J` of the least, `J` the largest tension released in
+    ///   one fine step of the stretches retraced so far: a saw-tooth curve (a front that
+    ///   sticks, then jumps; coarse meshes) may hide a peak that deep between coarse steps.
+    ///
+    /// The coarse step in which the contact is lost is retraced when the tension was still
+    /// growing before it or is near the least (else the jump-out is located only to the coarse
+    /// step). The retraced steps replace the coarse ones: the records stay in path order, and
+    /// observers see only kept steps. `false`: as described at `coarse_unload_step`.
+    pub refine_pull_off: bool,
     /// Stop retracting below this approach; `None`: retract until no element is bonded.
     pub retract_to: Option<f64>,
     /// Cap on the total number of steps (a path always terminates).
@@ -63,6 +82,7 @@ impl ApproachPath {
             load_step,
             unload_step,
             coarse_unload_step: None,
+            refine_pull_off: false,
             retract_to: None,
             max_steps: Self::DEFAULT_MAX_STEPS,
         };
@@ -90,11 +110,36 @@ impl ApproachPath {
             load_step: max_approach.abs().max(unload_step),
             unload_step,
             coarse_unload_step: Some(coarse_unload_step),
+            refine_pull_off: false,
             retract_to: None,
             max_steps: Self::DEFAULT_MAX_STEPS,
         };
         path.validate()?;
         Ok(path)
+    }
+
+    /// [`ApproachPath::pull_off_only`] with the refined retraction
+    /// ([`ApproachPath::refine_pull_off`]): coarse steps of `coarse_unload_step` all the way,
+    /// the brackets that may hold the pull-off (and the last one before the contact is lost)
+    /// retraced in steps of `unload_step`. The pull-off is then resolved to `unload_step` at
+    /// the cost of a few coarse steps and one retraced bracket per candidate; the parts of the
+    /// curve far from it are sampled only every `coarse_unload_step`.
+    ///
+    /// ```
+    /// use tack_solver::ApproachPath;
+    /// let path = ApproachPath::pull_off_refined(1.0, 0.1, 0.02)?;
+    /// assert!(path.refine_pull_off && path.coarse_unload_step == Some(0.1));
+    /// # Ok::<(), tack_solver::SolverError>(())
+    /// ```
+    pub fn pull_off_refined(
+        max_approach: f64,
+        coarse_unload_step: f64,
+        unload_step: f64,
+    ) -> Result<Self, SolverError> {
+        Ok(Self {
+            refine_pull_off: true,
+            ..Self::pull_off_only(max_approach, coarse_unload_step, unload_step)?
+        })
     }
 
     /// One step pressed in to `approach` and no retraction: an indentation (the force, area
@@ -117,6 +162,7 @@ impl ApproachPath {
             load_step: 1.0,
             unload_step: 1.0,
             coarse_unload_step: None,
+            refine_pull_off: false,
             retract_to: Some(approach),
             max_steps: Self::DEFAULT_MAX_STEPS,
         };
@@ -162,7 +208,12 @@ impl ApproachPath {
                 let fine = self
                     .unload_step
                     .min(self.coarse_unload_step.unwrap_or(self.unload_step));
-                load + ((self.max_approach - r) / fine).floor()
+                // Refined: every coarse step at most once, and every fine one.
+                let coarse = match (self.refine_pull_off, self.coarse_unload_step) {
+                    (true, Some(c)) => ((self.max_approach - r) / c).floor() + 1.0,
+                    _ => 0.0,
+                };
+                load + ((self.max_approach - r) / fine).floor() + coarse
             }
             None => return self.max_steps,
         };
@@ -181,6 +232,18 @@ impl ApproachPath {
         validate::positive(fields::PROTOCOL_UNLOAD_STEP, self.unload_step)?;
         if let Some(c) = self.coarse_unload_step {
             validate::positive(fields::PROTOCOL_COARSE_UNLOAD_STEP, c)?;
+        }
+        if self.refine_pull_off && self.coarse_unload_step.is_none() {
+            return Err(SolverError::Needs {
+                field: fields::PROTOCOL_REFINE_PULL_OFF,
+                needs: concat!(
+                    "a coarse step: set ",
+                    field_name!(protocol.coarse_unload_step),
+                    " (the refined retraction steps coarsely and retraces the pull-off's brackets in steps of ",
+                    field_name!(protocol.unload_step),
+                    ")"
+                ),
+            });
         }
         if self.max_approach < self.start {
             return Err(SolverError::OutOfRange {
@@ -522,6 +585,10 @@ impl AdhesiveSolver {
         {
             return Ok(out);
         }
+        if let (true, Some(coarse)) = (path.refine_pull_off, path.coarse_unload_step) {
+            self.retract_refined(path, coarse, observer, &mut out)?;
+            return Ok(out);
+        }
         // Retract from `anchor` in steps of `stride`: the coarse step while the force is
         // compressive, then the unload step from the approach where it stopped being so.
         let (mut anchor, mut stride) = (
@@ -554,6 +621,148 @@ impl AdhesiveSolver {
             k += 1;
         }
         Ok(out)
+    }
+
+    /// The refined retraction ([`ApproachPath::refine_pull_off`]) after the load phase: coarse
+    /// steps from `max_approach`, each kept back (with a copy of the solver's state) until the
+    /// next one tells whether it is the middle of a bracket to retrace. Every approach is
+    /// `max_approach − n·unload_step` for a whole `n` (the coarse step is a whole number `m` of
+    /// unload steps), so a retraced stretch samples the fine path's own approaches.
+    fn retract_refined(
+        &mut self,
+        path: &ApproachPath,
+        coarse: f64,
+        observer: &mut dyn Observer,
+        out: &mut PathResult,
+    ) -> Result<(), SolverError> {
+        let fine = path.unload_step;
+        let m = ((coarse / fine).round() as usize).max(1);
+        let at = |n: usize| path.max_approach - n as f64 * fine;
+        // The state after the last kept step (where a retraced bracket starts) and its index,
+        // and the coarse steps not kept yet, oldest first, with their indices and the states
+        // after them (at most two).
+        let mut start = (0usize, self.save_state());
+        let mut pending: Vec<(usize, StepRecord, SolverState)> = Vec::new();
+        let mut spare: Vec<SolverState> = Vec::new();
+        // The largest tension released in one fine step of a retraced stretch: how far a peak
+        // of a saw-tooth curve (a front that sticks, then jumps) may hide between coarse steps.
+        let mut release = 0.0f64;
+        let mut n = 0usize;
+        loop {
+            n += m;
+            let d = at(n);
+            if path.retract_to.is_some_and(|r| d < r) {
+                self.keep_pending(&mut pending, &mut start, &mut spare, observer, out)?;
+                out.completed = true;
+                return Ok(());
+            }
+            if out.records.len() + pending.len() >= path.max_steps {
+                self.keep_pending(&mut pending, &mut start, &mut spare, observer, out)?;
+                return Ok(());
+            }
+            let rec = self.step(d)?;
+            let mut state = spare.pop().unwrap_or_else(|| self.save_state());
+            self.save_state_into(&mut state);
+            pending.push((n, rec, state));
+            let lost = rec.n_bonded + rec.n_cohesive == 0 && path.retract_to.is_none();
+            if pending.len() < 2 && !lost {
+                continue;
+            }
+            let least = out
+                .records
+                .iter()
+                .filter(|r| !r.full_contact)
+                .map(|r| r.force)
+                .fold(f64::INFINITY, f64::min);
+            let before = out.records.last().map_or(f64::INFINITY, |r| r.force);
+            // Within one released saw-tooth of the least force: a peak may hide next to it.
+            let near = |f: f64| release > 0.0 && f < 0.0 && f - release <= least;
+            // `pending` is [F_i, F_{i+1}] (or [F_{i+1}] alone when contact was lost): is step
+            // i the middle of a bracket that may hold the pull-off? (A lost contact has F = 0.)
+            let candidate = pending.len() == 2 && {
+                let (f, after) = (pending[0].1.force, pending[1].1.force);
+                let minimum = f < before && f <= after && f < 0.0 && f - (before - f) <= least;
+                minimum || near(before) || near(f) || near(after)
+            };
+            if !candidate && pending.len() == 2 {
+                // Step i is kept; step i + 1 waits for its own neighbour.
+                let (i, rec, state) = pending.remove(0);
+                self.keep(rec, &state, observer, out)?;
+                spare.push(std::mem::replace(&mut start, (i, state)).1);
+            }
+            // Contact lost within the coarse step after the last kept one: retrace it only if
+            // the tension was still growing there or is near the least (the pull-off may lie
+            // just before the jump-out); otherwise the jump-out stays located to the coarse step.
+            let growing = match out.records.as_slice() {
+                [.., a, b] => (b.force < 0.0 && b.force < a.force) || near(b.force),
+                _ => true,
+            };
+            if lost && !candidate && !growing {
+                self.keep_pending(&mut pending, &mut start, &mut spare, observer, out)?;
+                out.completed = true;
+                return Ok(());
+            }
+            if candidate || lost {
+                // Retrace from the kept state to the last coarse step's approach.
+                let end = pending.last().expect("a pending step").0;
+                spare.extend(pending.drain(..).map(|(_, _, s)| s));
+                self.restore_state(&start.1)?;
+                for j in start.0 + 1..=end {
+                    if out.records.len() >= path.max_steps {
+                        return Ok(());
+                    }
+                    let previous = out.records.last().map(|r| r.force);
+                    let rec = self.record_step(at(j), Phase::Unload, observer, out)?;
+                    if let Some(p) = previous {
+                        release = release.max(rec.force - p);
+                    }
+                    if rec.n_bonded + rec.n_cohesive == 0 && path.retract_to.is_none() {
+                        out.completed = true;
+                        return Ok(());
+                    }
+                }
+                start.0 = end;
+                self.save_state_into(&mut start.1);
+            }
+        }
+    }
+
+    /// Keeps the pending coarse steps, in order (the path ends).
+    fn keep_pending(
+        &mut self,
+        pending: &mut Vec<(usize, StepRecord, SolverState)>,
+        start: &mut (usize, SolverState),
+        spare: &mut Vec<SolverState>,
+        observer: &mut dyn Observer,
+        out: &mut PathResult,
+    ) -> Result<(), SolverError> {
+        for (i, rec, state) in pending.drain(..) {
+            self.keep(rec, &state, observer, out)?;
+            spare.push(std::mem::replace(start, (i, state)).1);
+        }
+        Ok(())
+    }
+
+    /// Keeps a step solved earlier: tells the observer (with the fields saved after it) and
+    /// appends the record, as [`Self::record_step`] does for the step just solved.
+    fn keep(
+        &mut self,
+        rec: StepRecord,
+        state: &SolverState,
+        observer: &mut dyn Observer,
+        out: &mut PathResult,
+    ) -> Result<(), SolverError> {
+        let index = out.records.len();
+        observer.on_fields(index, Phase::Unload, &rec, state.pressure(), state.bonded());
+        observer.on_step(index, Phase::Unload, &rec);
+        out.records.push(rec);
+        out.phases.push(Phase::Unload);
+        if observer.cancelled() {
+            return Err(SolverError::Cancelled {
+                steps: out.records.len(),
+            });
+        }
+        Ok(())
     }
 
     /// One step at `d`: solve, tell the observer (fields, then record), append the record.
@@ -603,6 +812,7 @@ mod tests {
             load_step: 1.0,
             unload_step: 0.05,
             coarse_unload_step: coarse,
+            refine_pull_off: false,
             retract_to: None,
             max_steps: 10_000,
         }
@@ -721,6 +931,122 @@ mod tests {
             .unwrap();
         assert!(!r.completed);
         assert_eq!(r.records.len(), 8);
+    }
+
+    fn refined(coarse: f64) -> ApproachPath {
+        ApproachPath {
+            refine_pull_off: true,
+            ..path(Some(coarse))
+        }
+    }
+
+    #[test]
+    fn refined_retraction_finds_the_fine_pull_off_in_fewer_steps() {
+        let fine = sphere_solver()
+            .run_path(&path(None), &SnapshotRequest::None, &mut ())
+            .unwrap();
+        let r = sphere_solver()
+            .run_path(&refined(0.25), &SnapshotRequest::All, &mut ())
+            .unwrap();
+        assert!(r.completed && r.all_converged());
+        let d = unload_approaches(&r);
+        // In path order, and every step either on the coarse lattice 6 − k/4 or a retraced
+        // fine step 0.05 below the one before it.
+        for w in d.windows(2) {
+            let gap = w[0] - w[1];
+            let on_lattice = ((6.0 - w[1]) / 0.25 - ((6.0 - w[1]) / 0.25).round()).abs() < 1e-9;
+            assert!(gap > 0.0, "{d:?}");
+            assert!(
+                (gap - 0.05).abs() < 1e-9 || on_lattice,
+                "{} → {}",
+                w[0],
+                w[1]
+            );
+        }
+        // The pull-off lies inside a retraced stretch.
+        let i = r.pull_off_step().unwrap();
+        let step = |j: usize| r.records[j - 1].approach - r.records[j].approach;
+        assert!((step(i) - 0.05).abs() < 1e-9 && (step(i + 1) - 0.05).abs() < 1e-9);
+        assert!(
+            r.records.len() < fine.records.len() / 2,
+            "{}",
+            r.records.len()
+        );
+        // The same pull-off as the fine path to well within the change of one fine step.
+        let (a, b) = (fine.pull_off_force(), r.pull_off_force());
+        assert!((a - b).abs() < 2e-3 * a.abs(), "{a} vs {b}");
+        // Observers and snapshots saw the kept steps only, each once, in order.
+        assert_eq!(r.snapshots.len(), r.records.len());
+        for (k, s) in r.snapshots.iter().enumerate() {
+            assert_eq!(s.step, k);
+            let force: f64 = s.pressure.sum() * 0.38 * 0.38;
+            assert!((force - r.records[k].force).abs() <= 1e-12 * force.abs().max(1.0));
+            let n = s.bonded.iter().filter(|&&b| b).count();
+            assert_eq!(n, r.records[k].n_bonded);
+        }
+    }
+
+    #[test]
+    fn refined_retraction_respects_retract_to_and_max_steps_and_needs_a_coarse_step() {
+        let p = ApproachPath {
+            retract_to: Some(3.6),
+            ..refined(1.0)
+        };
+        let r = sphere_solver()
+            .run_path(&p, &SnapshotRequest::None, &mut ())
+            .unwrap();
+        assert!(r.completed);
+        assert_eq!(unload_approaches(&r), [5.0, 4.0], "compressive: no bracket");
+        assert!(p.step_bound() >= r.records.len());
+        for cap in [3, 9] {
+            let p = ApproachPath {
+                max_steps: cap,
+                ..refined(1.0)
+            };
+            let r = sphere_solver()
+                .run_path(&p, &SnapshotRequest::None, &mut ())
+                .unwrap();
+            assert!(!r.completed && r.records.len() == cap, "cap {cap}");
+        }
+        let e = ApproachPath {
+            refine_pull_off: true,
+            ..path(None)
+        }
+        .validate()
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.starts_with("protocol.refine_pull_off = true needs a coarse step: set protocol.coarse_unload_step"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn a_state_restores_only_into_a_solver_of_its_grid_and_law() {
+        let mut a = sphere_solver();
+        a.step(1.0).unwrap();
+        let saved = a.save_state();
+        let grid = Grid::square(19, 0.38, Boundary::Free).unwrap();
+        let surface = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
+        let op = tack_kernels::operator_for(grid, 1.0).unwrap();
+        let law = crate::AdhesionLaw::Dugdale { sigma0: 1.0 };
+        let mut b =
+            AdhesiveSolver::with_law(op, &surface, 1.0, law, AdhesiveOptions::default()).unwrap();
+        let e = b.restore_state(&saved).unwrap_err().to_string();
+        assert!(
+            e.contains("(19 × 19 grid, zero range) does not fit this solver (19 × 19 grid, a cohesive zone)"),
+            "{e}"
+        );
+        let small = Grid::square(7, 0.38, Boundary::Free).unwrap();
+        let op = tack_kernels::operator_for(small, 1.0).unwrap();
+        let s = Surface::from_shape(small, &Sphere::new(1.0).unwrap());
+        let mut c =
+            AdhesiveSolver::new(op, &s, 1.0, crate::KAPPA, AdhesiveOptions::default()).unwrap();
+        assert!(c.restore_state(&saved).is_err());
+        // Into its own solver: the next step is the one taken right after the save.
+        let x = a.step(0.5).unwrap();
+        a.restore_state(&saved).unwrap();
+        assert_eq!(a.step(0.5).unwrap(), x);
     }
 
     #[test]

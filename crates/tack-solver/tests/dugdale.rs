@@ -38,6 +38,7 @@ fn cycle(lambda: f64, dx: f64, half: f64, step: f64) -> PathResult {
         load_step: step,
         unload_step: step,
         coarse_unload_step: None,
+        refine_pull_off: false,
         retract_to: None,
         max_steps: 100_000,
     };
@@ -193,6 +194,7 @@ fn criterion_pull_off(dx: f64, half: f64, step: f64) -> f64 {
         load_step: 2.5,
         unload_step: step,
         coarse_unload_step: None,
+        refine_pull_off: false,
         retract_to: None,
         max_steps: 100_000,
     };
@@ -249,6 +251,7 @@ fn wavy_cycle(alpha: f64, lambda_w: f64, nx: usize) -> (f64, f64, usize) {
         load_step: step,
         unload_step: step,
         coarse_unload_step: None,
+        refine_pull_off: false,
         retract_to: None,
         max_steps: 100_000,
     };

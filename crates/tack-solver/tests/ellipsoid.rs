@@ -82,6 +82,7 @@ fn elliptic_pull_off_ratio(k: f64) -> f64 {
         load_step: depth,
         unload_step: 0.1 * depth / k,
         coarse_unload_step: None,
+        refine_pull_off: false,
         retract_to: None,
         max_steps: 100_000,
     };

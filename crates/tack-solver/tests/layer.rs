@@ -528,6 +528,7 @@ fn bem_pull_off(gamma: f64, h: Option<f64>, a_f: f64, ratio: f64) -> f64 {
         load_step: depth,
         unload_step: 0.1 * depth / ratio,
         coarse_unload_step: None,
+        refine_pull_off: false,
         retract_to: None,
         max_steps: 100_000,
     };

@@ -41,6 +41,7 @@ fn run_pattern(
         load_step: depth.abs().max(step),
         unload_step: step,
         coarse_unload_step: None,
+        refine_pull_off: false,
         retract_to: None,
         max_steps: 200_000,
     };

@@ -30,6 +30,7 @@ fn pull_off_ratio(m: f64, ratio: f64) -> f64 {
         load_step: depth,
         unload_step: 0.1 * depth / ratio,
         coarse_unload_step: None,
+        refine_pull_off: false,
         retract_to: None,
         max_steps: 100_000,
     };

@@ -103,6 +103,9 @@ pub struct PullOffSpec {
     pub unload_step: Option<f64>,
     /// Retraction step while the force is compressive; `None`: [`COARSE_UNLOAD_STEP`]·d_s.
     pub coarse_unload_step: Option<f64>,
+    /// Refined retraction (`protocol.refine_pull_off`): coarse steps all the way, the pull-off's
+    /// brackets retraced in steps of the unload step.
+    pub refine_pull_off: bool,
     /// Pohrt–Popov constant κ; `None`: `tack_solver::KAPPA`.
     pub kappa: Option<f64>,
     /// The adhesion law (`[adhesion]`): the zero-range criterion (default) or a Dugdale
@@ -129,6 +132,7 @@ impl PullOffSpec {
             max_approach: None,
             unload_step: None,
             coarse_unload_step: None,
+            refine_pull_off: false,
             kappa: None,
             adhesion: AdhesionSpec::default(),
             snapshots: Snapshots::PullOff,
@@ -313,6 +317,7 @@ pub fn pull_off_scene(
             indent: None,
             unload_step: Some(unload_step),
             coarse_unload_step: Some(coarse_unload_step),
+            refine_pull_off: spec.refine_pull_off.then_some(true),
             retract_to: None,
             max_steps: None,
         },

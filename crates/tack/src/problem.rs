@@ -782,6 +782,10 @@ fn approach_path(
                 p.coarse_unload_step.is_some(),
             ),
             (fields::PROTOCOL_RETRACT_TO, p.retract_to.is_some()),
+            (
+                fields::PROTOCOL_REFINE_PULL_OFF,
+                p.refine_pull_off.is_some(),
+            ),
         ];
         if let Some((field, _)) = others.iter().find(|(_, given)| *given) {
             return Err(SceneError::Inconsistent(format!(
@@ -871,6 +875,7 @@ fn approach_path(
                     load_step: load,
                     unload_step: unload,
                     coarse_unload_step: Some(coarse),
+                    refine_pull_off: p.refine_pull_off.unwrap_or(false),
                     retract_to: None,
                     max_steps,
                 };
@@ -894,6 +899,7 @@ fn approach_path(
         load_step,
         unload_step,
         coarse_unload_step,
+        refine_pull_off: p.refine_pull_off.unwrap_or(false),
         retract_to: p.retract_to,
         max_steps,
     };
@@ -1980,6 +1986,34 @@ load_step = 0.05
     }
 
     #[test]
+    fn the_refined_retraction_reaches_the_solver_and_needs_a_coarse_step() {
+        let sets = [
+            "protocol.coarse_unload_step=0.2",
+            "protocol.unload_step=0.01",
+            "protocol.refine_pull_off=true",
+        ];
+        let p = build(SPHERE, &sets).unwrap();
+        assert!(p.path.refine_pull_off && p.path.coarse_unload_step == Some(0.2));
+        let e = build(SPHERE, &[sets[1], sets[2]]).unwrap_err().to_string();
+        assert!(
+            e.contains("protocol.refine_pull_off = true needs a coarse step: set protocol.coarse_unload_step"),
+            "{e}"
+        );
+        let e = build(SPHERE, &["protocol.refine_pull_off=1"])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("protocol.refine_pull_off"), "{e}");
+        // The default path takes it too (its coarse step is the rule's), and is fine without.
+        assert!(!build(no_protocol(), &[]).unwrap().path.refine_pull_off);
+        let p = build(no_protocol(), &[sets[2]]).unwrap();
+        assert!(p.path.refine_pull_off && p.path.coarse_unload_step.is_some());
+        let e = build(no_protocol(), &["protocol.indent=0.1", sets[2]])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("leave out protocol.refine_pull_off"), "{e}");
+    }
+
+    #[test]
     fn a_punch_on_an_even_grid_needs_its_spare_element_on_the_short_side() {
         let punch = include_str!("../../../data/examples/flat_punch.toml");
         // a = 1, Δx = 0.1: the face needs centres out to 1.1 on both sides. An even n = 22
@@ -2247,6 +2281,7 @@ mod adhesion_tests {
             load_step: step,
             unload_step: step,
             coarse_unload_step: None,
+            refine_pull_off: false,
             retract_to: None,
             max_steps: 1000,
         };

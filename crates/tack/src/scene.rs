@@ -399,6 +399,11 @@ pub struct Protocol {
     /// `unload_step` throughout (see `tack_solver::ApproachPath::coarse_unload_step`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub coarse_unload_step: Option<f64>,
+    /// Refined retraction: coarse steps all the way, the brackets that may hold the pull-off
+    /// retraced in steps of `unload_step` (needs a coarse step; see
+    /// `tack_solver::ApproachPath::refine_pull_off`). Default false.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub refine_pull_off: Option<bool>,
     /// Stop retracting below this approach; default: retract until nothing is bonded.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub retract_to: Option<f64>,

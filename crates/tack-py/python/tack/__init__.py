@@ -264,6 +264,7 @@ def pull_off(
     max_approach: Optional[float] = None,
     unload_step: Optional[float] = None,
     coarse_unload_step: Optional[float] = None,
+    refine_pull_off: bool = False,
     kappa: Optional[float] = None,
     model: str = "jkr_limit",
     sigma0: Optional[float] = None,
@@ -298,6 +299,11 @@ def pull_off(
             half the roughness range.
         max_approach, unload_step, coarse_unload_step: the path, instead of the default rule
             (``max_approach`` finite, the steps > 0).
+        refine_pull_off: the refined retraction: coarse steps (``coarse_unload_step``, default
+            0.2 d_s) all the way, and every stretch of two coarse steps that may hold the
+            pull-off (and the last one before the contact is lost) retraced in steps of
+            ``unload_step`` from the state saved at its start. The same pull-off as the fine
+            path, about half the steps (``docs/theory.md`` section 3.9).
         kappa: the Pohrt-Popov constant (> 0; default 0.473201, curved crack fronts); the
             zero-range model only.
         model: the adhesion law: ``"jkr_limit"`` (default; the zero-range Pohrt-Popov
@@ -354,6 +360,7 @@ def pull_off(
         coarse_unload_step=_check.optional(
             _check.positive, "coarse_unload_step", coarse_unload_step
         ),
+        refine_pull_off=_check.flag("refine_pull_off", refine_pull_off),
         kappa=_check.optional(_check.positive, "kappa", kappa),
         model=_model(model),
         sigma0=_check.optional(_check.positive, "sigma0", sigma0),

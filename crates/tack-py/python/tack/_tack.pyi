@@ -110,6 +110,7 @@ def pull_off(
     max_approach: Optional[float] = ...,
     unload_step: Optional[float] = ...,
     coarse_unload_step: Optional[float] = ...,
+    refine_pull_off: bool = ...,
     kappa: Optional[float] = ...,
     model: str = ...,
     sigma0: Optional[float] = ...,

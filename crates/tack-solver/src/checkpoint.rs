@@ -1,0 +1,130 @@
+//! Copies of an adhesive solver's state between steps, to go back to an earlier approach and
+//! retrace it (the refined retraction of [`ApproachPath::refine_pull_off`](crate::ApproachPath)).
+
+use ndarray::Array2;
+
+use crate::{AdhesiveSolver, SolverError};
+
+/// Everything an [`AdhesiveSolver`] carries from one step to the next: the pressure, gap and
+/// displacement, the bonded set, the Dugdale law's cohesive zone and the secant predictor's
+/// previous step. Restoring it makes the next step exactly (bit for bit) what it would have
+/// been right after the step it was saved at; the solver's scratch (sub-grid operators, CG
+/// vectors) holds nothing a step reads before writing it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SolverState {
+    pressure: Array2<f64>,
+    gap: Array2<f64>,
+    disp: Array2<f64>,
+    bonded: Array2<bool>,
+    zone: Option<Array2<bool>>,
+    history: Option<(Array2<f64>, f64)>,
+    last_approach: Option<f64>,
+}
+
+impl SolverState {
+    /// The pressure field of the saved state.
+    pub fn pressure(&self) -> &Array2<f64> {
+        &self.pressure
+    }
+    /// The bonded mask of the saved state.
+    pub fn bonded(&self) -> &Array2<bool> {
+        &self.bonded
+    }
+    /// The approach of the step the state was saved after (`None` before the first step).
+    pub fn approach(&self) -> Option<f64> {
+        self.last_approach
+    }
+}
+
+/// `to = from`, reusing `to`'s buffer when the shapes agree.
+fn copy<T: Clone>(to: &mut Array2<T>, from: &Array2<T>) {
+    if to.dim() == from.dim() {
+        to.assign(from);
+    } else {
+        *to = from.clone();
+    }
+}
+
+impl AdhesiveSolver {
+    /// A copy of the solver's state (see [`SolverState`]).
+    ///
+    /// ```
+    /// use tack_geometry::{Boundary, Grid, Sphere, Surface};
+    /// use tack_solver::{AdhesiveOptions, AdhesiveSolver, KAPPA};
+    /// let grid = Grid::square(16, 0.25, Boundary::Free)?;
+    /// let surface = Surface::from_shape(grid, &Sphere::new(1.0)?);
+    /// let op = tack_kernels::operator_for(grid, 1.0)?;
+    /// let mut solver = AdhesiveSolver::new(op, &surface, 1.0, KAPPA, AdhesiveOptions::default())?;
+    /// solver.step(0.5)?;
+    /// let saved = solver.save_state();
+    /// let a = solver.step(0.2)?;
+    /// solver.restore_state(&saved)?;
+    /// let b = solver.step(0.2)?;
+    /// assert_eq!(a, b);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn save_state(&self) -> SolverState {
+        SolverState {
+            pressure: self.base.pressure.clone(),
+            gap: self.base.gap.clone(),
+            disp: self.base.work.disp.clone(),
+            bonded: self.bonded.clone(),
+            zone: self.cohesive.as_ref().map(|c| c.zone.clone()),
+            history: self.history.clone(),
+            last_approach: self.last_approach,
+        }
+    }
+
+    /// [`AdhesiveSolver::save_state`] into `state`, reusing its buffers.
+    pub fn save_state_into(&self, state: &mut SolverState) {
+        copy(&mut state.pressure, &self.base.pressure);
+        copy(&mut state.gap, &self.base.gap);
+        copy(&mut state.disp, &self.base.work.disp);
+        copy(&mut state.bonded, &self.bonded);
+        match (state.zone.as_mut(), self.cohesive.as_ref()) {
+            (Some(to), Some(c)) => copy(to, &c.zone),
+            (_, c) => state.zone = c.map(|c| c.zone.clone()),
+        }
+        match (&mut state.history, &self.history) {
+            (Some((p, d)), Some((q, e))) => {
+                copy(p, q);
+                *d = *e;
+            }
+            (to, from) => *to = from.clone(),
+        }
+        state.last_approach = self.last_approach;
+    }
+
+    /// Goes back to `state`, saved from this solver (or one built the same way). A state of
+    /// another grid shape or another law (a cohesive zone or none) is refused.
+    pub fn restore_state(&mut self, state: &SolverState) -> Result<(), SolverError> {
+        let describe = |shape: (usize, usize), zone: bool| {
+            let law = if zone {
+                "a cohesive zone"
+            } else {
+                "zero range"
+            };
+            format!("{} × {} grid, {law}", shape.0, shape.1)
+        };
+        let (mine, theirs) = (
+            (self.bonded.dim(), self.cohesive.is_some()),
+            (state.bonded.dim(), state.zone.is_some()),
+        );
+        if mine != theirs {
+            return Err(SolverError::StateMismatch {
+                state: describe(theirs.0, theirs.1),
+                solver: describe(mine.0, mine.1),
+            });
+        }
+        self.base.pressure.assign(&state.pressure);
+        self.base.gap.assign(&state.gap);
+        self.base.work.disp.assign(&state.disp);
+        self.bonded.assign(&state.bonded);
+        if let (Some(c), Some(z)) = (self.cohesive.as_mut(), state.zone.as_ref()) {
+            c.zone.assign(z);
+        }
+        self.history.clone_from(&state.history);
+        self.last_approach = state.last_approach;
+        Ok(())
+    }
+}
