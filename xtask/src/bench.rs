@@ -270,7 +270,8 @@ fn rough_sphere_path(n: usize, seed: u64, crop: bool, subgrid: bool) -> Result<(
 }
 
 /// `cargo xtask bench [--full]`: every speed table, each timing a ratio measured in the same
-/// run; writes `results/bench.json`. `--full` adds a_c/Δx = 80 and the 1024² operator.
+/// run; writes `results/bench.json`. `--full` adds a_c/Δx = 80, the 1024² operator and the
+/// 1024² refined retraction.
 pub fn all(args: &[String]) -> Result<()> {
     let full = args.iter().any(|a| a == "--full");
     // 4096² rough-sphere pull-off (hours on 2 cores) only when asked.
@@ -375,6 +376,18 @@ pub fn all(args: &[String]) -> Result<()> {
     for n in [256, 512] {
         pull_off_before_after(n, &mut rows)?;
     }
+    println!(
+        "   refined retraction ({}: coarse steps all the way, the pull-off's",
+        tack_fields::PROTOCOL_REFINE_PULL_OFF
+    );
+    println!("   brackets retraced by the fine step), the same scene and threads:");
+    for &n in if full {
+        &[256usize, 512, 1024][..]
+    } else {
+        &[256, 512][..]
+    } {
+        refined_vs_fine(n, threads, &mut rows)?;
+    }
 
     println!("5. a Fig. 7 style sweep point: 15 realizations (128², H = 0.5), 1 vs 2 threads");
     let mut one = 0.0;
@@ -419,6 +432,9 @@ pub fn all(args: &[String]) -> Result<()> {
 
     println!("8. free Hertz, 1024², both methods");
     rows.extend(hertz_only(1024)?);
+
+    println!("9. the Dugdale law (bench-dugdale's tables)");
+    dugdale_tables(&[], &mut rows)?;
 
     std::fs::create_dir_all("results")?;
     tack_io::write_text_atomically("results/bench.json".as_ref(), &json(&rows))?;
@@ -682,6 +698,49 @@ fn pull_off_scaling(sizes: &[usize], threads: usize, rows: &mut Vec<Row>) -> Res
 }
 
 /// Exact rounds (the previous version) against the inexact ones, same run, same thread count.
+/// The bench's rough-sphere pull-off at `n²` on its fixed fine retraction and refined
+/// (`protocol.refine_pull_off`, the same steps: coarse 5.5e-4, fine 5.5e-5).
+fn refined_vs_fine(n: usize, threads: usize, rows: &mut Vec<Row>) -> Result<()> {
+    let fine = rough_sphere_pull_off(n, threads, false)?;
+    let scene = rough_sphere_scene(n, false)?;
+    let scene = tack::Scene::parse(
+        &scene.text,
+        ".",
+        &[format!("{}=true", tack_fields::PROTOCOL_REFINE_PULL_OFF)],
+    )?;
+    let refined = timed_pull_off(&scene, threads)?;
+    let same = fine.force.to_bits() == refined.force.to_bits();
+    println!(
+        "   {n}²: fine {:.2} s ({} steps, {} CG), refined {:.2} s ({} steps, {} CG): {:.2}× \
+         faster, pull-off {:.7e} vs {:.7e} ({})",
+        fine.seconds,
+        fine.steps,
+        fine.cg,
+        refined.seconds,
+        refined.steps,
+        refined.cg,
+        fine.seconds / refined.seconds,
+        fine.force,
+        refined.force,
+        if same { "same bits" } else { "differs" }
+    );
+    rows.push(Row {
+        table: "refined_retraction",
+        label: format!("{n}²"),
+        fields: vec![
+            ("fine_seconds", fine.seconds),
+            ("refined_seconds", refined.seconds),
+            ("speed_up", fine.seconds / refined.seconds),
+            ("fine_steps", fine.steps as f64),
+            ("refined_steps", refined.steps as f64),
+            ("fine_pull_off", fine.force),
+            ("refined_pull_off", refined.force),
+            ("same_bits", if same { 1.0 } else { 0.0 }),
+        ],
+    });
+    Ok(())
+}
+
 fn pull_off_before_after(n: usize, rows: &mut Vec<Row>) -> Result<()> {
     let exact = rough_sphere_pull_off(n, 1, true)?;
     let inexact = rough_sphere_pull_off(n, 1, false)?;

@@ -38,15 +38,16 @@ commands:
   bench-contact [N]        non-adhesive contact: N² periodic rough surface (H = 0.8, ~7%
                           contact) and N² free Hertz, plain / coarse-to-fine / cropped
   bench-dugdale [N...]     Dugdale smooth sphere at Tabor mu = 3 on N² (default 128 256 512),
-                           cycle and pull-off protocol, against the FFT floor; Dugdale vs
+                           cycle, pull-off protocol and refined, against the FFT floor; Dugdale vs
                            zero-range rough sphere at 256²
   bench-rough [N]          sphere + H = 0.5 roughness pull-off on an N² L = R grid (default
                           512): plain, cropped, sub-grid CG, both
   bench [--full] [--4096] every speed table (operator, CG iteration, JKR path, rough-sphere
                           pull-off 128² … 2048² with peak heap bytes per element, 4096² with
-                          --4096; inexact against exact rounds; 15-realization sweep point and
-                          one run on 1 and 2 threads, compared bit for bit; periodic contact
-                          256² … 4096²; free Hertz); writes results/bench.json
+                          --4096; inexact against exact rounds; refined against fine retraction;
+                          15-realization sweep point and one run on 1 and 2 threads, compared
+                          bit for bit; periodic contact 256² … 4096²; free Hertz; bench-dugdale's
+                          tables); writes results/bench.json
   convergence [N...]      pull-off convergence on smooth, wavy (α = 0.5, 1) and band-limited
                           rough spheres (H = 0.3, 0.7, three seeds) at n = 64 128 256 512 (or
                           the N given): Richardson, observed order, error estimate against the
