@@ -28,7 +28,8 @@ pub struct ApproachPath {
     /// and every coarse bracket that may hold the pull-off retraced in steps of `unload_step`
     /// from the solver state saved at its start. Every approach is `max_approach −
     /// n·unload_step` for a whole `n` (the coarse step is rounded to a whole number of unload
-    /// steps), so a retraced stretch solves exactly the fine path's approaches.
+    /// steps, at least one: below 1.5 unload steps every step is fine and nothing is retraced),
+    /// so a retraced stretch solves exactly the fine path's approaches.
     ///
     /// A bracket is the two coarse steps around step `i` when either
     /// - `F_i` is a local minimum of the force (`F_i < F_{i−1}`, `F_i ≤ F_{i+1}`, `F_i < 0`; a
@@ -702,6 +703,15 @@ impl AdhesiveSolver {
                 out.completed = true;
                 return Ok(());
             }
+            if m == 1 {
+                // The coarse step is the fine one: every step is already fine.
+                self.keep_pending(&mut pending, &mut start, &mut spare, observer, out)?;
+                if lost {
+                    out.completed = true;
+                    return Ok(());
+                }
+                continue;
+            }
             if candidate || lost {
                 // Retrace from the kept state to the last coarse step's approach.
                 let end = pending.last().expect("a pending step").0;
@@ -988,6 +998,17 @@ mod tests {
 
     #[test]
     fn refined_retraction_respects_retract_to_and_max_steps_and_needs_a_coarse_step() {
+        // A coarse step under 1.5 unload steps rounds to one: the fine path, bit for bit.
+        let fine = sphere_solver()
+            .run_path(&path(None), &SnapshotRequest::None, &mut ())
+            .unwrap();
+        for c in [0.05, 0.06] {
+            let r = sphere_solver()
+                .run_path(&refined(c), &SnapshotRequest::None, &mut ())
+                .unwrap();
+            assert_eq!(r.records, fine.records, "coarse {c}");
+            assert!(r.completed);
+        }
         let p = ApproachPath {
             retract_to: Some(3.6),
             ..refined(1.0)
