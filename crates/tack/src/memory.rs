@@ -61,6 +61,10 @@ pub struct Estimate {
 /// the result's), in f64 fields: added to [`Estimate::fields`] when γ varies.
 pub const GAMMA_MAP_FIELDS: f64 = 3.0;
 
+/// The refined retraction's saved solver states (`protocol.refine_pull_off`): three at most,
+/// each four f64 fields (pressure, gap, displacement, the predictor's pressure) and two masks.
+pub const REFINED_STATE_FIELDS: f64 = 13.0;
+
 impl Estimate {
     /// Adds `per_element` f64 fields of the grid's size (a varying γ: [`GAMMA_MAP_FIELDS`]).
     pub fn add_fields(&mut self, per_element: f64) {

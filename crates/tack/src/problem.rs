@@ -575,6 +575,9 @@ impl Problem {
         if self.gamma_map.is_some() {
             e.add_fields(crate::memory::GAMMA_MAP_FIELDS);
         }
+        if self.path.refine_pull_off {
+            e.add_fields(crate::memory::REFINED_STATE_FIELDS);
+        }
         e
     }
 
@@ -1061,6 +1064,9 @@ fn check_memory(
             .is_some_and(|p| p != crate::scene::PatternKind::Uniform)
     {
         estimate.add_fields(crate::memory::GAMMA_MAP_FIELDS);
+    }
+    if f.protocol.refine_pull_off == Some(true) {
+        estimate.add_fields(crate::memory::REFINED_STATE_FIELDS);
     }
     let grid_field = if f.grid.n.is_some() {
         fields::GRID_N
@@ -1994,6 +2000,13 @@ load_step = 0.05
         ];
         let p = build(SPHERE, &sets).unwrap();
         assert!(p.path.refine_pull_off && p.path.coarse_unload_step == Some(0.2));
+        // Its saved states count in the memory estimate.
+        let plain = build(SPHERE, &sets[..2]).unwrap();
+        let extra = p.memory_estimate().fields - plain.memory_estimate().fields;
+        assert_eq!(
+            extra,
+            64.0 * 64.0 * 8.0 * crate::memory::REFINED_STATE_FIELDS
+        );
         let e = build(SPHERE, &[sets[1], sets[2]]).unwrap_err().to_string();
         assert!(
             e.contains("protocol.refine_pull_off = true needs a coarse step: set protocol.coarse_unload_step"),
