@@ -140,6 +140,8 @@ pub struct PathRule {
     pub path: crate::pull_off_path::PullOffPath,
     /// Loaded in retraction steps from out of range (a finite-range law), not in one step.
     pub stepped_load: bool,
+    /// The refined retraction (`protocol.refine_pull_off`): coarse steps all the way.
+    pub refined: bool,
 }
 
 impl std::fmt::Display for PathRule {
@@ -148,8 +150,8 @@ impl std::fmt::Display for PathRule {
         let p = &self.path;
         write!(
             f,
-            "default pull-off path of R = {} ({}), d_s = {}: {} to d = {}, retraction by {} while \
-             compressive, then by {}",
+            "default pull-off path of R = {} ({}), d_s = {}: {} to d = {}, retraction by {} {}, \
+             {} {}",
             num(self.radius),
             if self.fitted { "fitted" } else { "given" },
             num(p.d_s),
@@ -160,6 +162,16 @@ impl std::fmt::Display for PathRule {
             },
             num(p.max_approach),
             num(p.coarse_unload_step),
+            if self.refined {
+                "all the way"
+            } else {
+                "while compressive"
+            },
+            if self.refined {
+                "the pull-off's brackets retraced by"
+            } else {
+                "then by"
+            },
             num(p.unload_step)
         )
     }
@@ -889,6 +901,7 @@ fn approach_path(
                         ..rule.path
                     },
                     stepped_load: matches!(body.law, AdhesionLaw::Dugdale { .. }),
+                    refined: path.refine_pull_off,
                     ..rule
                 };
                 return Ok((path, Some(rule)));
@@ -980,6 +993,7 @@ fn default_path(body: &PathBody<'_>) -> Result<PathRule, SceneError> {
     };
     Ok(PathRule {
         stepped_load: false,
+        refined: false,
         radius,
         fitted,
         path: crate::pull_off_path::default_pull_off_path(
@@ -1036,6 +1050,7 @@ fn finish_default_path(
     }
     Ok(PathRule {
         stepped_load: false,
+        refined: false,
         radius,
         fitted,
         path,
