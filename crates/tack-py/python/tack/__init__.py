@@ -301,9 +301,10 @@ def pull_off(
             (``max_approach`` finite, the steps > 0).
         refine_pull_off: the refined retraction: coarse steps (``coarse_unload_step``, default
             0.2 d_s) all the way, and every stretch of two coarse steps that may hold the
-            pull-off (and the last one before the contact is lost) retraced in steps of
-            ``unload_step`` from the state saved at its start. The same pull-off as the fine
-            path, about half the steps (``docs/theory.md`` section 3.9).
+            pull-off (and the last one when the tension still grew before contact was lost)
+            retraced in steps of ``unload_step`` from the solver state saved at its start. The
+            same pull-off as the fine path on the same approaches, in a quarter to two thirds
+            of the steps (``docs/theory.md`` section 3.5).
         kappa: the Pohrt-Popov constant (> 0; default 0.473201, curved crack fronts); the
             zero-range model only.
         model: the adhesion law: ``"jkr_limit"`` (default; the zero-range Pohrt-Popov
