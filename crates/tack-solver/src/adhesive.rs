@@ -17,7 +17,7 @@ use tack_geometry::{Boundary, Surface, Window};
 use tack_kernels::{ElasticOperator, FreeOperator, padded_size};
 
 use crate::base::SolverBase;
-use crate::cg::{PcgWork, Work, assign, pcg};
+use crate::cg::{PcgWork, Work, assign};
 use crate::clusters::count_clusters;
 use crate::law::Cohesive;
 use crate::state::Convergence;
@@ -364,7 +364,7 @@ impl AdhesiveSolver {
                 // window, so only elements there may attach; the exact round checks them all.
                 // Margins scale with the round's tolerance; without adhesion the equilibrium is
                 // unique (a convex problem), so no decision needs one.
-                let (c, w) = self.solve_bonded(d, level, false, window, extent.as_ref());
+                let (c, w) = self.solve_set(d, level, false, window, extent.as_ref());
                 cg_total += c.iterations;
                 if sigma_c > 0.0 || self.patterned {
                     let relative = level / LOOSE_REFERENCE_TOLERANCE;
@@ -380,7 +380,7 @@ impl AdhesiveSolver {
                 fresh = w;
             } else {
                 let (c, _) =
-                    self.solve_bonded(d, self.options.cg.tolerance, true, window, extent.as_ref());
+                    self.solve_set(d, self.options.cg.tolerance, true, window, extent.as_ref());
                 cg_total += c.iterations;
                 worst = worst.max(c.residual);
                 converged &= c.converged;
@@ -493,16 +493,18 @@ impl AdhesiveSolver {
         self.last_approach = Some(d);
     }
 
-    /// Conjugate gradients for `K_CC p_C = (d − f)_C`, warm-started from the current pressure.
-    /// On free grids whose bonded set fills little of the grid, the CG runs on a sub-grid around
-    /// the bonded set (the free operator is exact on any sub-grid, so the linear problem is the
-    /// same). With `full`, `work.disp = K p` on the whole grid afterwards (one full-grid product
-    /// after a sub-grid solve) and `None` is returned; without it, a sub-grid solve only brings
-    /// `work.disp` up to date inside the returned window.
+    /// Solves the bonded (contact) set to `tolerance`, warm-started from the current pressure:
+    /// `K_CC p_C = (d − f)_C` under the criterion, and under the Dugdale law the same with the
+    /// zone's tension `−σ0` held (`crate::dugdale`). On free grids whose loaded elements fill
+    /// little of the grid, the solve runs on the sub-grid `window` around them (the free
+    /// operator is exact on any sub-grid, so the linear problem is the same). With `full`,
+    /// `work.disp = K p` on the whole grid afterwards (one full-grid product after a sub-grid
+    /// solve) and `None` is returned; without it, a sub-grid solve only brings `work.disp` up to
+    /// date inside the returned window.
     ///
-    /// `window` is the sub-grid ([`Self::subgrid_around`] the bonded set), and `extent` a
+    /// `window` is the sub-grid ([`Self::subgrid_around`] the loaded set), and `extent` a
     /// window holding every non-zero pressure (`None`: anywhere).
-    fn solve_bonded(
+    pub(crate) fn solve_set(
         &mut self,
         d: f64,
         tolerance: f64,
@@ -516,11 +518,20 @@ impl AdhesiveSolver {
         };
         let pre = self.options.preconditioned;
         let base = &mut self.base;
+        // The Dugdale law's zone and tensions (`None`: the criterion).
+        let held = self.cohesive.as_ref().map(|c| {
+            let tension = self
+                .tension
+                .broadcast(self.bonded.dim())
+                .expect("a 1 × 1 array or the grid's shape");
+            (c.zone.view(), tension)
+        });
         let Some(window) = window else {
-            let c = pcg(
+            let c = crate::cg::solve_grid(
                 base.op.as_mut(),
                 base.surface.heights().view(),
                 self.bonded.view(),
+                held,
                 d,
                 base.pressure.view_mut(),
                 &mut base.work,
@@ -536,10 +547,22 @@ impl AdhesiveSolver {
             .boxes
             .get_or_insert_with(shape, || SubProblem::new(shape, dx, e_star));
         sub.load(base, &self.bonded, &window);
-        let out = pcg(
+        let block = ndarray::s![window.i0..window.i1, window.j0..window.j1];
+        let sub_held = match held {
+            None => None,
+            Some((zone, tension)) => {
+                let z = sub
+                    .zone
+                    .get_or_insert_with(|| Array2::from_elem(shape, false));
+                assign(z.view_mut(), zone.slice(block));
+                Some((z.view(), tension.slice_move(block)))
+            }
+        };
+        let out = crate::cg::solve_grid(
             &mut sub.op,
             sub.heights.view(),
             sub.bonded.view(),
+            sub_held,
             d,
             sub.pressure.view_mut(),
             &mut sub.work,

@@ -354,6 +354,96 @@ fn precondition(
     })
 }
 
+/// One solve of the contact set on one grid (the whole grid or a sub-grid): the bonded-set CG,
+/// or with `held` (the Dugdale law's zone and per-element tension) the CG with the zone's
+/// tension held.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn solve_grid(
+    op: &mut dyn ElasticOperator,
+    heights: ArrayView2<f64>,
+    bonded: ArrayView2<bool>,
+    held: Option<(ArrayView2<bool>, ArrayView2<f64>)>,
+    d: f64,
+    pressure: ArrayViewMut2<f64>,
+    work: &mut Work,
+    pcg_work: &mut PcgWork,
+    cg: &SolverOptions,
+    preconditioned: bool,
+) -> Convergence {
+    match held {
+        None => pcg(
+            op,
+            heights,
+            bonded,
+            d,
+            pressure,
+            work,
+            pcg_work,
+            cg,
+            preconditioned,
+        ),
+        Some((zone, tension)) => solve_with_zone(
+            op,
+            heights,
+            bonded,
+            zone,
+            tension,
+            d,
+            pressure,
+            work,
+            pcg_work,
+            cg,
+            preconditioned,
+        ),
+    }
+}
+
+/// `K_CC p_C = (d − f − K p_Z)_C` on one grid with `p_Z = −σ0` on `zone` (σ0 per element:
+/// `tension`); leaves the whole pressure in `pressure` and `work.disp = K p`.
+#[allow(clippy::too_many_arguments)]
+fn solve_with_zone(
+    op: &mut dyn ElasticOperator,
+    heights: ArrayView2<f64>,
+    bonded: ArrayView2<bool>,
+    zone: ArrayView2<bool>,
+    tension: ArrayView2<f64>,
+    d: f64,
+    mut pressure: ArrayViewMut2<f64>,
+    work: &mut Work,
+    pcg_work: &mut PcgWork,
+    cg: &SolverOptions,
+    preconditioned: bool,
+) -> Convergence {
+    Zip::from(&mut pressure)
+        .and(&bonded)
+        .and(&zone)
+        .and(&tension)
+        .for_each(|p, &b, &z, &s| {
+            if z {
+                *p = -s;
+            } else if !b {
+                *p = 0.0;
+            }
+        });
+    if bonded.iter().any(|&b| b) {
+        pcg_holding(
+            op,
+            heights,
+            bonded,
+            Some(zone),
+            d,
+            pressure.view_mut(),
+            work,
+            pcg_work,
+            cg,
+            preconditioned,
+        )
+    } else {
+        op.apply(pressure.view(), work.disp.view_mut());
+        Convergence::EXACT
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

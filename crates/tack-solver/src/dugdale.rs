@@ -22,17 +22,14 @@
 //! grid without those margins; so every step ends on an exact solve and an exact test.
 
 use crate::rounds::Rounds;
-use ndarray::{Array2, ArrayView2, ArrayViewMut2, Zip};
+use ndarray::{Array2, Zip};
 use tack_geometry::Window;
-use tack_kernels::ElasticOperator;
 
 use crate::adhesive::{
-    LOOSE_ATTACH_MARGIN, LOOSE_DETACH_MARGIN, LOOSE_REFERENCE_TOLERANCE, SubProblem, bounding_box,
+    LOOSE_ATTACH_MARGIN, LOOSE_DETACH_MARGIN, LOOSE_REFERENCE_TOLERANCE, bounding_box,
     hash_masks_in,
 };
-use crate::cg::{PcgWork, Work, assign, pcg_holding};
-use crate::state::Convergence;
-use crate::{AdhesiveSolver, SolverOptions, StepRecord};
+use crate::{AdhesiveSolver, StepRecord};
 
 /// The Dugdale law's inexact rounds start `round_tolerance / DUGDALE_ROUND_FACTOR` (`1e-5` by
 /// default): each of their zone-edge tests (`g` against `h0`) needs a gap margin of ten times
@@ -115,9 +112,9 @@ impl AdhesiveSolver {
             let cycle = schedule.visit(fingerprint);
             let (exact, level) = (schedule.exact, schedule.level);
             let (c, fresh) = if exact {
-                self.solve_cohesive(d, tolerance, true, window, extent.as_ref())
+                self.solve_set(d, tolerance, true, window, extent.as_ref())
             } else {
-                self.solve_cohesive(d, level, false, window, extent.as_ref())
+                self.solve_set(d, level, false, window, extent.as_ref())
             };
             extent = fresh;
             cg_total += c.iterations;
@@ -205,126 +202,5 @@ impl AdhesiveSolver {
 
     fn zone_mut(&mut self) -> &mut Array2<bool> {
         &mut self.cohesive.as_mut().expect("the Dugdale law").zone
-    }
-
-    /// Solves the contact set with the zone's tension held, to `tolerance`: `pressure` holds
-    /// `p_C` on the contact, `−σ0` on the zone and 0 elsewhere. On free grids whose loaded
-    /// elements fill little of the grid, the solve runs on the sub-grid `window` around them
-    /// (exact, as for the criterion; `extent` holds every non-zero pressure before it). With
-    /// `full` (or without a sub-grid) `work.disp = K p` on the whole grid afterwards and `None`
-    /// is returned; otherwise `work.disp` is up to date only in the returned window.
-    fn solve_cohesive(
-        &mut self,
-        d: f64,
-        tolerance: f64,
-        full: bool,
-        window: Option<Window>,
-        extent: Option<&Window>,
-    ) -> (Convergence, Option<Window>) {
-        let cg = SolverOptions {
-            tolerance,
-            ..self.options.cg
-        };
-        let pre = self.options.preconditioned;
-        let coh = self.cohesive.as_ref().expect("the Dugdale law");
-        let base = &mut self.base;
-        let tension = self
-            .tension
-            .broadcast(self.bonded.dim())
-            .expect("a 1 × 1 array or the grid's shape");
-        let Some(window) = window else {
-            let c = solve_with_zone(
-                base.op.as_mut(),
-                base.surface.heights().view(),
-                self.bonded.view(),
-                coh.zone.view(),
-                tension,
-                d,
-                base.pressure.view_mut(),
-                &mut base.work,
-                &mut self.pcg,
-                &cg,
-                pre,
-            );
-            return (c, None);
-        };
-        let shape = window.shape();
-        let (dx, e_star) = (base.grid().dx(), base.op.e_star());
-        let sub = self
-            .boxes
-            .get_or_insert_with(shape, || SubProblem::new(shape, dx, e_star));
-        let block = ndarray::s![window.i0..window.i1, window.j0..window.j1];
-        sub.load(base, &self.bonded, &window);
-        let zone = sub
-            .zone
-            .get_or_insert_with(|| Array2::from_elem(shape, false));
-        assign(zone.view_mut(), coh.zone.slice(block));
-        let out = solve_with_zone(
-            &mut sub.op,
-            sub.heights.view(),
-            sub.bonded.view(),
-            zone.view(),
-            tension.slice(block),
-            d,
-            sub.pressure.view_mut(),
-            &mut sub.work,
-            &mut sub.pcg,
-            &cg,
-            pre,
-        );
-        let fresh = base.adopt_subgrid(
-            &window,
-            extent,
-            sub.pressure.view(),
-            sub.work.disp.view(),
-            full,
-        );
-        (out, fresh)
-    }
-}
-
-/// `K_CC p_C = (d − f − K p_Z)_C` on one grid with `p_Z = −σ0` on `zone` (σ0 per element:
-/// `tension`); leaves the whole pressure in `pressure` and `work.disp = K p`.
-#[allow(clippy::too_many_arguments)]
-fn solve_with_zone(
-    op: &mut dyn ElasticOperator,
-    heights: ArrayView2<f64>,
-    bonded: ArrayView2<bool>,
-    zone: ArrayView2<bool>,
-    tension: ArrayView2<f64>,
-    d: f64,
-    mut pressure: ArrayViewMut2<f64>,
-    work: &mut Work,
-    pcg_work: &mut PcgWork,
-    cg: &SolverOptions,
-    preconditioned: bool,
-) -> Convergence {
-    Zip::from(&mut pressure)
-        .and(&bonded)
-        .and(&zone)
-        .and(&tension)
-        .for_each(|p, &b, &z, &s| {
-            if z {
-                *p = -s;
-            } else if !b {
-                *p = 0.0;
-            }
-        });
-    if bonded.iter().any(|&b| b) {
-        pcg_holding(
-            op,
-            heights,
-            bonded,
-            Some(zone),
-            d,
-            pressure.view_mut(),
-            work,
-            pcg_work,
-            cg,
-            preconditioned,
-        )
-    } else {
-        op.apply(pressure.view(), work.disp.view_mut());
-        Convergence::EXACT
     }
 }
