@@ -163,6 +163,7 @@ scene_fields! {
     SOLVER_MAX_ITERATIONS = solver.max_iterations,
     SOLVER_MAX_ACTIVE_SET_ITERATIONS = solver.max_active_set_iterations,
     SOLVER_ROUND_TOLERANCE = solver.round_tolerance,
+    SOLVER_LOCAL_RELAXATION = solver.local_relaxation,
     PROTOCOL_INDENT = protocol.indent,
     PROTOCOL_START = protocol.start,
     PROTOCOL_MAX_APPROACH = protocol.max_approach,
@@ -407,6 +408,11 @@ pub const FIELDS: &[Field] = &[
         "CG tolerance of the inexact detach/attach rounds (0: every round exact)",
     ),
     f(
+        SOLVER_LOCAL_RELAXATION,
+        Kind::Bool,
+        "relax each round's released tension on small windows before the next solve",
+    ),
+    f(
         PROTOCOL_INDENT,
         Kind::Number,
         "one step pressed in to this approach, no retraction",
@@ -478,7 +484,7 @@ mod tests {
             );
             assert!(!f.meaning.is_empty(), "{}", f.name);
         }
-        assert_eq!(FIELDS.len(), 57);
+        assert_eq!(FIELDS.len(), 58);
     }
 
     #[test]

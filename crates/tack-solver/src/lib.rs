@@ -97,6 +97,7 @@ mod extrapolate;
 mod law;
 mod options;
 mod path;
+mod relax;
 mod rounds;
 mod state;
 mod subgrid;

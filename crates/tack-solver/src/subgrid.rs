@@ -4,8 +4,12 @@
 
 use std::collections::HashMap;
 
-use tack_geometry::{Boundary, Grid};
+use ndarray::Array2;
+use tack_geometry::{Boundary, Grid, Window};
 use tack_kernels::FreeOperator;
+
+use crate::base::SolverBase;
+use crate::cg::{PcgWork, Work, assign};
 
 /// The free operator of an `nx × ny` sub-grid with spacing `dx` of a grid whose operator was
 /// built with `e_star` (so both are valid).
@@ -13,6 +17,40 @@ pub(crate) fn free_operator(shape: (usize, usize), dx: f64, e_star: f64) -> Free
     let grid = Grid::new(shape.0, shape.1, dx, Boundary::Free)
         .expect("a sub-grid of a valid grid is valid");
     FreeOperator::new(grid, e_star).expect("the modulus was validated with the operator")
+}
+
+/// A bonded-set CG on a sub-grid: its own free operator and buffers.
+pub(crate) struct SubProblem {
+    pub(crate) op: FreeOperator,
+    pub(crate) work: Work,
+    pub(crate) pcg: PcgWork,
+    pub(crate) pressure: Array2<f64>,
+    pub(crate) heights: Array2<f64>,
+    pub(crate) bonded: Array2<bool>,
+    /// The Dugdale law's zone on this sub-grid, made on first use.
+    pub(crate) zone: Option<Array2<bool>>,
+}
+
+impl SubProblem {
+    pub(crate) fn new(shape: (usize, usize), dx: f64, e_star: f64) -> Self {
+        Self {
+            op: free_operator(shape, dx, e_star),
+            work: Work::new(shape),
+            pcg: PcgWork::new(shape),
+            pressure: Array2::zeros(shape),
+            heights: Array2::zeros(shape),
+            bonded: Array2::from_elem(shape, false),
+            zone: None,
+        }
+    }
+
+    /// Copies the pressure, heights and bonded set of `window` in from the whole grid.
+    pub(crate) fn load(&mut self, base: &SolverBase, bonded: &Array2<bool>, window: &Window) {
+        let block = ndarray::s![window.i0..window.i1, window.j0..window.j1];
+        assign(self.pressure.view_mut(), base.pressure.slice(block));
+        assign(self.heights.view_mut(), base.surface.heights().slice(block));
+        assign(self.bonded.view_mut(), bonded.slice(block));
+    }
 }
 
 /// Sub-problems keyed by their shape (an operator with its FFT plans, spectra and buffers is

@@ -54,11 +54,13 @@ fn power_law_pull_off_converges_to_the_mdr_value() {
     //   m = 1 (cone): 1.2121, 1.1390 (1.066); at 40: 1.0625 (Richardson from 20, 40: 0.986):
     //                 first order once a_F/Δx ≥ 20 (0.61, then 1.15), with a larger constant
     //   m = 2:        1.1285, 1.0638 (0.9991), the sphere's criterion error
-    //   m = 4:        1.0823, 1.0392 (0.9961)
+    //   m = 4:        1.1004, 1.0487 (0.9970), the exact detach/attach loop's values
+    //                 (`round_tolerance: None`) to 1e-9; with the inexact rounds' detach
+    //                 margin at 0.3% (before) they pulled off early, 1.0823 and 1.0392
     // Too adhesive and first order, as on the sphere (docs/theory.md §9). Tolerances: each
     // value above 1 and the finer closer; Richardson within 1% for m = 2, 4; the cone's
     // fine value within 15% (its Richardson is not yet asymptotic at 10/20).
-    for (m, fine_below) in [(1.0, 1.15), (2.0, 1.07), (4.0, 1.045)] {
+    for (m, fine_below) in [(1.0, 1.15), (2.0, 1.07), (4.0, 1.055)] {
         let (coarse, fine) = (pull_off_ratio(m, 10.0), pull_off_ratio(m, 20.0));
         let richardson = 2.0 * fine - coarse;
         println!("m = {m}: F/F_MDR = {coarse:.4}, {fine:.4}; Richardson {richardson:.4}");

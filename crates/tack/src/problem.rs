@@ -471,6 +471,7 @@ impl Problem {
                     ));
                 }
             },
+            local_relaxation: s.local_relaxation.unwrap_or(defaults.local_relaxation),
             ..defaults
         };
         if let Some(t) = s.tolerance

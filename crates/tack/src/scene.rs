@@ -369,6 +369,11 @@ pub struct SolverSpec {
     /// `tack_solver::AdhesiveOptions::round_tolerance`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub round_tolerance: Option<f64>,
+    /// Relax the tension a round releases on small windows before the next round's solve (only
+    /// that solve's start changes); default true. See
+    /// `tack_solver::AdhesiveOptions::local_relaxation`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub local_relaxation: Option<bool>,
 }
 
 /// `[protocol]`: the load–unload approach path (approach positive = pressing). Three forms:
