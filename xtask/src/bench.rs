@@ -381,12 +381,18 @@ pub fn all(args: &[String]) -> Result<()> {
         tack_fields::PROTOCOL_REFINE_PULL_OFF
     );
     println!("   brackets retraced by the fine step), the same scene and threads:");
-    for &n in if full {
-        &[256usize, 512, 1024][..]
-    } else {
-        &[256, 512][..]
-    } {
+    let compared: &[usize] = if full { &[256, 512, 1024] } else { &[256, 512] };
+    for &n in compared {
         refined_vs_fine(n, threads, &mut rows)?;
+    }
+
+    println!(
+        "   local relaxation ({}: each round's released tension relaxed on 16² windows",
+        tack_fields::SOLVER_LOCAL_RELAXATION
+    );
+    println!("   before the next solve) against none, the same scene and threads:");
+    for &n in compared {
+        relaxed_vs_plain(n, threads, &mut rows)?;
     }
 
     println!("5. a Fig. 7 style sweep point: 15 realizations (128², H = 0.5), 1 vs 2 threads");
@@ -743,6 +749,50 @@ fn refined_vs_fine(n: usize, threads: usize, rows: &mut Vec<Row>) -> Result<()> 
             ("refined_pull_off", refined.force),
             ("same_bits", if same { 1.0 } else { 0.0 }),
             ("relative_change", refined.force / fine.force - 1.0),
+        ],
+    });
+    Ok(())
+}
+
+/// The bench's rough-sphere pull-off at `n²` with the local relaxation (the default) and
+/// without it (`solver.local_relaxation = false`, the previous version's rounds).
+fn relaxed_vs_plain(n: usize, threads: usize, rows: &mut Vec<Row>) -> Result<()> {
+    let relaxed = rough_sphere_pull_off(n, threads, false)?;
+    let scene = rough_sphere_scene(n, false)?;
+    let scene = tack::Scene::parse(
+        &scene.text,
+        ".",
+        &[format!("{}=false", tack_fields::SOLVER_LOCAL_RELAXATION)],
+    )?;
+    let plain = timed_pull_off(&scene, threads)?;
+    let change = relaxed.force / plain.force - 1.0;
+    println!(
+        "   {n}²: none {:.2} s ({} CG, {} rounds), relaxed {:.2} s ({} CG, {} rounds): {:.2}× \
+         faster, pull-off {:.7e} vs {:.7e} ({change:+.1e})",
+        plain.seconds,
+        plain.cg,
+        plain.rounds,
+        relaxed.seconds,
+        relaxed.cg,
+        relaxed.rounds,
+        plain.seconds / relaxed.seconds,
+        plain.force,
+        relaxed.force,
+    );
+    rows.push(Row {
+        table: "local_relaxation",
+        label: format!("{n}²"),
+        fields: vec![
+            ("plain_seconds", plain.seconds),
+            ("relaxed_seconds", relaxed.seconds),
+            ("speed_up", plain.seconds / relaxed.seconds),
+            ("plain_cg", plain.cg as f64),
+            ("relaxed_cg", relaxed.cg as f64),
+            ("plain_rounds", plain.rounds as f64),
+            ("relaxed_rounds", relaxed.rounds as f64),
+            ("plain_pull_off", plain.force),
+            ("relaxed_pull_off", relaxed.force),
+            ("relative_change", change),
         ],
     });
     Ok(())
