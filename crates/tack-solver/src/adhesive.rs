@@ -80,7 +80,8 @@ pub struct AdhesiveOptions {
     /// Zero-range law with adhesion: after a round detaches elements, the tension they carried
     /// is redistributed over their neighbourhood by small windowed solves before the next
     /// round's solve (`docs/theory.md` §3.4). Only that solve's start changes; it still runs to
-    /// its round's tolerance and takes every decision. Default on; used on free grids of a
+    /// its round's tolerance and takes every decision. Default on; used with inexact rounds
+    /// (`round_tolerance`; without them the loop stays the exact one) on free grids of a
     /// half-space, where the windows' operator is exact.
     pub local_relaxation: bool,
 }
@@ -94,7 +95,8 @@ pub(crate) const LOOSE_REFERENCE_TOLERANCE: f64 = 1e-3;
 /// (a rim element within the inexact solve's error of σ_c started the cascade), and `0.003` let
 /// a flat-tipped body z = r⁴ pull off 1.7% and 0.9% early at a_F/Δx = 10 and 20
 /// (`tests/power_law.rs`), and the 512² rough sphere of `cargo xtask bench` 1.2·10⁻⁴ early;
-/// `0.006` gives the exact algorithm's pull-off on all three (`tests/adhesion.rs`).
+/// `0.006` gives the exact algorithm's pull-off on all three (`tests/adhesion.rs`,
+/// `tests/power_law.rs`, `crates/tack/tests/relaxation.rs`, docs/theory.md §3.4).
 pub const LOOSE_DETACH_MARGIN: f64 = 0.006;
 
 /// Gap margin of an inexact round, in units of its residual bound: it attaches only gaps below
@@ -346,8 +348,11 @@ impl AdhesiveSolver {
         // the next round's bookkeeping scans that instead of the grid.
         let mut extent: Option<Window> = None;
         // The elements the last round detached, whose tension the next round's start relaxes.
-        let relaxing =
-            self.options.local_relaxation && !periodic && (sigma_c > 0.0 || self.patterned);
+        // Inexact rounds only: `round_tolerance = None` stays the exact loop, bit for bit.
+        let relaxing = self.options.local_relaxation
+            && self.options.round_tolerance.is_some()
+            && !periodic
+            && (sigma_c > 0.0 || self.patterned);
         let mut released: Vec<Released> = Vec::new();
         loop {
             if rounds == self.options.max_active_set_iterations {

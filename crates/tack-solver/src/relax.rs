@@ -21,11 +21,13 @@ use crate::subgrid::SubProblem;
 pub(crate) const WINDOW: usize = 16;
 
 /// Side of the tiles released elements are grouped by; each tile's window adds
-/// `(WINDOW − TILE)/2` elements on every side (fewer at the grid's edge, where it is shifted in).
+/// `(WINDOW − TILE)/2` elements on every side (the part of a window past the grid's edge counts
+/// as free).
 pub(crate) const TILE: usize = 8;
 
 /// Relative tolerance and iteration cap of a windowed solve: a warm start needs no more (on the
-/// 512² rough-sphere pull-off, 1e-3 and 100 iterations gave the same time).
+/// 512² rough-sphere pull-off, 1e-2 or 1e-3 with 100 iterations, or a cap of 2, gave the same
+/// time).
 const WINDOW_OPTIONS: SolverOptions = SolverOptions {
     tolerance: 0.05,
     max_iterations: 20,
@@ -143,7 +145,12 @@ impl Relaxation {
             };
             (clip(i0, nx), clip(j0, ny))
         };
-        let lanes = rayon::current_num_threads().clamp(1, groups.len());
+        // Outside a rayon pool everything runs on the calling thread (as `cg::parallel`).
+        let threads = match rayon::current_thread_index() {
+            Some(_) => rayon::current_num_threads(),
+            None => 1,
+        };
+        let lanes = threads.clamp(1, groups.len());
         while self.workers.len() < lanes {
             self.workers.push(Worker {
                 sub: SubProblem::new((WINDOW, WINDOW), self.dx, self.e_star),
@@ -261,19 +268,24 @@ mod tests {
         (s / n as f64).sqrt()
     }
 
-    /// Releases the rim elements of the disc's quarter towards the grid's far corner (the edge
-    /// of a punch carries the greatest tension when pulled, here the greatest pressure: the
-    /// sign does not matter to a linear solve).
-    fn release_rim(bonded: &mut Array2<bool>, p: &mut Array2<f64>) -> Vec<Released> {
+    /// Releases the rim elements of the disc's quarter towards the grid's far corner (`far`) or
+    /// towards its origin (the edge of a punch carries the greatest tension when pulled, here
+    /// the greatest pressure: the sign does not matter to a linear solve).
+    fn release_rim(bonded: &mut Array2<bool>, p: &mut Array2<f64>, far: bool) -> Vec<Released> {
         let (n, _) = bonded.dim();
         let mut out = Vec::new();
-        for i in 0..n {
-            for j in 0..n {
+        for i in 1..n - 1 {
+            for j in 1..n - 1 {
                 let rim = bonded[[i, j]]
                     && [(0, 1), (2, 1), (1, 0), (1, 2)]
                         .iter()
                         .any(|&(a, b)| !bonded[[i + a - 1, j + b - 1]]);
-                if rim && i > n / 2 && j > n / 2 {
+                let quarter = if far {
+                    i > n / 2 && j > n / 2
+                } else {
+                    i < n / 2 && j < n / 2
+                };
+                if rim && quarter {
                     out.push(Released {
                         i,
                         j,
@@ -289,6 +301,15 @@ mod tests {
         out
     }
 
+    /// The first row and column of the bonded set (its bounding box's corner).
+    fn corner(bonded: &Array2<bool>) -> (usize, usize) {
+        let cells = || bonded.indexed_iter().filter(|(_, b)| **b).map(|(ij, _)| ij);
+        (
+            cells().map(|(i, _)| i).min().unwrap(),
+            cells().map(|(_, j)| j).min().unwrap(),
+        )
+    }
+
     #[test]
     fn relaxation_takes_up_most_of_the_released_load() {
         // A punch of radius 14 loses a quarter of its rim: the exact response is long-range,
@@ -296,16 +317,17 @@ mod tests {
         // must fall by far more than half (measured: 11.6× here), and only bonded elements within
         // the windows of the released ones may change.
         let (mut op, mut bonded, mut p) = disc(48, (23.5, 23.5), 14.0);
-        let mut released = release_rim(&mut bonded, &mut p);
+        let mut released = release_rim(&mut bonded, &mut p, true);
         assert!(released.len() > 5);
         let before = residual(&mut op, &bonded, &p);
         let old = p.clone();
         let mut relax = Relaxation::new(1.0, 1.0);
-        let windows = relax.relax(&mut p, &bonded, (9, 9), &mut released, true);
+        let windows = relax.relax(&mut p, &bonded, corner(&bonded), &mut released, true);
         let after = residual(&mut op, &bonded, &p);
         assert!(windows > 0);
         assert!(after < 0.3 * before, "residual {before} -> {after}");
-        let reach = WINDOW;
+        // A released element's window reaches at most TILE − 1 + (WINDOW − TILE)/2 away.
+        let reach = TILE - 1 + (WINDOW - TILE) / 2;
         Zip::indexed(&p)
             .and(&old)
             .and(&bonded)
@@ -320,33 +342,56 @@ mod tests {
     }
 
     #[test]
-    fn relaxation_does_not_move_with_the_grid_or_the_order() {
-        // The same disc on a grid whose edge cuts the windows of the released elements, and
-        // shifted by (5, 3) inside a larger one that holds them whole, with the released
-        // elements listed in opposite orders: the same corrections, bit for bit.
-        let (_, mut b1, mut p1) = disc(40, (23.5, 23.5), 14.0);
-        let mut r1 = release_rim(&mut b1, &mut p1);
-        let (mut b2, mut p2) = (Array2::from_elem((60, 60), false), Array2::zeros((60, 60)));
-        b2.slice_mut(s![5..45, 3..43]).assign(&b1);
-        p2.slice_mut(s![5..45, 3..43]).assign(&p1);
-        let mut r2: Vec<Released> = r1
-            .iter()
-            .rev()
-            .map(|e| Released {
-                i: e.i + 5,
-                j: e.j + 3,
-                ..*e
-            })
-            .collect();
-        let (o1, o2) = (p1.clone(), p2.clone());
-        Relaxation::new(1.0, 1.0).relax(&mut p1, &b1, (9, 9), &mut r1, true);
-        Relaxation::new(1.0, 1.0).relax(&mut p2, &b2, (14, 12), &mut r2, true);
-        assert!(o2.iter().zip(&p2).any(|(a, b)| a != b), "nothing relaxed");
-        for i in 0..40 {
-            for j in 0..40 {
-                let d1 = p1[[i, j]] - o1[[i, j]];
-                let d2 = p2[[i + 5, j + 3]] - o2[[i + 5, j + 3]];
-                assert_eq!(d1.to_bits(), d2.to_bits(), "({i}, {j})");
+    fn relaxation_does_not_move_with_the_grid_the_order_or_the_threads() {
+        // The same disc on a 40² grid whose far (then near) edge cuts the windows of the
+        // released elements, and shifted by (5, 3) inside a 60² grid that holds them whole,
+        // with the released elements listed in opposite orders, and solved on the calling
+        // thread against a pool of 3: the same corrections, bit for bit.
+        for (centre, far) in [(23.5, true), (16.5, false)] {
+            let (_, mut b1, mut p1) = disc(40, (centre, centre), 14.0);
+            let mut r1 = release_rim(&mut b1, &mut p1, far);
+            let (mut b2, mut p2) = (Array2::from_elem((60, 60), false), Array2::zeros((60, 60)));
+            b2.slice_mut(s![5..45, 3..43]).assign(&b1);
+            p2.slice_mut(s![5..45, 3..43]).assign(&p1);
+            let mut r2: Vec<Released> = r1
+                .iter()
+                .rev()
+                .map(|e| Released {
+                    i: e.i + 5,
+                    j: e.j + 3,
+                    ..*e
+                })
+                .collect();
+            let (o1, o2) = (p1.clone(), p2.clone());
+            let (a1, a2) = (corner(&b1), corner(&b2));
+            // A window reaches (WINDOW − TILE)/2 = 4 past its tile, so past its elements.
+            let cut = r1.iter().any(|e| {
+                let m = (WINDOW - TILE) / 2;
+                if far {
+                    e.i + m >= 40 || e.j + m >= 40
+                } else {
+                    e.i < m || e.j < m
+                }
+            });
+            assert!(cut, "the 40² grid's edge must cut a window");
+            Relaxation::new(1.0, 1.0).relax(&mut p1, &b1, a1, &mut r1, true);
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(3)
+                .build()
+                .unwrap();
+            let lanes = pool.install(|| {
+                let mut r = Relaxation::new(1.0, 1.0);
+                r.relax(&mut p2, &b2, a2, &mut r2, true);
+                r.workers.len()
+            });
+            assert_eq!(lanes, 3, "the pool's threads must share the windows");
+            assert!(o2.iter().zip(&p2).any(|(a, b)| a != b), "nothing relaxed");
+            for i in 0..40 {
+                for j in 0..40 {
+                    let d1 = p1[[i, j]] - o1[[i, j]];
+                    let d2 = p2[[i + 5, j + 3]] - o2[[i + 5, j + 3]];
+                    assert_eq!(d1.to_bits(), d2.to_bits(), "far {far}: ({i}, {j})");
+                }
             }
         }
     }

@@ -68,7 +68,7 @@ fn rough_spheres_pull_off_as_without_relaxation_in_fewer_iterations() {
     }
     // Measured: 16% fewer CG iterations here (9 762 against 11 571), where a window of 16²
     // elements covers much of a contact about 36 elements across (64² grid); about half on the
-    // 512² rough sphere (17 767 → 9 322). A tenth fewer is the bar.
+    // 512² rough sphere of `cargo xtask bench` (19 856 → 10 281). A tenth fewer is the bar.
     assert!(
         10 * cg < 9 * cg_plain,
         "CG iterations {cg} with relaxation, {cg_plain} without"
