@@ -382,8 +382,14 @@ pub fn all(args: &[String]) -> Result<()> {
     );
     println!("   brackets retraced by the fine step), the same scene and threads:");
     let compared: &[usize] = if full { &[256, 512, 1024] } else { &[256, 512] };
-    for &n in compared {
-        refined_vs_fine(n, threads, &mut rows)?;
+    // The default run of each size, against which both the refined retraction and the run
+    // without relaxation are set.
+    let defaults = compared
+        .iter()
+        .map(|&n| rough_sphere_pull_off(n, threads, false))
+        .collect::<Result<Vec<_>>>()?;
+    for (&n, default) in compared.iter().zip(&defaults) {
+        refined_vs_fine(n, default, threads, &mut rows)?;
     }
 
     println!(
@@ -391,8 +397,8 @@ pub fn all(args: &[String]) -> Result<()> {
         tack_fields::SOLVER_LOCAL_RELAXATION
     );
     println!("   before the next solve) against none, the same scene and threads:");
-    for &n in compared {
-        relaxed_vs_plain(n, threads, &mut rows)?;
+    for (&n, default) in compared.iter().zip(&defaults) {
+        relaxed_vs_plain(n, default, threads, &mut rows)?;
     }
 
     println!("5. a Fig. 7 style sweep point: 15 realizations (128², H = 0.5), 1 vs 2 threads");
@@ -703,18 +709,17 @@ fn pull_off_scaling(sizes: &[usize], threads: usize, rows: &mut Vec<Row>) -> Res
     Ok(())
 }
 
-/// Exact rounds (the previous version) against the inexact ones, same run, same thread count.
-/// The bench's rough-sphere pull-off at `n²` on its fixed fine retraction and refined
-/// (`protocol.refine_pull_off`, the same steps: coarse 5.5e-4, fine 5.5e-5).
-fn refined_vs_fine(n: usize, threads: usize, rows: &mut Vec<Row>) -> Result<()> {
-    let fine = rough_sphere_pull_off(n, threads, false)?;
+/// The bench's rough-sphere pull-off at `n²` with the scene assignment `set` on top.
+fn rough_sphere_pull_off_with(n: usize, threads: usize, set: String) -> Result<PullOffRun> {
     let scene = rough_sphere_scene(n, false)?;
-    let scene = tack::Scene::parse(
-        &scene.text,
-        ".",
-        &[format!("{}=true", tack_fields::PROTOCOL_REFINE_PULL_OFF)],
-    )?;
-    let refined = timed_pull_off(&scene, threads)?;
+    timed_pull_off(&tack::Scene::parse(&scene.text, ".", &[set])?, threads)
+}
+
+/// The bench's rough-sphere pull-off at `n²` on its fixed fine retraction (`fine`, the default
+/// run) and refined (`protocol.refine_pull_off`, the same steps: coarse 5.5e-4, fine 5.5e-5).
+fn refined_vs_fine(n: usize, fine: &PullOffRun, threads: usize, rows: &mut Vec<Row>) -> Result<()> {
+    let set = format!("{}=true", tack_fields::PROTOCOL_REFINE_PULL_OFF);
+    let refined = rough_sphere_pull_off_with(n, threads, set)?;
     let same = fine.force.to_bits() == refined.force.to_bits();
     println!(
         "   {n}²: fine {:.2} s ({} steps, {} CG), refined {:.2} s ({} steps, {} CG): {:.2}× \
@@ -754,17 +759,16 @@ fn refined_vs_fine(n: usize, threads: usize, rows: &mut Vec<Row>) -> Result<()> 
     Ok(())
 }
 
-/// The bench's rough-sphere pull-off at `n²` with the local relaxation (the default) and
-/// without it (`solver.local_relaxation = false`, the previous version's rounds).
-fn relaxed_vs_plain(n: usize, threads: usize, rows: &mut Vec<Row>) -> Result<()> {
-    let relaxed = rough_sphere_pull_off(n, threads, false)?;
-    let scene = rough_sphere_scene(n, false)?;
-    let scene = tack::Scene::parse(
-        &scene.text,
-        ".",
-        &[format!("{}=false", tack_fields::SOLVER_LOCAL_RELAXATION)],
-    )?;
-    let plain = timed_pull_off(&scene, threads)?;
+/// The bench's rough-sphere pull-off at `n²` with the local relaxation (`relaxed`, the default
+/// run) and without it (`solver.local_relaxation = false`, the previous version's rounds).
+fn relaxed_vs_plain(
+    n: usize,
+    relaxed: &PullOffRun,
+    threads: usize,
+    rows: &mut Vec<Row>,
+) -> Result<()> {
+    let set = format!("{}=false", tack_fields::SOLVER_LOCAL_RELAXATION);
+    let plain = rough_sphere_pull_off_with(n, threads, set)?;
     let change = relaxed.force / plain.force - 1.0;
     println!(
         "   {n}²: none {:.2} s ({} CG, {} rounds), relaxed {:.2} s ({} CG, {} rounds): {:.2}× \

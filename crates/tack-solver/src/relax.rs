@@ -12,6 +12,7 @@
 
 use ndarray::{Array2, ArrayView2, ArrayViewMut2, Axis, Zip, s};
 use rayon::prelude::*;
+use tack_kernels::ElasticOperator;
 
 use crate::cg::{assign, pcg};
 use crate::options::SolverOptions;
@@ -175,7 +176,6 @@ impl Relaxation {
             }
             // `v = K p_U` into the displacement buffer, then `K_CC δ = v_C` as the CG's
             // `K_CC p = (d − f)_C` with `d = 0`, `f = −v`.
-            use tack_kernels::ElasticOperator;
             w.sub.op.apply(w.source.view(), w.sub.work.disp.view_mut());
             Zip::from(&mut w.sub.heights)
                 .and(&w.sub.work.disp)
@@ -225,7 +225,7 @@ mod tests {
     use super::*;
     use crate::cg::{PcgWork, Work};
     use tack_geometry::{Boundary, Grid};
-    use tack_kernels::{ElasticOperator, FreeOperator};
+    use tack_kernels::FreeOperator;
 
     /// A free `n × n` grid (Δx = 1, E* = 1) with a bonded disc of radius `r` around `centre`,
     /// pressed flat by d = 1 (f = 0): the pressure of the exact bonded-set solve.
@@ -303,11 +303,9 @@ mod tests {
 
     /// The first row and column of the bonded set (its bounding box's corner).
     fn corner(bonded: &Array2<bool>) -> (usize, usize) {
-        let cells = || bonded.indexed_iter().filter(|(_, b)| **b).map(|(ij, _)| ij);
-        (
-            cells().map(|(i, _)| i).min().unwrap(),
-            cells().map(|(_, j)| j).min().unwrap(),
-        )
+        let (tight, _) = crate::adhesive::bounding_box(bonded, None);
+        let w = tight.expect("a bonded element");
+        (w.i0, w.j0)
     }
 
     #[test]
