@@ -43,42 +43,7 @@ pub fn coarse_problem(scene: &Scene, problem: &Problem) -> Result<Problem, Scene
     let grid = problem.grid;
     let (nx, ny) = grid.shape();
     let odd = |n: usize| n % 2 == 1 && n > 1;
-    // The coarse grid must hold the same pattern: a period of 2 coarse elements, a correlation
-    // length of 4 (where the fine and coarse samples of one field agree to 1e-9).
-    let a = &scene.file.adhesion;
-    let dx = grid.dx();
-    let patterned = a
-        .pattern
-        .is_some_and(|p| p != crate::scene::PatternKind::Uniform);
-    if let Some(period) = a
-        .period
-        .filter(|&p| patterned && p < 4.0 * dx * (1.0 - 1e-9))
-    {
-        return Err(refuse(format!(
-            "needs a pattern the coarse (2Δx) grid holds: {} = {} is below 4·{} = {}",
-            fields::ADHESION_PERIOD,
-            crate::scene::num(period),
-            fields::GRID_DX,
-            crate::scene::num(4.0 * dx)
-        )));
-    }
-    if let Some(l) = a.correlation_length.filter(|&l| patterned && l < 8.0 * dx) {
-        return Err(refuse(format!(
-            "needs a random γ field the coarse (2Δx) grid samples alike: {} = {} is below 8·{} \
-             = {}",
-            fields::ADHESION_CORRELATION_LENGTH,
-            crate::scene::num(l),
-            fields::GRID_DX,
-            crate::scene::num(8.0 * dx)
-        )));
-    }
-    if a.pattern == Some(crate::scene::PatternKind::Random) && (odd(nx) || odd(ny)) {
-        return Err(refuse(format!(
-            "with {} = \"random\" needs even grid sides (the coarse grid keeps the period of \
-             the γ field); the grid is {nx} × {ny}",
-            fields::ADHESION_PATTERN
-        )));
-    }
+    check_pattern(scene, &grid)?;
     let q_coarse = std::f64::consts::PI / (2.0 * grid.dx());
     let mut file = scene.file.clone();
     let mut coarse_map = None;
@@ -183,4 +148,48 @@ pub fn coarse_problem(scene: &Scene, problem: &Problem) -> Result<Problem, Scene
         ),
         None => Problem::from_scene(&coarse),
     }
+}
+
+/// The coarse grid must hold the same γ pattern: a period of 2 coarse elements, a correlation
+/// length of 4 (where the fine and coarse samples of one field agree to 1e-9), even sides for
+/// a random field (its period is kept).
+fn check_pattern(scene: &Scene, grid: &tack_geometry::Grid) -> Result<(), SceneError> {
+    let refuse = |reason: String| SceneError::Inconsistent(format!("--richardson {reason}"));
+    let (nx, ny) = grid.shape();
+    let odd = |n: usize| n % 2 == 1 && n > 1;
+    let a = &scene.file.adhesion;
+    let dx = grid.dx();
+    let patterned = a
+        .pattern
+        .is_some_and(|p| p != crate::scene::PatternKind::Uniform);
+    if let Some(period) = a
+        .period
+        .filter(|&p| patterned && p < 4.0 * dx * (1.0 - 1e-9))
+    {
+        return Err(refuse(format!(
+            "needs a pattern the coarse (2Δx) grid holds: {} = {} is below 4·{} = {}",
+            fields::ADHESION_PERIOD,
+            crate::scene::num(period),
+            fields::GRID_DX,
+            crate::scene::num(4.0 * dx)
+        )));
+    }
+    if let Some(l) = a.correlation_length.filter(|&l| patterned && l < 8.0 * dx) {
+        return Err(refuse(format!(
+            "needs a random γ field the coarse (2Δx) grid samples alike: {} = {} is below 8·{} \
+             = {}",
+            fields::ADHESION_CORRELATION_LENGTH,
+            crate::scene::num(l),
+            fields::GRID_DX,
+            crate::scene::num(8.0 * dx)
+        )));
+    }
+    if a.pattern == Some(crate::scene::PatternKind::Random) && (odd(nx) || odd(ny)) {
+        return Err(refuse(format!(
+            "with {} = \"random\" needs even grid sides (the coarse grid keeps the period of \
+             the γ field); the grid is {nx} × {ny}",
+            fields::ADHESION_PATTERN
+        )));
+    }
+    Ok(())
 }

@@ -41,14 +41,9 @@ pub use crate::pull_off_path::{
     UNLOAD_STEP_PER_ELEMENT, fit_paraboloid,
 };
 use crate::scene::{
-    AdhesionModel, AdhesionSpec, BoundaryKind, Geometry, GridSpec, Material, OutputSpec, Protocol,
-    SCENE_VERSION, Scene, SceneError, SceneSchema, Snapshots, SolverSpec,
+    AdhesionSpec, BoundaryKind, Geometry, GridSpec, Material, OutputSpec, Protocol, SCENE_VERSION,
+    Scene, SceneError, SceneSchema, Snapshots, SolverSpec,
 };
-
-/// The former name of [`HeightBody`] (its field `heights` made `Heights { heights }` read
-/// twice).
-#[deprecated(since = "0.1.0", note = "renamed `HeightBody`")]
-pub type Heights<'a> = HeightBody<'a>;
 
 /// The scene's problem with `body.heights` added to its body: validated as
 /// [`Problem::from_scene`] validates a scene (the first touch, the path, the crop window are
@@ -145,11 +140,13 @@ impl PullOffSpec {
 /// The scene [`pull_off`] runs, and what it was derived from.
 #[derive(Debug, Clone)]
 pub struct PullOffPlan {
-    /// The scene: material, grid of the array's shape, the path, `geometry.shape = "none"`
-    /// (the body is the array), the rule's numbers in a comment on top.
+    /// The scene: material, grid of the array's shape, `geometry.shape = "none"` (the body
+    /// is the array), the path's fields as given (the builder completes them by the rule).
     pub scene: Scene,
-    /// The radius used for the path and the references: given, or fitted.
+    /// The radius of the path and the references: given, or fitted.
     pub radius: Option<f64>,
+    /// The radius as given ([`PullOffSpec::radius`]).
+    pub given_radius: Option<f64>,
     /// The paraboloid through the heights (with the given radius, if any).
     pub fit: Option<Paraboloid>,
 }
@@ -161,7 +158,8 @@ impl PullOffPlan {
         HeightBody {
             heights,
             roughness_range: self.fit.map(|f| f.residual_range()),
-            radius: self.radius,
+            // A fitted radius is found again by the builder (and reported as fitted).
+            radius: self.given_radius,
             gamma: None,
         }
     }
@@ -179,7 +177,12 @@ impl PullOffPlan {
     }
 }
 
-/// The scene of a pull-off of `heights` by the rule of [`PullOffSpec`].
+/// The scene of a pull-off of `heights` by the rule of [`PullOffSpec`]: the material, a grid
+/// of the array's shape, `geometry.shape = "none"` (the body is the array) and a `[protocol]`
+/// without `load_step`, so [`Problem`]'s builder sets the default pull-off path (the rule of
+/// [`crate::pull_off_path`], the same for scenes and arrays) from the given or fitted radius.
+/// Errors name the scene fields the spec's values go to (`material.gamma`,
+/// `protocol.unload_step`, …) and `radius`.
 pub fn pull_off_scene(
     heights: &Array2<f64>,
     spec: &PullOffSpec,
@@ -187,18 +190,8 @@ pub fn pull_off_scene(
     let (nx, ny) = heights.dim();
     let grid = Grid::new(nx, ny, spec.dx, spec.boundary)?;
     // Shape and finiteness first: everything below reads the heights.
-    let first_touch = crate::problem::height_surface(grid, heights)?.min();
-    if !(spec.e_star.is_finite() && spec.e_star > 0.0) {
-        return Err(tack_kernels::KernelError::Modulus(spec.e_star).into());
-    }
-    if !(spec.gamma.is_finite() && spec.gamma > 0.0) {
-        return Err(SceneError::out_of_range(
-            "gamma",
-            spec.gamma,
-            "a finite number > 0 (a pull-off needs adhesion; without it use the \
-             non-adhesive tack_solver::ContactSolver)",
-        ));
-    }
+    crate::problem::height_surface(grid, heights)?;
+    crate::problem::check_material(spec.e_star, spec.gamma, false)?;
     let positive = |field: &str, v: Option<f64>| match v {
         Some(x) if !(x.is_finite() && x > 0.0) => {
             Err(SceneError::out_of_range(field, x, "a finite number > 0"))
@@ -206,84 +199,26 @@ pub fn pull_off_scene(
         _ => Ok(()),
     };
     positive("radius", spec.radius)?;
-    positive("unload_step", spec.unload_step)?;
-    positive("coarse_unload_step", spec.coarse_unload_step)?;
+    positive(tack_fields::PROTOCOL_UNLOAD_STEP, spec.unload_step)?;
+    positive(
+        tack_fields::PROTOCOL_COARSE_UNLOAD_STEP,
+        spec.coarse_unload_step,
+    )?;
     if let Some(d) = spec.max_approach
         && !d.is_finite()
     {
         return Err(SceneError::out_of_range(
-            "max_approach",
+            tack_fields::PROTOCOL_MAX_APPROACH,
             d,
             "a finite number",
         ));
     }
-
     let fit = fit_paraboloid(heights, spec.dx, spec.radius);
-    let (radius, how) = match (spec.radius, fit) {
-        (Some(r), _) => (Some(r), "given"),
-        (None, Some(f)) if f.is_sphere_like(&grid) => (Some(f.radius), "fitted"),
-        _ => (None, "none"),
-    };
-    let rule = match (radius, fit) {
-        (Some(r), Some(f)) => Some(crate::pull_off_path::default_pull_off_path(
-            spec.e_star,
-            spec.gamma,
-            r,
-            f.apex + f.residual_max,
-            spec.dx,
-        )),
+    let radius = match (spec.radius, fit) {
+        (Some(r), _) => Some(r),
+        (None, Some(f)) if f.is_sphere_like(&grid) => Some(f.radius),
         _ => None,
     };
-    let d_s = rule.map(|p| p.d_s);
-    let max_approach = match (spec.max_approach, rule) {
-        (Some(d), _) => d,
-        (None, Some(p)) => p.max_approach,
-        _ => {
-            let why = match fit {
-                None => "no paraboloid fits the array (fewer than 3 elements along an axis, or \
-                         no curvature)"
-                    .to_owned(),
-                Some(f) => format!(
-                    "the least-squares paraboloid has R = {:.4e}, which does not describe a \
-                     sphere with roughness (R must be > 0 and its rise over the grid at least \
-                     half the roughness range {:.4e})",
-                    f.radius,
-                    f.residual_range()
-                ),
-            };
-            return Err(SceneError::Inconsistent(format!(
-                "max_approach is required: the default pull-off path needs the radius R of the \
-                 body, and {why}; give max_approach and unload_step, or radius"
-            )));
-        }
-    };
-    let unload_step = match (spec.unload_step, rule) {
-        (Some(s), _) => s,
-        (None, Some(p)) => p.unload_step,
-        (None, None) => {
-            return Err(SceneError::Inconsistent(
-                "unload_step is required with max_approach when the body has no radius (give \
-                 radius, or the retraction step)"
-                    .into(),
-            ));
-        }
-    };
-    let coarse_unload_step = match (spec.coarse_unload_step, rule) {
-        (Some(s), _) => s,
-        (None, Some(p)) => p.coarse_unload_step,
-        (None, None) => COARSE_PER_UNLOAD_STEP * unload_step,
-    };
-    if let (Some(r), Some(f), Boundary::Free) = (radius, fit, spec.boundary) {
-        crate::pull_off_path::check_contact_fits(&grid, r, &f, max_approach, first_touch)?;
-    }
-
-    // A finite range approaches from out of contact (as a scene's default path does).
-    let range = match (spec.adhesion.model, spec.adhesion.sigma0) {
-        (AdhesionModel::Dugdale, Some(sigma0)) if sigma0 > 0.0 => Some(spec.gamma / sigma0),
-        _ => None,
-    };
-    let (start, load_step) =
-        crate::pull_off_path::load_plan(first_touch, max_approach, unload_step, range);
     let file = SceneSchema {
         adhesion: spec.adhesion.clone(),
         body: spec.body,
@@ -311,12 +246,12 @@ pub fn pull_off_scene(
             ..SolverSpec::default()
         },
         protocol: Protocol {
-            start: Some(start),
-            max_approach: Some(max_approach),
-            load_step: Some(load_step),
+            start: None,
+            max_approach: spec.max_approach,
+            load_step: None,
             indent: None,
-            unload_step: Some(unload_step),
-            coarse_unload_step: Some(coarse_unload_step),
+            unload_step: spec.unload_step,
+            coarse_unload_step: spec.coarse_unload_step,
             refine_pull_off: spec.refine_pull_off.then_some(true),
             retract_to: None,
             max_steps: None,
@@ -327,15 +262,6 @@ pub fn pull_off_scene(
         },
     };
     let mut scene = Scene::from_file(file, ".")?;
-    let rule = match (radius, d_s) {
-        (Some(r), Some(d_s)) => format!(
-            "# sphere radius R = {r:e} ({how}), d_s = (R gamma^2/E*^2)^(1/3) = {d_s:e}; default \
-             path: one load step to apex + top of the roughness + {LOAD_DEPTH} d_s, retraction by \
-             {COARSE_UNLOAD_STEP} d_s while compressive, then by min({UNLOAD_STEP}, \
-             {UNLOAD_STEP_PER_ELEMENT} dx/a_c) d_s = {unload_step:e}\n"
-        ),
-        _ => "# no sphere radius: the path was given\n".to_owned(),
-    };
     let gamma_note = if spec.gamma_map.is_some() {
         format!(
             "# The work of adhesion is an array given in memory too (stored in the result's \
@@ -345,27 +271,47 @@ pub fn pull_off_scene(
     } else {
         String::new()
     };
+    let radius_note = match (spec.radius, radius) {
+        (Some(r), _) => format!(
+            "# The body's radius was given: R = {}.\n",
+            tack_fields::num(r)
+        ),
+        (None, Some(r)) => format!(
+            "# The body's radius is fitted (least-squares paraboloid): R = {}.\n",
+            tack_fields::num(r)
+        ),
+        (None, None) => String::new(),
+    };
     scene.text = format!(
         "# tack::heights::pull_off: the rigid body is a {nx} x {ny} height array given in \
          memory\n# (stored in the result's /surface/heights), not described by this scene \
-         (geometry \"none\").\n{gamma_note}{rule}{}",
+         (geometry \"none\").\n{gamma_note}{radius_note}{}",
         scene.text
     );
-    Ok(PullOffPlan { scene, radius, fit })
+    Ok(PullOffPlan {
+        scene,
+        radius,
+        given_radius: spec.radius,
+        fit,
+    })
 }
 
 /// The pull-off of a body given as `heights` by the rule of [`PullOffSpec`]: the scene of
 /// [`pull_off_scene`] run by [`run`]. The result file stores the heights (`/surface/heights`)
-/// and the scene text with the rule's numbers.
+/// and the scene text, with the default path's numbers in a comment on top.
 pub fn pull_off(
     heights: &Array2<f64>,
     spec: &PullOffSpec,
     options: &RunOptions,
     observer: &mut dyn tack_solver::Observer,
 ) -> Result<RunOutcome, Error> {
-    let plan = pull_off_scene(heights, spec)?;
+    let mut plan = pull_off_scene(heights, spec)?;
     let body = plan.body_with_gamma(heights, spec.gamma_map.as_ref());
-    run(&plan.scene, &body, options, observer)
+    let problem = problem(&plan.scene, &body)?;
+    if let Some(rule) = &problem.path_rule {
+        plan.scene.text = format!("# {rule}\n{}", plan.scene.text);
+    }
+    crate::engine::execute(&plan.scene, problem, options, observer)
 }
 
 #[cfg(test)]
@@ -426,11 +372,18 @@ mod tests {
         let plan = pull_off_scene(&heights, &spec).unwrap();
         let fitted = plan.radius.unwrap();
         assert!((fitted / radius - 1.0).abs() < 1e-12, "{fitted}");
-        // d_s = (8 · 0.125²)^(1/3) = 0.5: load to 3 d_s, retract by 0.1, then by 0.01.
-        let p = plan.scene.file.protocol;
-        assert!((p.max_approach.unwrap() - 1.5).abs() < 1e-12, "{p:?}");
+        // d_s = (8 · 0.125²)^(1/3) = 0.5: load to 3 d_s, retract by 0.1, then by 0.01 (the
+        // builder's default path, the scene's rule).
+        let built = problem(&plan.scene, &plan.body(&heights)).unwrap();
+        let rule = built.path_rule.unwrap();
+        assert!(
+            rule.fitted && (rule.radius / radius - 1.0).abs() < 1e-12,
+            "{rule:?}"
+        );
+        let p = built.path;
+        assert!((p.max_approach - 1.5).abs() < 1e-12, "{p:?}");
         assert!((p.coarse_unload_step.unwrap() - 0.1).abs() < 1e-12);
-        assert!((p.unload_step.unwrap() - 0.01).abs() < 1e-12);
+        assert!((p.unload_step - 0.01).abs() < 1e-12);
         assert!(plan.scene.text.starts_with("# tack::heights::pull_off"));
         let outcome = run(
             &plan.scene,
@@ -464,16 +417,49 @@ mod tests {
     }
 
     #[test]
+    fn the_array_check_holds_the_disc_the_one_step_load_bonds() {
+        // R = 8, E* = 1, γ = 0.125: the default path loads in one step to d = 3 d_s = 1.5,
+        // bonding the penetrated disc √(2Rd) = 4.90; Hertz with the 30% margin says 4.50.
+        let (dx, spec) = (0.3, PullOffSpec::new(0.3, 1.0, 0.125));
+        // 32 elements (half width 4.8) passed the old Hertz check and then ran into the edge.
+        let small = sphere(32, dx, 8.0);
+        let e = pull_off_scene(&small, &spec)
+            .and_then(|plan| problem(&plan.scene, &plan.body(&small)).map(|_| ()))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("the disc the one-step load bonds"), "{e}");
+        assert!(e.contains("too small for the pull-off"), "{e}");
+        // The size the message asks for runs without touching the edge.
+        let n = 2 * ((2.0f64 * 8.0 * 1.5).sqrt() / dx).ceil() as usize + 2;
+        assert!(e.contains(&format!("at least {n} elements")), "{e} vs {n}");
+        let fits = sphere(n, dx, 8.0);
+        let outcome = pull_off(&fits, &spec, &RunOptions::default(), &mut ()).unwrap();
+        let warnings = &outcome.result.summary.warnings;
+        assert!(!warnings.iter().any(|w| w.contains("edge")), "{warnings:?}");
+        // The scene text carries the path the builder set.
+        assert!(
+            outcome.result.provenance.scene.contains("# default pull-off path of R = 8 (fitted), d_s = 0.5: one load step to d = 1.5, retraction by 0.1 while compressive, then by 0.009847"),
+            "{}",
+            outcome.result.provenance.scene
+        );
+    }
+
+    #[test]
     fn bad_inputs_name_the_field() {
         let heights = sphere(32, 0.45, 8.0);
-        let err =
-            |spec: &PullOffSpec, h: &Array2<f64>| pull_off_scene(h, spec).unwrap_err().to_string();
+        // Errors of the spec and of the builder's default path, as a run meets them.
+        let err = |spec: &PullOffSpec, h: &Array2<f64>| {
+            pull_off_scene(h, spec)
+                .and_then(|plan| problem(&plan.scene, &plan.body(h)).map(|_| ()))
+                .unwrap_err()
+                .to_string()
+        };
         let spec = PullOffSpec::new(0.45, 1.0, 0.125);
         let mut nan = heights.clone();
         nan[[1, 2]] = f64::NAN;
         assert!(err(&spec, &nan).starts_with("heights[1, 2] = NaN is invalid"));
         let e = err(&PullOffSpec::new(0.45, 1.0, 0.0), &heights);
-        assert!(e.starts_with("gamma = 0 is invalid"), "{e}");
+        assert!(e.starts_with("material.gamma = 0 is invalid"), "{e}");
         let e = err(&PullOffSpec::new(-1.0, 1.0, 0.1), &heights);
         assert!(e.contains("grid.dx = -1"), "{e}");
         let e = err(
@@ -483,11 +469,14 @@ mod tests {
             },
             &heights,
         );
-        assert!(e.starts_with("unload_step = -0.1 is invalid"), "{e}");
+        assert!(
+            e.starts_with("protocol.unload_step = -0.1 is invalid"),
+            "{e}"
+        );
         // A flat body has no radius: the path must be given.
         let flat = Array2::zeros((16, 16));
         let e = err(&spec, &flat);
-        assert!(e.starts_with("max_approach is required"), "{e}");
+        assert!(e.starts_with("protocol.max_approach is required"), "{e}");
         let e = err(
             &PullOffSpec {
                 max_approach: Some(0.1),
@@ -495,7 +484,7 @@ mod tests {
             },
             &flat,
         );
-        assert!(e.starts_with("unload_step is required"), "{e}");
+        assert!(e.starts_with("protocol.unload_step is required"), "{e}");
         // Too deep for the array.
         let e = err(
             &PullOffSpec {

@@ -93,3 +93,53 @@ pub(crate) fn body_layer(
     }
     Ok(Some(layer))
 }
+
+/// The warnings a film adds once the references and the law are known: the closed-form
+/// references are the half-space's, and a film thinner than
+/// [`MIN_ADHESIVE_THICKNESS_PER_DX`] elements under the zero-range criterion, whose κ was
+/// calibrated on the half-space.
+pub(crate) fn film_warnings(
+    layer: &Layer,
+    references: &crate::problem::References,
+    law: tack_solver::AdhesionLaw,
+    gamma: f64,
+    dx: f64,
+    warnings: &mut Vec<String>,
+) {
+    let named: Vec<&str> = [
+        ("F_JKR", references.f_jkr.is_some()),
+        ("d_JKR", references.d_jkr.is_some()),
+        ("F_Maugis", references.f_maugis.is_some()),
+        ("F_Kendall", references.f_kendall.is_some()),
+        ("F_MDR", references.f_mdr.is_some()),
+        ("F_JG", references.f_elliptic.is_some()),
+        ("p*", references.p_star.is_some()),
+        ("Johnson's α", references.johnson_alpha.is_some()),
+        ("α*", references.alpha_star.is_some()),
+    ]
+    .into_iter()
+    .filter_map(|(n, on)| on.then_some(n))
+    .collect();
+    if !named.is_empty() {
+        warnings.push(format!(
+            "the closed-form references ({}) are the half-space's: the layer of {} = {} \
+             changes them, so the ratios measure the film's effect, not the error",
+            named.join(", "),
+            fields::BODY_THICKNESS,
+            num(layer.thickness)
+        ));
+    }
+    if gamma > 0.0
+        && matches!(law, tack_solver::AdhesionLaw::JkrLimit { .. })
+        && layer.thickness < MIN_ADHESIVE_THICKNESS_PER_DX * dx
+    {
+        warnings.push(format!(
+            "under-resolved film: {} = {} spans fewer than {} elements; the criterion's κ was \
+             calibrated on the half-space and on films of 10 elements and more; refine {}",
+            fields::BODY_THICKNESS,
+            num(layer.thickness),
+            MIN_ADHESIVE_THICKNESS_PER_DX,
+            fields::GRID_DX
+        ));
+    }
+}

@@ -68,30 +68,8 @@ pub mod problem;
 pub mod provenance;
 pub mod pull_off_path;
 pub mod scene;
+pub mod shape;
 pub mod summary;
-
-/// The former home of the run engine and the result assembly, kept for programs written
-/// against it.
-#[deprecated(
-    since = "0.1.0",
-    note = "split into `tack::engine` (run, options, outcome), `tack::summary` (summary, \
-            curve, `assemble_result`) and `tack::coarse` (`coarse_problem`)"
-)]
-pub mod run {
-    pub use crate::coarse::coarse_problem;
-    pub use crate::engine::*;
-    pub use crate::summary::*;
-
-    /// Renamed [`crate::summary::assemble_result`] (it writes no file).
-    #[deprecated(since = "0.1.0", note = "renamed `tack::summary::assemble_result`")]
-    pub fn result_file(
-        problem: &crate::Problem,
-        path: &crate::solver::PathResult,
-        provenance: crate::io::Provenance,
-    ) -> crate::io::RunResult {
-        crate::summary::assemble_result(problem, path, provenance)
-    }
-}
 
 pub use engine::{
     MAX_THREADS, RunOptions, RunOutcome, check_threads, execute, run, run_file, run_to_file,
@@ -100,8 +78,6 @@ pub use error::{Error, SceneError};
 pub use overrides::set_value;
 pub use problem::Problem;
 pub use provenance::{GIT_REVISION, VERSION, command_line, now_rfc3339};
-#[allow(deprecated)]
-pub use scene::SceneFile;
 pub use scene::{
     AdhesionModel, AdhesionSpec, BodyKind, BodySpec, InterfaceKind, PatternKind, SCENE_VERSION,
     Scene, SceneSchema,

@@ -216,32 +216,57 @@ fn min_max(values: impl Iterator<Item = f64>) -> (f64, f64) {
 /// fits a free grid.
 pub const SPHERE_FIT_MARGIN: f64 = 1.3;
 
-/// On a free grid the loaded contact (Hertz radius at the deepest approach, with the 30%
-/// margin of the scene check) must lie inside the array around the paraboloid's vertex.
+/// On a free grid the loaded contact must lie inside the array around the paraboloid's vertex:
+/// the reach of [`crate::shape::sphere_contact_reach`] (Hertz with the 30% margin of the scene
+/// check; under a law of finite `range`, loaded in steps, the JKR contact radius; under the
+/// zero-range law, loaded in one step, the penetrated disc √(2R·d)), measured from the vertex
+/// to the array's edge.
 pub(crate) fn check_contact_fits(
     grid: &Grid,
     radius: f64,
     fit: &Paraboloid,
     max_approach: f64,
     first_touch: f64,
+    material: crate::shape::Material,
+    range: Option<f64>,
 ) -> Result<(), SceneError> {
     let depth = (max_approach - first_touch).max(0.0);
-    let hertz = (radius * depth).sqrt();
-    let needed = SPHERE_FIT_MARGIN * hertz;
     let dx = grid.dx();
-    let (x0, y0) = fit.vertex;
+    let (needed, rule) = crate::shape::sphere_contact_reach(
+        radius,
+        depth,
+        dx,
+        1.0,
+        material,
+        (range.is_none(), range.is_some()),
+    );
+    // A vertex within round-off of an element centre prints as that centre.
+    let snap = |v: f64| if v.abs() < 1e-9 * dx { 0.0 } else { v };
+    let (x0, y0) = (snap(fit.vertex.0), snap(fit.vertex.1));
     let (x_lo, x_hi) = (grid.x(0) - 0.5 * dx, grid.x(grid.nx() - 1) + 0.5 * dx);
     let (y_lo, y_hi) = (grid.y(0) - 0.5 * dx, grid.y(grid.ny() - 1) + 0.5 * dx);
     let room = (x0 - x_lo).min(x_hi - x0).min(y0 - y_lo).min(y_hi - y0);
     if needed > room {
+        let r4 = |x: f64| tack_fields::num(crate::shape::round4(x));
         return Err(SceneError::Inconsistent(format!(
-            "heights: the {} × {} array at dx = {dx} is too small for the pull-off: at \
-             max_approach = {max_approach:.6e} the Hertz contact radius sqrt(R·d) = {hertz:.4e} \
-             (R = {radius:.4e}, d = {depth:.4e} from the first touch) plus a 30% margin reaches \
-             {needed:.4e} from the vertex at ({x0:.4e}, {y0:.4e}), but the array's edge is \
-             {room:.4e} away; use a larger array or a smaller max_approach",
+            "heights: the {} × {} array at {} = {} is too small for the pull-off: at {} = {} \
+             (R = {}, d = {} from the first touch) {rule} reaches {} from the vertex at ({}, \
+             {}), but the array's edge is {} away; use a larger array (at least {} elements \
+             across) or a smaller {}",
             grid.nx(),
-            grid.ny()
+            grid.ny(),
+            tack_fields::GRID_DX,
+            tack_fields::num(dx),
+            tack_fields::PROTOCOL_MAX_APPROACH,
+            r4(max_approach),
+            r4(radius),
+            r4(depth),
+            r4(needed),
+            r4(x0),
+            r4(y0),
+            r4(room),
+            crate::shape::count_text((2.0 * needed / dx).ceil() + 1.0),
+            tack_fields::PROTOCOL_MAX_APPROACH,
         )));
     }
     Ok(())

@@ -50,10 +50,6 @@ pub struct SceneSchema {
     pub output: OutputSpec,
 }
 
-/// The former name of [`SceneSchema`] (it names the schema, not a file).
-#[deprecated(since = "0.1.0", note = "renamed `SceneSchema`")]
-pub type SceneFile = SceneSchema;
-
 /// `[material]`: the elastic half-space and the adhesion.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -512,12 +512,15 @@ mod tests {
             },
         )
         .expect("tack's pull-off scene");
-        let lib = &plan.scene.file.protocol;
-        assert_eq!(quick.unload_step, lib.unload_step);
+        // The builder completes the plan's path by the default rule.
+        let lib = tack::heights::problem(&plan.scene, &plan.body(&heights))
+            .expect("tack's pull-off problem")
+            .path;
+        assert_eq!(quick.unload_step, Some(lib.unload_step));
         assert_eq!(quick.coarse_unload_step, lib.coarse_unload_step);
         // The library loads from the fitted apex (0 to rounding for this exact paraboloid).
         let d_s = jkr_approach_scale(e, g, radius);
-        let (q, l) = (quick.max_approach.unwrap(), lib.max_approach.unwrap());
+        let (q, l) = (quick.max_approach.unwrap(), lib.max_approach);
         assert!((q - l).abs() < 1e-9 * d_s, "{q} vs {l}");
         assert_eq!(full.max_approach, quick.max_approach);
         assert_eq!(full.coarse_unload_step, quick.coarse_unload_step);

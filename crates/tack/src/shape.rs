@@ -1,0 +1,790 @@
+//! The rigid body's macroscopic shape as a scene names it (`[geometry]`): each shape answers for
+//! itself — its surface on a grid, its closed-form references, the sphere its default pull-off
+//! path is built from, whether its contact fits a free grid, its one-line description — so a
+//! new shape is one type implementing [`SceneShape`] and its variant of [`Geometry`] (the scene
+//! schema), joined in [`Geometry::shape`], the only `match` over the geometry.
+
+use tack_fields::{self as fields, field_name, num};
+use tack_geometry::{Boundary, Ellipsoid, FlatPunch, Grid, Shape, Sphere, Surface};
+use tack_solver::ApproachPath;
+
+use crate::problem::{
+    MAX_ELLIPSOID_RATIO, MIN_PERIOD_CONTACT_DIAMETERS, MIN_PULL_OFF_RADIUS_ELEMENTS, References,
+    SPHERE_FIT_MARGIN,
+};
+use crate::scene::{Geometry, GridSpec, PunchKind, SceneError};
+
+/// What a shape's references and checks read besides its own parameters.
+#[derive(Debug, Clone, Copy)]
+pub struct Material {
+    /// Effective modulus E*.
+    pub e_star: f64,
+    /// The reference work of adhesion γ (0: no adhesion, no adhesive references).
+    pub gamma: f64,
+}
+
+/// A macroscopic shape of a scene: one type per `geometry.shape`.
+pub trait SceneShape {
+    /// The body's heights on `grid` (gap at zero approach, apex at 0), its parameters checked
+    /// with errors naming the scene field.
+    fn surface(&self, grid: Grid) -> Result<Surface, SceneError>;
+
+    /// Sets the closed-form references of an adhesive pull-off (called with `γ > 0` only) and
+    /// warns where they do not apply (a strip, a periodic array) or where the mesh is too
+    /// coarse for the pull-off ([`under_resolved`]).
+    fn references(
+        &self,
+        _material: Material,
+        _grid: &Grid,
+        _references: &mut References,
+        _warnings: &mut Vec<String>,
+    ) {
+    }
+
+    /// The sphere the default pull-off path is built from: its radius and the shape the top
+    /// of the roughness is measured above (a sphere's own paraboloid, an ellipsoid's), or
+    /// `None` where the shape has no radius (a punch, a power law) or none of its own
+    /// (`shape = "none"`: see [`SceneShape::heights_only`]).
+    fn path_sphere(&self) -> Option<(f64, Box<dyn Shape>)> {
+        None
+    }
+
+    /// Whether the body is only the heights added to it (`shape = "none"`: a map, an array),
+    /// whose radius a least-squares paraboloid may find.
+    fn heights_only(&self) -> bool {
+        false
+    }
+
+    /// Scales the shape derives from the material that must be normal floating-point numbers
+    /// through a run: `(name, value)` pairs and the inputs they come from (for the message).
+    fn scales(&self, _material: Material) -> Option<(Vec<(&'static str, f64)>, String)> {
+        None
+    }
+
+    /// Checks that the contact at the deepest approach fits a free grid (called on free grids
+    /// only), naming the field to raise and the path field to lower.
+    fn check_fit(&self, _fit: &FitCheck<'_>) -> Result<(), SceneError> {
+        Ok(())
+    }
+
+    /// One line for reports: `sphere R = 1`, `circular punch a = 0.5`.
+    fn describe(&self) -> String;
+}
+
+impl Geometry {
+    /// The shape of `[geometry]`: the one place a geometry variant becomes its type.
+    pub fn shape(&self) -> Box<dyn SceneShape> {
+        match *self {
+            Geometry::Sphere { radius } => Box::new(SphereBody { radius }),
+            Geometry::FlatPunch {
+                punch,
+                radius,
+                half_side,
+            } => Box::new(PunchBody {
+                punch,
+                radius,
+                half_side,
+            }),
+            Geometry::PowerLaw { c, exponent } => Box::new(PowerLawBody { c, exponent }),
+            Geometry::Ellipsoid { radius_x, radius_y } => {
+                Box::new(EllipsoidBody { radius_x, radius_y })
+            }
+            Geometry::None => Box::new(NoShape),
+        }
+    }
+}
+
+/// What [`SceneShape::check_fit`] reads: the grid, the path and how the message names them.
+#[derive(Debug, Clone, Copy)]
+pub struct FitCheck<'a> {
+    /// The scene's `[grid]` (to name `grid.n` or `grid.nx`/`grid.ny`).
+    pub spec: &'a GridSpec,
+    /// The grid built from it.
+    pub grid: &'a Grid,
+    /// The approach path.
+    pub path: &'a ApproachPath,
+    /// The approach of the first touch.
+    pub first_touch: f64,
+    /// The path is the default pull-off rule's (not given by `[protocol]`).
+    pub default_path: bool,
+    /// The body is a film on a rigid base (it bulges around the contact).
+    pub film: bool,
+    /// The material (adhesive spheres reach the JKR contact radius).
+    pub material: Material,
+    /// The law has a finite range: it attracts ahead of the contact, which then grows to the
+    /// JKR radius while loading.
+    pub finite_range: bool,
+}
+
+impl FitCheck<'_> {
+    /// Depth of the deepest approach beyond the first touch.
+    pub fn depth(&self) -> f64 {
+        (self.path.max_approach - self.first_touch).max(0.0)
+    }
+
+    /// A thin film's contact reaches √2.5 times the half-space's (Shull's thin-film limit
+    /// δ → 0.4a²/R instead of Hertz's a²/R).
+    pub fn reach(&self) -> f64 {
+        if self.film { 2.5f64.sqrt() } else { 1.0 }
+    }
+
+    /// The field that sets the grid's size.
+    pub fn size_field(&self) -> &'static str {
+        if self.spec.n.is_some() {
+            fields::GRID_N
+        } else {
+            concat!(field_name!(grid.nx), "/", field_name!(grid.ny))
+        }
+    }
+
+    /// The grid's size as the field gives it: `64` or `64/32`.
+    pub fn size_text(&self) -> String {
+        let (nx, ny) = self.grid.shape();
+        if self.spec.n.is_some() {
+            nx.to_string()
+        } else {
+            format!("{nx}/{ny}")
+        }
+    }
+
+    /// What set the deepest approach, as a message names it.
+    pub fn depth_field(&self) -> &'static str {
+        if self.path.is_indentation() {
+            fields::PROTOCOL_INDENT
+        } else if self.default_path {
+            "the default pull-off path's depth"
+        } else {
+            fields::PROTOCOL_MAX_APPROACH
+        }
+    }
+
+    /// How to make the path shallower.
+    pub fn shallower(&self) -> String {
+        if self.default_path {
+            format!(
+                "give a shallower path ({} with {})",
+                fields::PROTOCOL_MAX_APPROACH,
+                fields::PROTOCOL_LOAD_STEP
+            )
+        } else {
+            format!("lower {}", self.depth_field())
+        }
+    }
+
+    /// Whether the path reaches its deepest approach in one load step from out of contact:
+    /// that step bonds every element the body penetrates.
+    pub fn one_step_load(&self) -> bool {
+        !self.path.is_indentation()
+            && crate::problem::loaded_steps(self.path, self.first_touch, 2) <= 1
+    }
+
+    /// The error of an axisymmetric contact of radius `needed` around the origin that a free
+    /// grid cannot hold, or `Ok` when it fits; `what` says whose contact and by which rule.
+    fn disc_fits(&self, needed: f64, what: &str) -> Result<(), SceneError> {
+        let grid = self.grid;
+        if needed <= grid.lx().min(grid.ly()) / 2.0 {
+            return Ok(());
+        }
+        let n_needed = count_text((2.0 * needed / grid.dx()).ceil());
+        let (nx, ny) = grid.shape();
+        Err(SceneError::Inconsistent(format!(
+            "{size_field} = {} is too small for {what} needs a free grid of at least {n_needed} × \
+             {n_needed} elements at {dx_field} = {} (the grid is {nx} × {ny}); raise {size_field} \
+             or {}",
+            self.size_text(),
+            num(grid.dx()),
+            self.shallower(),
+            size_field = self.size_field(),
+            dx_field = fields::GRID_DX
+        )))
+    }
+}
+
+/// The radius a sphere-like contact reaches at approach `depth` beyond the first touch, and
+/// the rule that gives it, with what must stay free around it: the Hertz radius √(R·d) (times
+/// √2.5 on a film) with [`SPHERE_FIT_MARGIN`]; under a `finite_range` law (which attracts
+/// ahead of the contact) also the JKR contact radius a(d) plus one element; after a one-step
+/// load also the penetrated disc √(2R·d) plus one element (that step bonds all of it under
+/// either law). The zero-range criterion loaded in steps bonds only what penetrates, so its
+/// contact stays near Hertz's.
+pub fn sphere_contact_reach(
+    radius: f64,
+    depth: f64,
+    dx: f64,
+    reach: f64,
+    material: Material,
+    (one_step, finite_range): (bool, bool),
+) -> (f64, String) {
+    let hertz = reach * (radius * depth).sqrt();
+    let mut needed = SPHERE_FIT_MARGIN * hertz;
+    let mut rule = format!(
+        "the contact radius {} = {} plus a 30% margin",
+        if reach > 1.0 {
+            "sqrt(2.5·R·d) (a thin film's)"
+        } else {
+            "sqrt(R·d) (Hertz)"
+        },
+        num(round4(hertz))
+    );
+    if finite_range
+        && material.gamma > 0.0
+        && let Some(a) =
+            tack_analytics::jkr_radius_from_approach(material.e_star, material.gamma, radius, depth)
+        && reach * a + dx > needed
+    {
+        needed = reach * a + dx;
+        rule = format!(
+            "the JKR contact radius a(d) = {} plus one element",
+            num(round4(reach * a))
+        );
+    }
+    let penetrated = (2.0 * radius * depth).sqrt();
+    if one_step && penetrated + dx > needed {
+        needed = penetrated + dx;
+        rule = format!(
+            "the disc the one-step load bonds, sqrt(2·R·d) = {}, plus one element",
+            num(round4(penetrated))
+        );
+    }
+    (needed, rule)
+}
+
+/// `x` to four significant digits, for messages.
+pub fn round4(x: f64) -> f64 {
+    if x == 0.0 || !x.is_finite() {
+        return x;
+    }
+    let scale = 10f64.powi(3 - x.abs().log10().floor() as i32);
+    (x * scale).round() / scale
+}
+
+/// An element count for a message: exact when it is a plausible size, else `2.000e300`.
+pub fn count_text(n: f64) -> String {
+    if n < 1e15 {
+        format!("{n:.0}")
+    } else {
+        format!("{n:.3e}")
+    }
+}
+
+/// Flags a pull-off radius of fewer than [`MIN_PULL_OFF_RADIUS_ELEMENTS`] elements.
+pub fn under_resolved(warnings: &mut Vec<String>, what: &str, radius: f64, dx: f64) {
+    let elements = radius / dx;
+    if elements < MIN_PULL_OFF_RADIUS_ELEMENTS {
+        warnings.push(format!(
+            "under-resolved pull-off: {what} spans {elements:.3} elements (fewer than \
+             {MIN_PULL_OFF_RADIUS_ELEMENTS}), where the detachment criterion's error on a sphere \
+             exceeds +33%; refine {dx}",
+            dx = fields::GRID_DX
+        ));
+    }
+}
+
+/// Whether `grid` holds one isolated body (free, not a strip), where the closed forms of a
+/// single body apply; otherwise the warning that says why `name` is missing.
+fn single_body(grid: &Grid, name: &str, what: &str) -> Option<String> {
+    (grid.nx() == 1 || grid.ny() == 1 || grid.boundary() == Boundary::Periodic).then(|| {
+        format!(
+            "no {name} reference: {what} is for one body on a free {} × {} grid, not a strip or \
+             a periodic array",
+            grid.nx(),
+            grid.ny()
+        )
+    })
+}
+
+/// Renames the field of a geometry range error to the scene's key (the geometry crate names
+/// the punch fields `geometry.punch_radius`/`punch_half_side`).
+pub(crate) fn rename(field: &'static str) -> impl Fn(tack_geometry::GeometryError) -> SceneError {
+    move |e| match e {
+        tack_geometry::GeometryError::OutOfRange { value, allowed, .. } => {
+            SceneError::out_of_range(field, value, allowed)
+        }
+        other => other.into(),
+    }
+}
+
+/// `shape = "sphere"`: the paraboloid (x² + y²)/(2R).
+#[derive(Debug, Clone, Copy)]
+pub struct SphereBody {
+    /// R.
+    pub radius: f64,
+}
+
+impl SceneShape for SphereBody {
+    fn surface(&self, grid: Grid) -> Result<Surface, SceneError> {
+        let sphere = Sphere::new(self.radius).map_err(rename(fields::GEOMETRY_RADIUS))?;
+        Ok(Surface::from_shape(grid, &sphere))
+    }
+
+    fn references(
+        &self,
+        m: Material,
+        grid: &Grid,
+        references: &mut References,
+        warnings: &mut Vec<String>,
+    ) {
+        let radius = self.radius;
+        let a_c = tack_analytics::jkr_pull_off_radius(m.e_star, m.gamma, radius);
+        let (lx, ly) = (grid.lx(), grid.ly());
+        let span = lx.min(ly) / (2.0 * a_c);
+        references.pull_off_radius = Some(a_c);
+        if grid.nx() == 1 || grid.ny() == 1 {
+            warnings.push(format!(
+                "no F_JKR reference: a sphere on a {} × {} grid is a strip of spheres, not the \
+                 isolated sphere of Eq. 7",
+                grid.nx(),
+                grid.ny()
+            ));
+        } else if grid.boundary() == Boundary::Periodic && span < MIN_PERIOD_CONTACT_DIAMETERS {
+            warnings.push(format!(
+                "no F_JKR reference: the periodic cell {lx:.4e} × {ly:.4e} spans {span:.2} \
+                 pull-off contact diameters 2a_c = {:.4e} (at least \
+                 {MIN_PERIOD_CONTACT_DIAMETERS} for the isolated sphere of Eq. 7)",
+                2.0 * a_c
+            ));
+        } else {
+            references.set_jkr(m.e_star, m.gamma, radius);
+        }
+        under_resolved(
+            warnings,
+            "the JKR pull-off contact radius a_c",
+            a_c,
+            grid.dx(),
+        );
+    }
+
+    fn path_sphere(&self) -> Option<(f64, Box<dyn Shape>)> {
+        let sphere = Sphere::new(self.radius).ok()?;
+        Some((self.radius, Box::new(sphere)))
+    }
+
+    fn scales(&self, m: Material) -> Option<(Vec<(&'static str, f64)>, String)> {
+        let (e, g, r) = (m.e_star, m.gamma, self.radius);
+        Some((
+            vec![
+                ("F_JKR", tack_analytics::jkr_pull_off_force(g, r)),
+                ("d_JKR", tack_analytics::jkr_pull_off_approach(e, g, r)),
+                ("a_c", tack_analytics::jkr_pull_off_radius(e, g, r)),
+            ],
+            format!(
+                "{} = {}, {} = {} and {} = {}",
+                fields::MATERIAL_E_STAR,
+                num(e),
+                fields::MATERIAL_GAMMA,
+                num(g),
+                fields::GEOMETRY_RADIUS,
+                num(r)
+            ),
+        ))
+    }
+
+    fn check_fit(&self, fit: &FitCheck<'_>) -> Result<(), SceneError> {
+        let (needed, rule) = sphere_contact_reach(
+            self.radius,
+            fit.depth(),
+            fit.grid.dx(),
+            fit.reach(),
+            fit.material,
+            (fit.one_step_load(), fit.finite_range),
+        );
+        fit.disc_fits(
+            needed,
+            &format!(
+                "the sphere: at {} = {} {rule}",
+                fit.depth_field(),
+                num(fit.path.max_approach)
+            ),
+        )
+    }
+
+    fn describe(&self) -> String {
+        format!("sphere R = {}", num(self.radius))
+    }
+}
+
+/// `shape = "flat_punch"`: a circular or square face.
+#[derive(Debug, Clone, Copy)]
+pub struct PunchBody {
+    /// The face.
+    pub punch: PunchKind,
+    /// A circular face's radius.
+    pub radius: Option<f64>,
+    /// A square face's half side.
+    pub half_side: Option<f64>,
+}
+
+impl SceneShape for PunchBody {
+    fn surface(&self, grid: Grid) -> Result<Surface, SceneError> {
+        let punch = match (self.punch, self.radius, self.half_side) {
+            (PunchKind::Circle, Some(r), None) => {
+                FlatPunch::circular(r).map_err(rename(fields::GEOMETRY_RADIUS))?
+            }
+            (PunchKind::Square, None, Some(s)) => {
+                FlatPunch::square(s).map_err(rename(fields::GEOMETRY_HALF_SIDE))?
+            }
+            (PunchKind::Circle, _, _) => {
+                return Err(SceneError::Inconsistent(
+                    "geometry: punch = \"circle\" needs `radius` (and no `half_side`)".into(),
+                ));
+            }
+            (PunchKind::Square, _, _) => {
+                return Err(SceneError::Inconsistent(
+                    "geometry: punch = \"square\" needs `half_side` (and no `radius`)".into(),
+                ));
+            }
+        };
+        Ok(Surface::from_shape(grid, &punch))
+    }
+
+    fn references(
+        &self,
+        m: Material,
+        grid: &Grid,
+        references: &mut References,
+        warnings: &mut Vec<String>,
+    ) {
+        if let (PunchKind::Circle, Some(a)) = (self.punch, self.radius) {
+            references.f_kendall = Some(-tack_analytics::kendall_pull_off(m.e_star, m.gamma, a));
+            references.pull_off_radius = Some(a);
+            under_resolved(warnings, "the punch radius a", a, grid.dx());
+        }
+    }
+
+    fn check_fit(&self, fit: &FitCheck<'_>) -> Result<(), SceneError> {
+        let (field, size) = match (self.radius, self.half_side) {
+            (Some(r), _) => (fields::GEOMETRY_RADIUS, r),
+            (_, Some(s)) => (fields::GEOMETRY_HALF_SIDE, s),
+            _ => return Ok(()),
+        };
+        let grid = fit.grid;
+        let (nx, ny) = grid.shape();
+        // The punch face needs one element to spare beyond its edge on every side. The origin
+        // is the centre of element ⌊n/2⌋, so an even side reaches one element less on its
+        // positive end: the outermost centre there is at (n − 1 − ⌊n/2⌋)·Δx.
+        let reach = |n: usize| (n - 1 - n / 2) as f64 * grid.dx();
+        let needed = size + grid.dx() * (1.0 - 1e-9);
+        if reach(nx.min(ny)) >= needed {
+            return Ok(());
+        }
+        // reach(n) = ⌊(n − 1)/2⌋·Δx, so the least n is 2⌈needed/Δx⌉ + 1 (in closed form: a
+        // search over n never ended for a punch of 1e299).
+        let n_needed = count_text(2.0 * (needed / grid.dx()).ceil() + 1.0);
+        Err(SceneError::Inconsistent(format!(
+            "{field} = {} does not fit the grid: the punch needs a free grid of at least \
+             {n_needed} × {n_needed} elements at {dx_field} = {} (the grid is {nx} × {ny}); raise \
+             {size_field}",
+            num(size),
+            num(grid.dx()),
+            dx_field = fields::GRID_DX,
+            size_field = fit.size_field()
+        )))
+    }
+
+    fn describe(&self) -> String {
+        match (self.punch, self.radius, self.half_side) {
+            (PunchKind::Circle, Some(r), _) => format!("circular punch a = {}", num(r)),
+            (PunchKind::Square, _, Some(s)) => format!("square punch half side {}", num(s)),
+            _ => "flat punch".to_owned(),
+        }
+    }
+}
+
+/// `shape = "power_law"`: the axisymmetric body c·r^m (a cone for m = 1).
+#[derive(Debug, Clone, Copy)]
+pub struct PowerLawBody {
+    /// c.
+    pub c: f64,
+    /// m.
+    pub exponent: f64,
+}
+
+impl SceneShape for PowerLawBody {
+    fn surface(&self, grid: Grid) -> Result<Surface, SceneError> {
+        let s = Surface::from_shape(grid, &tack_geometry::PowerLaw::new(self.c, self.exponent)?);
+        // c·r^m at the grid's corners must stay a normal number (1e300 leaves room for the
+        // approach and the roughness).
+        if !(s.max().is_finite() && s.max() < 1e300) {
+            return Err(SceneError::out_of_range(
+                fields::GEOMETRY_C,
+                self.c,
+                "small enough that c·r^m stays below 1e300 on the grid",
+            ));
+        }
+        Ok(s)
+    }
+
+    fn references(
+        &self,
+        m: Material,
+        grid: &Grid,
+        references: &mut References,
+        warnings: &mut Vec<String>,
+    ) {
+        let (c, exponent) = (self.c, self.exponent);
+        let a_f = tack_analytics::power_law_pull_off_radius(m.e_star, m.gamma, c, exponent);
+        let f = tack_analytics::power_law_pull_off_force(m.e_star, m.gamma, c, exponent);
+        if let Some(w) = single_body(grid, "F_MDR", "the power-law body's closed form") {
+            warnings.push(w);
+        } else if f.is_normal() && a_f.is_normal() {
+            references.f_mdr = Some(f);
+            references.pull_off_radius = Some(a_f);
+        }
+        under_resolved(
+            warnings,
+            "the power law's pull-off radius a_F",
+            a_f,
+            grid.dx(),
+        );
+    }
+
+    fn check_fit(&self, fit: &FitCheck<'_>) -> Result<(), SceneError> {
+        // The disc the rigid body penetrates at the deepest approach, c·r^m < d, with the
+        // sphere's margin (for m = 2 the penetrated disc is √2 times the Hertz radius).
+        let disc = (fit.depth() / self.c).powf(1.0 / self.exponent);
+        fit.disc_fits(
+            SPHERE_FIT_MARGIN * disc,
+            &format!(
+                "the power-law body: at {} = {} it penetrates a disc of radius (d/c)^(1/m) = {} \
+                 that with a 30% margin",
+                fit.depth_field(),
+                num(fit.path.max_approach),
+                num(round4(disc))
+            ),
+        )
+    }
+
+    fn describe(&self) -> String {
+        if self.exponent == 1.0 {
+            format!("cone z = {}·r", num(self.c))
+        } else {
+            format!("power law z = {}·r^{}", num(self.c), num(self.exponent))
+        }
+    }
+}
+
+/// `shape = "ellipsoid"`: the paraboloid x²/(2Rx) + y²/(2Ry).
+#[derive(Debug, Clone, Copy)]
+pub struct EllipsoidBody {
+    /// Rx.
+    pub radius_x: f64,
+    /// Ry.
+    pub radius_y: f64,
+}
+
+impl SceneShape for EllipsoidBody {
+    fn surface(&self, grid: Grid) -> Result<Surface, SceneError> {
+        let (radius_x, radius_y) = (self.radius_x, self.radius_y);
+        let shape = Ellipsoid::new(radius_x, radius_y)?;
+        if radius_x.max(radius_y) / radius_x.min(radius_y) > MAX_ELLIPSOID_RATIO {
+            let (field, value, other) = if radius_x > radius_y {
+                (
+                    fields::GEOMETRY_RADIUS_X,
+                    radius_x,
+                    fields::GEOMETRY_RADIUS_Y,
+                )
+            } else {
+                (
+                    fields::GEOMETRY_RADIUS_Y,
+                    radius_y,
+                    fields::GEOMETRY_RADIUS_X,
+                )
+            };
+            return Err(SceneError::Inconsistent(format!(
+                "{field} = {} is invalid: must be within a factor 1e6 of {other} (a longer \
+                 ellipsoid is a cylinder: the elliptic integrals of its references lose every \
+                 digit)",
+                num(value)
+            )));
+        }
+        Ok(Surface::from_shape(grid, &shape))
+    }
+
+    fn references(
+        &self,
+        m: Material,
+        grid: &Grid,
+        references: &mut References,
+        warnings: &mut Vec<String>,
+    ) {
+        let jg =
+            tack_analytics::elliptic_jkr_pull_off(m.e_star, m.gamma, self.radius_x, self.radius_y)
+                .approach_control;
+        let shorter = jg.semi_axis_x.min(jg.semi_axis_y);
+        if let Some(w) = single_body(grid, "F_JG", "the elliptic JKR approximation") {
+            warnings.push(w);
+        } else if jg.force.is_normal() {
+            references.f_elliptic = Some(jg.force);
+            references.pull_off_radius = Some(shorter);
+        }
+        under_resolved(
+            warnings,
+            "the elliptic pull-off contact's shorter semi-axis",
+            shorter,
+            grid.dx(),
+        );
+    }
+
+    /// The default path of the sphere of the same Gaussian curvature, √(RxRy); the roughness's
+    /// top is measured above the ellipsoid.
+    fn path_sphere(&self) -> Option<(f64, Box<dyn Shape>)> {
+        let shape = Ellipsoid::new(self.radius_x, self.radius_y).ok()?;
+        Some((self.radius_x.sqrt() * self.radius_y.sqrt(), Box::new(shape)))
+    }
+
+    fn check_fit(&self, fit: &FitCheck<'_>) -> Result<(), SceneError> {
+        // The elliptic Hertz contact at the deepest approach, with the sphere's margin.
+        let grid = fit.grid;
+        let hertz =
+            tack_analytics::elliptic_hertz_from_approach(1.0, self.radius_x, self.radius_y, {
+                fit.depth()
+            });
+        let reach = fit.reach();
+        let need = |semi: f64| SPHERE_FIT_MARGIN * reach * semi;
+        let (mx, my) = (need(hertz.semi_axis_x), need(hertz.semi_axis_y));
+        if mx <= grid.lx() / 2.0 && my <= grid.ly() / 2.0 {
+            return Ok(());
+        }
+        let n_x = count_text((2.0 * mx / grid.dx()).ceil());
+        let n_y = count_text((2.0 * my / grid.dx()).ceil());
+        let (nx, ny) = grid.shape();
+        Err(SceneError::Inconsistent(format!(
+            "{size_field} = {} is too small for the ellipsoid: at {} = {} the contact has \
+             semi-axes {} × {} (elliptic Hertz{}) that with a 30% margin need a free grid of at \
+             least {n_x} × {n_y} elements at {dx_field} = {} (the grid is {nx} × {ny}); raise \
+             {size_field} or {}",
+            fit.size_text(),
+            fit.depth_field(),
+            num(fit.path.max_approach),
+            num(round4(reach * hertz.semi_axis_x)),
+            num(round4(reach * hertz.semi_axis_y)),
+            if fit.film {
+                ", times √2.5 on a thin film"
+            } else {
+                ""
+            },
+            num(grid.dx()),
+            fit.shallower(),
+            size_field = fit.size_field(),
+            dx_field = fields::GRID_DX
+        )))
+    }
+
+    fn describe(&self) -> String {
+        format!(
+            "ellipsoid Rx = {}, Ry = {}",
+            num(self.radius_x),
+            num(self.radius_y)
+        )
+    }
+}
+
+/// `shape = "none"`: a flat body, only what is added to it (roughness, a map, an array).
+#[derive(Debug, Clone, Copy)]
+pub struct NoShape;
+
+impl SceneShape for NoShape {
+    fn surface(&self, grid: Grid) -> Result<Surface, SceneError> {
+        Ok(Surface::flat(grid))
+    }
+
+    fn heights_only(&self) -> bool {
+        true
+    }
+
+    fn describe(&self) -> String {
+        "flat".to_owned()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_geometry_answers_for_itself() {
+        let grid = Grid::square(64, 0.1, Boundary::Free).unwrap();
+        let m = Material {
+            e_star: 1.0,
+            gamma: 0.01,
+        };
+        let shapes = [
+            Geometry::Sphere { radius: 2.0 },
+            Geometry::FlatPunch {
+                punch: PunchKind::Circle,
+                radius: Some(1.0),
+                half_side: None,
+            },
+            Geometry::PowerLaw {
+                c: 1.0,
+                exponent: 4.0,
+            },
+            Geometry::Ellipsoid {
+                radius_x: 2.0,
+                radius_y: 8.0,
+            },
+            Geometry::None,
+        ];
+        let mut with_reference = 0;
+        for g in shapes {
+            let shape = g.shape();
+            let s = shape.surface(grid).unwrap();
+            assert_eq!(s.heights().dim(), (64, 64));
+            let mut r = References::default();
+            let mut w = Vec::new();
+            shape.references(m, &grid, &mut r, &mut w);
+            if r != References::default() {
+                with_reference += 1;
+                assert!(r.pull_off_radius.is_some(), "{g:?}: {r:?}");
+            }
+            assert!(!shape.describe().is_empty());
+            assert_eq!(shape.heights_only(), g == Geometry::None);
+        }
+        // Sphere, circular punch, power law, ellipsoid.
+        assert_eq!(with_reference, 4);
+        // The ellipsoid's path sphere has its Gaussian curvature.
+        let e = Geometry::Ellipsoid {
+            radius_x: 2.0,
+            radius_y: 8.0,
+        };
+        assert!((e.shape().path_sphere().unwrap().0 - 4.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_reach_of_a_one_step_load_is_the_penetrated_disc() {
+        let m = Material {
+            e_star: 1.0,
+            gamma: 1e-4,
+        };
+        // Deep load (d ≫ d_s): the penetrated disc √(2Rd) beats 1.3·√(Rd) after one step.
+        let (needed, rule) = sphere_contact_reach(1.0, 0.01, 1e-3, 1.0, m, (true, false));
+        assert!(
+            (needed - ((0.02f64).sqrt() + 1e-3)).abs() < 1e-12,
+            "{needed}"
+        );
+        assert!(rule.contains("one-step load"), "{rule}");
+        // Loaded in steps under the zero-range law: the contact stays near Hertz.
+        let (needed, rule) = sphere_contact_reach(1.0, 0.01, 1e-3, 1.0, m, (false, false));
+        assert!((needed - 1.3 * 0.1).abs() < 1e-12, "{needed}");
+        assert!(rule.contains("Hertz"), "{rule}");
+        // Shallow under strong adhesion and a finite range: the JKR contact radius exceeds
+        // 1.3·√(Rd); the zero-range law loaded in steps stays with Hertz.
+        let strong = Material {
+            e_star: 1.0,
+            gamma: 1e-2,
+        };
+        let (needed, rule) = sphere_contact_reach(1.0, 1e-3, 1e-4, 1.0, strong, (false, true));
+        let a = tack_analytics::jkr_radius_from_approach(1.0, 1e-2, 1.0, 1e-3).unwrap();
+        assert!((needed - (a + 1e-4)).abs() < 1e-12, "{needed} {a}");
+        assert!(rule.contains("JKR"), "{rule}");
+        let (needed, _) = sphere_contact_reach(1.0, 1e-3, 1e-4, 1.0, strong, (false, false));
+        assert!((needed - 1.3 * 1e-3f64.sqrt()).abs() < 1e-12, "{needed}");
+    }
+
+    #[test]
+    fn numbers_in_messages_keep_four_digits() {
+        assert_eq!(round4(0.009847450218426965), 0.009847);
+        assert_eq!(round4(123456.0), 123500.0);
+        assert_eq!(round4(0.0), 0.0);
+    }
+}
