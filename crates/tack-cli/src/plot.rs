@@ -448,6 +448,9 @@ fn draw_branches<DB: DrawingBackend>(chart: &mut Chart<'_, DB>, plotted: &Plotte
     ] {
         let runs = clip_above(&plotted.points(range), top);
         for (k, run) in runs.into_iter().enumerate() {
+            // A branch of one step (a load in one step) is a dot, not an invisible line.
+            let dot = (run.len() == 1).then(|| Circle::new(run[0], 3, color.filled()));
+            chart.draw_series(dot)?;
             let series = chart.draw_series(LineSeries::new(run, color.stroke_width(2)))?;
             if k == 0 {
                 series.label(label).legend(move |(x, y)| {
