@@ -93,8 +93,22 @@ fn pe<E: std::fmt::Display>(e: E) -> anyhow::Error {
     anyhow!("drawing: {e}")
 }
 
+/// Registers the bundled Noto Sans (crate `notosans`, OFL-1.1) as plotters' "sans-serif", once:
+/// plotters' `ab_glyph` feature (enabled for the workspace, as `tack plot` needs it for PNG)
+/// lays out every text with a registered font.
+fn register_font() -> Result<()> {
+    static REGISTERED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    let ok = REGISTERED.get_or_init(|| {
+        plotters::style::register_font("sans-serif", FontStyle::Normal, notosans::REGULAR_TTF)
+            .is_ok()
+    });
+    anyhow::ensure!(*ok, "the bundled font (Noto Sans) could not be loaded");
+    Ok(())
+}
+
 /// Renders an SVG of `size` pixels with `draw` and writes it to `path` (temporary + rename).
 pub fn svg(path: &Path, size: (u32, u32), draw: impl FnOnce(&Area) -> Result<()>) -> Result<()> {
+    register_font()?;
     let mut text = String::new();
     {
         let root = SVGBackend::with_string(&mut text, size).into_drawing_area();

@@ -117,7 +117,8 @@ enum Command {
     Plot {
         /// The result file (HDF5).
         file: PathBuf,
-        /// The figure to write: `.svg` (or `.png` when built with the `png` feature).
+        /// The figure to write: `.svg` or `.png`, by the extension (PNG needs the default `png`
+        /// feature of tack-cli).
         #[arg(short, long, value_name = "FIG.svg")]
         output: PathBuf,
     },
@@ -181,30 +182,13 @@ fn execute(command: Command) -> anyhow::Result<()> {
                 p.grid.ny(),
                 rounded(p.grid.dx()),
             );
-            if p.path.is_indentation() {
-                println!(
-                    "  first touch at d = {}; indentation: one step to d = {}",
-                    rounded(p.first_touch),
-                    rounded(p.path.max_approach)
-                );
-            } else {
-                println!(
-                    "  first touch at d = {}; path d = {} → {} (load step {}, unload step {}{})",
-                    rounded(p.first_touch),
-                    rounded(p.path.start),
-                    rounded(p.path.max_approach),
-                    rounded(p.path.load_step),
-                    rounded(p.path.unload_step),
-                    p.path
-                        .coarse_unload_step
-                        .map_or_else(String::new, |c| format!(
-                            ", {} while the force is compressive",
-                            rounded(c)
-                        ))
-                );
-            }
+            println!(
+                "  first touch at d = {}; path: {}",
+                rounded(p.first_touch),
+                report::describe_planned_path(&p.path)
+            );
             if let Some(rule) = &p.path_rule {
-                println!("  {rule}");
+                println!("  {}", report::describe_rule(rule, &loaded.file.geometry));
             }
             let steps = p.path.step_bound();
             let bound = if steps < p.path.max_steps {

@@ -3,14 +3,17 @@
 //! heat maps of the bonded mask.
 //!
 //! Axes are normalised by |F_JKR| and |d_JKR| when the file's summary has a finite, non-zero
-//! `f_jkr` and a `d_jkr` (spheres); otherwise they are in the scene's units. SVG is always
-//! available; PNG needs the `png` cargo feature (text is drawn with a TrueType font found on the
-//! system, see [`FONT_PATHS`]).
+//! `f_jkr` and a `d_jkr` (spheres); otherwise they are in the scene's units. The force axis
+//! covers the tensile part: a compressive peak more than [`CLIP_RATIO`] times the pull-off's
+//! |F| is cut at [`CLIP_AT`] times it (marked off scale), so the pull-off stays visible. SVG and
+//! PNG (the default `png` cargo feature) draw text with the bundled Noto Sans (crate
+//! `notosans`, SIL OFL 1.1): no system font is needed.
 
 use std::path::Path;
 
 use anyhow::{anyhow, bail};
 use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use tack_io::RunResult;
 
@@ -22,21 +25,19 @@ pub const SNAPSHOT_ROW: u32 = 240;
 pub const MAX_PANELS: usize = 6;
 /// Heat-map cells per panel side at most (masks are block-averaged down to this).
 pub const MAX_CELLS: usize = 100;
-
-/// TrueType fonts tried, in order, for PNG text (`TACK_FONT` overrides).
-pub const FONT_PATHS: [&str; 4] = [
-    "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
-    "/usr/share/fonts/TTF/DejaVuSans.ttf",
-    "/usr/share/fonts/dejavu/DejaVuSans.ttf",
-    "/usr/share/fonts/truetype/liberation/LiberationSans-Regular.ttf",
-];
+/// A compressive peak above this many times the pull-off's |F| is cut from the force axis.
+pub const CLIP_RATIO: f64 = 10.0;
+/// Where the force axis is cut then, in multiples of the pull-off's |F|.
+pub const CLIP_AT: f64 = 5.0;
+/// Whether this `tack` writes PNG (the `png` cargo feature, on by default).
+pub const PNG_BUILT: bool = cfg!(feature = "png");
 
 /// Output format, from the file extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Format {
     /// Scalable vector graphics.
     Svg,
-    /// Portable network graphics (cargo feature `png`).
+    /// Portable network graphics (cargo feature `png`, on by default).
     Png,
 }
 
@@ -102,9 +103,12 @@ impl<'a> Figure<'a> {
 }
 
 /// Reads `input` and writes the figure to `output` (format from its extension), through a
-/// temporary file renamed on success.
+/// temporary file renamed on success. Errors name `output`, never the temporary.
 pub fn plot_file(input: &Path, output: &Path) -> anyhow::Result<()> {
     let format = Format::of(output)?;
+    if format == Format::Png && !PNG_BUILT {
+        return Err(png_unavailable(output));
+    }
     // Before reading: an existing FIFO or device under the output name is never replaced.
     tack::engine::check_output_path(output)?;
     let result = tack_io::read_result(input)?;
@@ -114,7 +118,21 @@ pub fn plot_file(input: &Path, output: &Path) -> anyhow::Result<()> {
             input.display()
         );
     }
-    tack_io::write_atomically(output, |tmp| render(&result, tmp, format))
+    register_font()?;
+    tack_io::write_atomically(output, |tmp| {
+        render(&result, tmp, format).map_err(|e| anyhow!("{}: {e:#}", output.display()))
+    })
+}
+
+/// The error of a PNG figure asked of a `tack` built without the `png` feature.
+fn png_unavailable(output: &Path) -> anyhow::Error {
+    anyhow!(
+        "{}: PNG output is not built into this tack (it was built with `--no-default-features`, \
+         without tack-cli's `png` feature); rebuild it with the default features (`cargo install \
+         --path crates/tack-cli`) or write an .svg figure (`-o {}`)",
+        output.display(),
+        output.with_extension("svg").display()
+    )
 }
 
 fn figure_size(result: &RunResult) -> (u32, u32) {
@@ -138,50 +156,30 @@ fn render(result: &RunResult, path: &Path, format: Format) -> anyhow::Result<()>
 
 #[cfg(feature = "png")]
 fn render_png(result: &RunResult, path: &Path, size: (u32, u32)) -> anyhow::Result<()> {
-    register_font()?;
     let root = BitMapBackend::new(path, size).into_drawing_area();
     draw(root, &Figure::new(result))
 }
 
 #[cfg(not(feature = "png"))]
 fn render_png(_result: &RunResult, path: &Path, _size: (u32, u32)) -> anyhow::Result<()> {
-    bail!(
-        "{}: PNG output is not built into this tack (rebuild with `--features png`); write an \
-         .svg figure instead",
-        path.display()
-    )
+    Err(png_unavailable(path))
 }
 
-/// Registers the first TrueType font found (`TACK_FONT`, then [`FONT_PATHS`]) as sans-serif.
-#[cfg(feature = "png")]
-fn register_font() -> anyhow::Result<()> {
-    use std::path::PathBuf;
+/// Registers the bundled Noto Sans Regular (crate `notosans`, SIL OFL 1.1) as plotters'
+/// "sans-serif", once per process: plotters' `ab_glyph` feature lays out and draws every text
+/// with a registered font, in SVG and PNG alike.
+pub fn register_font() -> anyhow::Result<()> {
     use std::sync::OnceLock;
-    static REGISTERED: OnceLock<Result<(), String>> = OnceLock::new();
-    REGISTERED
-        .get_or_init(|| {
-            let candidates: Vec<PathBuf> = std::env::var_os("TACK_FONT")
-                .map(PathBuf::from)
-                .into_iter()
-                .chain(FONT_PATHS.iter().map(PathBuf::from))
-                .collect();
-            let (found, bytes) = candidates
-                .iter()
-                .find_map(|p| std::fs::read(p).ok().map(|b| (p.clone(), b)))
-                .ok_or_else(|| {
-                    format!(
-                        "PNG output needs a TrueType font and none was found (tried {}); set \
-                         TACK_FONT to a .ttf file or write an .svg figure",
-                        FONT_PATHS.join(", ")
-                    )
-                })?;
-            // plotters keeps fonts for the life of the process.
-            let bytes: &'static [u8] = Box::leak(bytes.into_boxed_slice());
-            plotters::style::register_font("sans-serif", FontStyle::Normal, bytes)
-                .map_err(|_| format!("{}: not a usable TrueType font", found.display()))
-        })
-        .clone()
-        .map_err(|e| anyhow!(e))
+    static REGISTERED: OnceLock<bool> = OnceLock::new();
+    let ok = REGISTERED.get_or_init(|| {
+        plotters::style::register_font("sans-serif", FontStyle::Normal, notosans::REGULAR_TTF)
+            .is_ok()
+    });
+    if *ok {
+        Ok(())
+    } else {
+        bail!("the bundled font (Noto Sans, crate notosans) is not a usable TrueType font")
+    }
 }
 
 fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, fig: &Figure) -> anyhow::Result<()>
@@ -219,43 +217,153 @@ fn bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {
     (lo - pad, hi + pad)
 }
 
-fn draw_curve<DB: DrawingBackend>(
-    area: &DrawingArea<DB, Shift>,
-    fig: &Figure,
-) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
-    let c = &fig.result.curve;
-    let d: Vec<f64> = c.approach.iter().map(|v| v / fig.d_scale).collect();
-    let f: Vec<f64> = match (fig.p_star, &c.mean_pressure) {
-        (Some(p_star), Some(p)) => p.iter().map(|v| v / p_star).collect(),
-        _ => c.force.iter().map(|v| v / fig.f_scale).collect(),
-    };
-    // The load branch runs up to the deepest approach; the rest is the unload branch.
-    let turn = d
-        .iter()
-        .enumerate()
-        .max_by(|a, b| a.1.total_cmp(b.1))
-        .map_or(0, |(i, _)| i);
-    let jkr = if fig.normalised {
-        jkr_curve(&d)
-    } else {
-        Vec::new()
-    };
-    // A Dugdale sphere: Maugis' whole equilibrium curve at its λ, dashed.
-    let maugis = match fig.result.summary.extra.get("maugis_lambda") {
-        Some(&lambda) if fig.normalised && lambda.is_finite() && lambda > 0.0 => {
-            let d_max = d.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-            maugis_curve(lambda, d_max)
+/// The plotted curve: both axes scaled, the branches split at the deepest approach, the
+/// reference curves, the axis ranges and the cut of the force axis.
+struct Plotted {
+    d: Vec<f64>,
+    f: Vec<f64>,
+    /// The load branch runs up to the deepest approach; the rest is the unload branch.
+    turn: usize,
+    jkr: Vec<(f64, f64)>,
+    maugis: Vec<(f64, f64)>,
+    x: (f64, f64),
+    y: (f64, f64),
+    /// The force axis is cut here (a compressive peak far above the pull-off); the peak.
+    cut: Option<(f64, f64)>,
+}
+
+impl Plotted {
+    fn new(fig: &Figure) -> Self {
+        let c = &fig.result.curve;
+        let d: Vec<f64> = c.approach.iter().map(|v| v / fig.d_scale).collect();
+        let f: Vec<f64> = match (fig.p_star, &c.mean_pressure) {
+            (Some(p_star), Some(p)) => p.iter().map(|v| v / p_star).collect(),
+            _ => c.force.iter().map(|v| v / fig.f_scale).collect(),
+        };
+        let turn = d
+            .iter()
+            .enumerate()
+            .max_by(|a, b| a.1.total_cmp(b.1))
+            .map_or(0, |(i, _)| i);
+        let d_max = d.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let jkr = if fig.normalised {
+            jkr_curve(&d)
+        } else {
+            Vec::new()
+        };
+        // A Dugdale sphere: Maugis' whole equilibrium curve at its λ, dashed.
+        let maugis = match fig.result.summary.extra.get("maugis_lambda") {
+            Some(&lambda) if fig.normalised && lambda.is_finite() && lambda > 0.0 => {
+                maugis_curve(lambda, d_max)
+            }
+            _ => Vec::new(),
+        };
+        let (lo, hi) = finite_range(f.iter().copied());
+        let cut = (lo < 0.0 && hi > -CLIP_RATIO * lo).then(|| (-CLIP_AT * lo, hi));
+        let top = cut.map_or(1.05 * hi.max(1.0), |(top, _)| top);
+        // What shows: the points below the cut and where the branches cross it.
+        let shown: Vec<(f64, f64)> = clip_above(
+            &d.iter().copied().zip(f.iter().copied()).collect::<Vec<_>>(),
+            top,
+        )
+        .into_iter()
+        .flatten()
+        .collect();
+        let x = bounds(shown.iter().map(|p| p.0));
+        let in_x = |p: &&(f64, f64)| (x.0..=x.1).contains(&p.0);
+        let y = bounds(
+            shown
+                .iter()
+                .map(|p| p.1)
+                .chain(cut.map(|c| c.0))
+                .chain(jkr.iter().filter(in_x).map(|p| p.1).filter(|&y| y <= top)),
+        );
+        Self {
+            d,
+            f,
+            turn,
+            jkr,
+            maugis,
+            x,
+            y,
+            cut,
         }
-        _ => Vec::new(),
-    };
-    let (x0, x1) = bounds(d.iter().copied());
-    let (y0, y1) = bounds(
-        f.iter().copied().chain(
-            jkr.iter().map(|p| p.1).filter(|&y| {
-                y <= 1.05 * f.iter().copied().fold(f64::NEG_INFINITY, f64::max).max(1.0)
-            }),
+    }
+
+    /// The (d, F) points of steps `range`.
+    fn points(&self, range: std::ops::Range<usize>) -> Vec<(f64, f64)> {
+        range.map(|i| (self.d[i], self.f[i])).collect()
+    }
+
+    fn visible(&self, p: (f64, f64)) -> bool {
+        (self.x.0..=self.x.1).contains(&p.0) && (self.y.0..=self.y.1).contains(&p.1)
+    }
+}
+
+/// The least and greatest finite value (±1 when there is none).
+fn finite_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (lo, hi) = values
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
+    if lo.is_finite() {
+        (lo, hi)
+    } else {
+        (-1.0, 1.0)
+    }
+}
+
+/// The runs of a polyline below `top`, each ending (or starting) where it crosses `top`.
+fn clip_above(points: &[(f64, f64)], top: f64) -> Vec<Vec<(f64, f64)>> {
+    let mut runs = Vec::new();
+    let mut run = Vec::new();
+    for (k, &(x, y)) in points.iter().enumerate() {
+        if let Some(&(px, py)) = k.checked_sub(1).map(|j| &points[j])
+            && (py <= top) != (y <= top)
+        {
+            let t = (top - py) / (y - py);
+            run.push((px + t * (x - px), top));
+            if y > top {
+                runs.push(std::mem::take(&mut run));
+            }
+        }
+        if y <= top {
+            run.push((x, y));
+        }
+    }
+    if !run.is_empty() {
+        runs.push(run);
+    }
+    runs
+}
+
+type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+type Drawn<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
+
+/// The title: the pull-off against its closed form, or the least mean pressure.
+fn title(fig: &Figure, plotted: &Plotted) -> String {
+    let s = &fig.result.summary;
+    match s.pull_off_ratio {
+        r if r.is_finite() => format!("force–approach (F_pull-off / F_JKR = {r:.3})"),
+        _ if s.extra.contains_key("f_kendall") => format!(
+            "force–approach (F_pull-off / F_Kendall = {:.3})",
+            s.pull_off_force / s.extra["f_kendall"]
         ),
-    );
+        _ if fig.p_star.is_some() => {
+            let y_min = plotted.f.iter().copied().fold(f64::INFINITY, f64::min);
+            format!("mean pressure–approach (minimum p / p* = {y_min:.4})")
+        }
+        _ => format!(
+            "force–approach (pull-off force {})",
+            crate::report::rounded(s.pull_off_force)
+        ),
+    }
+}
+
+fn draw_curve<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, fig: &Figure) -> Drawn<DB> {
+    let plotted = Plotted::new(fig);
+    let ((x0, x1), (y0, y1)) = (plotted.x, plotted.y);
     let (xl, yl) = if fig.normalised {
         ("approach d / |d_JKR|", "force F / |F_JKR|")
     } else if fig.p_star.is_some() {
@@ -263,23 +371,8 @@ fn draw_curve<DB: DrawingBackend>(
     } else {
         ("approach d", "force F (compressive > 0)")
     };
-    let y_min = f.iter().copied().fold(f64::INFINITY, f64::min);
-    let title = match fig.result.summary.pull_off_ratio {
-        r if r.is_finite() => format!("force–approach (F_pull-off / F_JKR = {r:.3})"),
-        _ if fig.result.summary.extra.contains_key("f_kendall") => format!(
-            "force–approach (F_pull-off / F_Kendall = {:.3})",
-            fig.result.summary.pull_off_force / fig.result.summary.extra["f_kendall"]
-        ),
-        _ if fig.p_star.is_some() => {
-            format!("mean pressure–approach (minimum p / p* = {y_min:.4})")
-        }
-        _ => format!(
-            "force–approach (pull-off force {})",
-            crate::report::rounded(fig.result.summary.pull_off_force)
-        ),
-    };
     let mut chart = ChartBuilder::on(area)
-        .caption(title, ("sans-serif", 22))
+        .caption(title(fig, &plotted), ("sans-serif", 22))
         .margin(12)
         .x_label_area_size(45)
         .y_label_area_size(70)
@@ -297,29 +390,42 @@ fn draw_curve<DB: DrawingBackend>(
         [(x0, 0.0), (x1, 0.0)],
         BLACK.mix(0.3).stroke_width(1),
     ))?;
-    if !jkr.is_empty() {
+    draw_references(&mut chart, fig, &plotted)?;
+    draw_branches(&mut chart, &plotted)?;
+    draw_markers(&mut chart, fig, &plotted)?;
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK.mix(0.4))
+        .label_font(("sans-serif", 14))
+        .position(SeriesLabelPosition::UpperLeft)
+        .draw()?;
+    Ok(())
+}
+
+/// The closed-form curves: JKR (solid grey) and, for Dugdale spheres, Maugis (dashed).
+fn draw_references<DB: DrawingBackend>(
+    chart: &mut Chart<'_, DB>,
+    fig: &Figure,
+    plotted: &Plotted,
+) -> Drawn<DB> {
+    let inside = |p: &(f64, f64)| plotted.visible(*p);
+    if !plotted.jkr.is_empty() {
+        let grey = RGBColor(120, 120, 120);
         chart
             .draw_series(LineSeries::new(
-                jkr.into_iter()
-                    .filter(|&(x, y)| (x0..=x1).contains(&x) && (y0..=y1).contains(&y)),
-                RGBColor(120, 120, 120).stroke_width(2),
+                plotted.jkr.iter().copied().filter(inside),
+                grey.stroke_width(2),
             ))?
             .label("JKR (smooth sphere)")
-            .legend(|(x, y)| {
-                PathElement::new(
-                    [(x, y), (x + 20, y)],
-                    RGBColor(120, 120, 120).stroke_width(2),
-                )
-            });
+            .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], grey.stroke_width(2)));
     }
-    if !maugis.is_empty() {
+    if !plotted.maugis.is_empty() {
         let lambda = fig.result.summary.extra["maugis_lambda"];
         let purple = RGBColor(148, 103, 189);
         chart
             .draw_series(DashedLineSeries::new(
-                maugis
-                    .into_iter()
-                    .filter(|&(x, y)| (x0..=x1).contains(&x) && (y0..=y1).contains(&y)),
+                plotted.maugis.iter().copied().filter(inside),
                 6,
                 4,
                 purple.stroke_width(2),
@@ -327,22 +433,64 @@ fn draw_curve<DB: DrawingBackend>(
             .label(format!("Maugis–Dugdale λ = {} (equilibria)", short(lambda)))
             .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], purple.stroke_width(2)));
     }
+    Ok(())
+}
+
+/// The load and unload branches, cut at the top of the force axis, and where they leave it.
+fn draw_branches<DB: DrawingBackend>(chart: &mut Chart<'_, DB>, plotted: &Plotted) -> Drawn<DB> {
+    let top = plotted.cut.map_or(f64::INFINITY, |c| c.0);
+    let n = plotted.d.len();
     let blue = RGBColor(31, 119, 180);
     let red = RGBColor(214, 39, 40);
-    chart
-        .draw_series(LineSeries::new(
-            d[..=turn].iter().copied().zip(f[..=turn].iter().copied()),
-            blue.stroke_width(2),
-        ))?
-        .label("load")
-        .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], blue.stroke_width(2)));
-    chart
-        .draw_series(LineSeries::new(
-            d[turn..].iter().copied().zip(f[turn..].iter().copied()),
-            red.stroke_width(2),
-        ))?
-        .label("unload")
-        .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], red.stroke_width(2)));
+    for (range, color, label) in [
+        (0..plotted.turn + 1, blue, "load"),
+        (plotted.turn..n, red, "unload"),
+    ] {
+        let runs = clip_above(&plotted.points(range), top);
+        for (k, run) in runs.into_iter().enumerate() {
+            // A branch of one step (a load in one step) is a dot, not an invisible line.
+            let dot = (run.len() == 1).then(|| Circle::new(run[0], 3, color.filled()));
+            chart.draw_series(dot)?;
+            let series = chart.draw_series(LineSeries::new(run, color.stroke_width(2)))?;
+            if k == 0 {
+                series.label(label).legend(move |(x, y)| {
+                    PathElement::new([(x, y), (x + 20, y)], color.stroke_width(2))
+                });
+            }
+        }
+    }
+    if let Some((top, peak)) = plotted.cut {
+        // Where the curve leaves the axis upwards or comes back into it.
+        let exits: Vec<(f64, f64)> = clip_above(&plotted.points(0..n), top)
+            .iter()
+            .flat_map(|run| [run.first().copied(), run.last().copied()])
+            .flatten()
+            .filter(|p| p.1 == top)
+            .collect();
+        let grey = RGBColor(90, 90, 90);
+        chart
+            .draw_series(
+                exits
+                    .into_iter()
+                    .map(move |p| TriangleMarker::new(p, 6, grey.filled())),
+            )?
+            .label(format!(
+                "off scale above {} (peak {})",
+                short(top),
+                short(peak)
+            ))
+            .legend(move |(x, y)| TriangleMarker::new((x + 10, y), 5, grey.filled()));
+    }
+    Ok(())
+}
+
+/// The pull-off point, the jumps of the cycle and the snapshots' steps.
+fn draw_markers<DB: DrawingBackend>(
+    chart: &mut Chart<'_, DB>,
+    fig: &Figure,
+    plotted: &Plotted,
+) -> Drawn<DB> {
+    let (d, f) = (&plotted.d, &plotted.f);
     if let Some((i, _)) = f.iter().enumerate().min_by(|a, b| a.1.total_cmp(b.1)) {
         chart
             .draw_series(std::iter::once(Circle::new(
@@ -361,7 +509,7 @@ fn draw_curve<DB: DrawingBackend>(
     ]
     .iter()
     .filter_map(|(a, f)| Some((extra.get(*a)? / fig.d_scale, extra.get(*f)? / fig.f_scale)))
-    .filter(|_| fig.p_star.is_none())
+    .filter(|p| fig.p_star.is_none() && plotted.visible(*p))
     .collect();
     if !jumps.is_empty() {
         let orange = RGBColor(255, 127, 14);
@@ -378,24 +526,19 @@ fn draw_curve<DB: DrawingBackend>(
         .iter()
         .filter(|s| s.step < d.len())
         .map(|s| (d[s.step], f[s.step]))
+        .filter(|p| plotted.visible(*p))
         .collect();
     if !snaps.is_empty() {
+        let green = RGBColor(44, 160, 44);
         chart
             .draw_series(
                 snaps
                     .into_iter()
-                    .map(|p| TriangleMarker::new(p, 6, RGBColor(44, 160, 44).filled())),
+                    .map(move |p| TriangleMarker::new(p, 6, green.filled())),
             )?
             .label("snapshots (below)")
-            .legend(|(x, y)| TriangleMarker::new((x + 10, y), 5, RGBColor(44, 160, 44).filled()));
+            .legend(move |(x, y)| TriangleMarker::new((x + 10, y), 5, green.filled()));
     }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK.mix(0.4))
-        .label_font(("sans-serif", 14))
-        .position(SeriesLabelPosition::UpperLeft)
-        .draw()?;
     Ok(())
 }
 
@@ -547,6 +690,60 @@ mod tests {
         assert_eq!(Format::of(Path::new("b.png")).unwrap(), Format::Png);
         assert!(Format::of(Path::new("b.pdf")).is_err());
         assert!(Format::of(Path::new("b")).is_err());
+    }
+
+    #[test]
+    fn clipping_keeps_the_runs_below_the_top_with_their_crossings() {
+        let line = [(0.0, 0.0), (1.0, 2.0), (2.0, 0.0), (3.0, -1.0), (4.0, 3.0)];
+        let runs = clip_above(&line, 1.0);
+        assert_eq!(
+            runs,
+            vec![
+                vec![(0.0, 0.0), (0.5, 1.0)],
+                vec![(1.5, 1.0), (2.0, 0.0), (3.0, -1.0), (3.5, 1.0)],
+            ]
+        );
+        assert_eq!(clip_above(&line, 5.0), vec![line.to_vec()]);
+        assert!(clip_above(&[(0.0, 2.0)], 1.0).is_empty());
+    }
+
+    fn result_with_forces(force: Vec<f64>) -> RunResult {
+        let n = force.len();
+        RunResult {
+            provenance: tack_io::Provenance::current("test", "2026-01-01T00:00:00Z"),
+            curve: tack_io::Curve {
+                approach: (0..n).map(|i| (n - i) as f64).collect(),
+                force,
+                ..tack_io::Curve::default()
+            },
+            surface: None,
+            gamma: None,
+            snapshots: Vec::new(),
+            summary: tack_io::Summary {
+                f_jkr: f64::NAN,
+                ..tack_io::Summary::default()
+            },
+        }
+    }
+
+    #[test]
+    fn a_compressive_peak_far_above_the_pull_off_is_cut() {
+        // A soft film: 400 |F_pull-off| of load beside a pull-off of 1.
+        let film = result_with_forces(vec![400.0, 50.0, 2.0, -1.0, -0.5, 0.0]);
+        let plotted = Plotted::new(&Figure::new(&film));
+        assert_eq!(plotted.cut, Some((CLIP_AT, 400.0)));
+        assert!(
+            plotted.y.1 < 1.1 * CLIP_AT && plotted.y.0 < -1.0,
+            "{:?}",
+            plotted.y
+        );
+        // The x range is that of what shows: from the crossing of the cut on.
+        assert!(plotted.x.1 < 5.0, "{:?}", plotted.x);
+        // A load within CLIP_RATIO times the pull-off is shown whole.
+        let sphere = result_with_forces(vec![8.0, 2.0, -1.0, 0.0]);
+        let plotted = Plotted::new(&Figure::new(&sphere));
+        assert_eq!(plotted.cut, None);
+        assert!(plotted.y.1 > 8.0);
     }
 
     #[test]

@@ -1,29 +1,50 @@
-//! The one-screen account of a run that `tack run` prints, and number formatting.
+//! The one-screen account of a run that `tack run` prints: body, path, pull-off against the
+//! closed forms, cycle, convergence and warnings, every number rounded ([`rounded`]).
 
 use std::path::Path;
 
 use tack::RunOutcome;
 use tack::fields;
+pub use tack::fields::rounded;
+use tack::geometry::Boundary;
+use tack::problem::{PathRule, Problem};
 use tack::scene::{Geometry, Roughness, Scene};
-use tack::solver::Phase;
+use tack::solver::{PathResult, Phase};
 
 /// A one-screen account of a run: scene, grid, path, pull-off force against the closed forms,
-/// adhesion parameter, convergence and wall time.
+/// the cycle, adhesion parameter, convergence and wall time.
 pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String {
-    let p = &outcome.problem;
-    let path = &outcome.path;
-    let s = &outcome.result.summary;
+    let mut lines = body_lines(scene, &outcome.problem);
+    lines.extend(path_lines(
+        &outcome.problem,
+        &outcome.path,
+        &scene.file.geometry,
+    ));
+    lines.extend(pull_off_lines(outcome));
+    lines.extend(reference_lines(outcome));
+    lines.extend(cycle_lines(outcome));
+    lines.extend(gamma_range_lines(scene, &outcome.result.summary));
+    lines.extend(alpha_lines(scene, outcome));
+    lines.extend(run_lines(outcome, out));
+    lines.join("\n") + "\n"
+}
+
+/// Whether the run has a pull-off to report: adhesion, and a path that retracts.
+fn adhesive(p: &Problem) -> bool {
+    p.gamma > 0.0 && !p.path.is_indentation()
+}
+
+/// Scene, body, material (law, layer, γ pattern) and grid.
+fn body_lines(scene: &Scene, p: &Problem) -> Vec<String> {
     let f = &scene.file;
-    let mut lines = Vec::new();
     let origin = scene
         .origin
         .as_ref()
         .map_or_else(|| "(in memory)".to_owned(), |o| o.display().to_string());
-    lines.push(format!("scene       {origin}"));
-    lines.push(format!(
-        "body        {}",
-        describe_body(&f.geometry, &f.roughness)
-    ));
+    let mut lines = vec![
+        format!("scene       {origin}"),
+        format!("body        {}", describe_body(&f.geometry, &f.roughness)),
+    ];
     let law = match p.law {
         tack::solver::AdhesionLaw::JkrLimit { kappa } => {
             format!("zero-range limit, kappa = {}", rounded(kappa))
@@ -43,60 +64,68 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
         lines.push(format!(
             "            a layer of thickness h = {}, nu = {}, {} on a rigid base",
             rounded(layer.thickness),
-            layer.poisson,
+            rounded(layer.poisson),
             layer.interface.name()
         ));
     }
-    let a = &f.adhesion;
+    lines.extend(pattern_line(scene));
+    let boundary = match p.grid.boundary() {
+        Boundary::Free => "free",
+        Boundary::Periodic => "periodic",
+    };
+    let crop = match (&p.window, p.crop) {
+        (Some(w), _) => format!(
+            " (cropped to the {} x {} elements that can touch)",
+            w.shape().0,
+            w.shape().1
+        ),
+        (None, true) if p.grid.boundary() == Boundary::Free => {
+            " (crop: nothing to remove)".to_owned()
+        }
+        _ => String::new(),
+    };
+    lines.push(format!(
+        "grid        {} x {}, dx = {}, {boundary}{crop}",
+        p.grid.nx(),
+        p.grid.ny(),
+        rounded(p.grid.dx()),
+    ));
+    lines
+}
+
+/// The work of adhesion per element, when the scene gives a map or a pattern.
+fn pattern_line(scene: &Scene) -> Option<String> {
+    let a = &scene.file.adhesion;
     if let Some(path) = &a.gamma_map {
-        lines.push(format!(
+        return Some(format!(
             "            gamma per element from {}",
             path.display()
         ));
-    } else if let Some(kind) = a.pattern.filter(|k| *k != tack::PatternKind::Uniform) {
-        let opt = |v: Option<f64>| v.map_or("-".to_owned(), rounded);
-        lines.push(match kind {
-            tack::PatternKind::Random => format!(
-                "            gamma pattern random: contrast {}, correlation length {}, seed {}",
-                opt(a.contrast),
-                opt(a.correlation_length),
-                a.seed.unwrap_or(tack::gamma_map::DEFAULT_PATTERN_SEED)
-            ),
-            _ => format!(
-                "            gamma pattern {}: gamma_b = {}, period {}",
-                kind.name(),
-                opt(a.gamma_b),
-                opt(a.period)
-            ),
-        });
     }
-    let boundary = match p.grid.boundary() {
-        tack::geometry::Boundary::Free => "free",
-        tack::geometry::Boundary::Periodic => "periodic",
-    };
-    lines.push(format!(
-        "grid        {} x {}, dx = {}, {boundary}{}",
-        p.grid.nx(),
-        p.grid.ny(),
-        p.grid.dx(),
-        match (&p.window, p.crop) {
-            (Some(w), _) => format!(
-                " (cropped to the {} x {} elements that can touch)",
-                w.shape().0,
-                w.shape().1
-            ),
-            (None, true) if p.grid.boundary() == tack::geometry::Boundary::Free =>
-                " (crop: nothing to remove)".to_owned(),
-            _ => String::new(),
-        }
-    ));
-    let loads = path.phases.iter().filter(|&&ph| ph == Phase::Load).count();
-    // An indentation has no pull-off: only the force of its one state.
-    let adhesive = p.gamma > 0.0 && !p.path.is_indentation();
-    let periodic = p.grid.boundary() == tack::geometry::Boundary::Periodic;
+    let kind = a.pattern.filter(|k| *k != tack::PatternKind::Uniform)?;
+    let opt = |v: Option<f64>| v.map_or("-".to_owned(), rounded);
+    Some(match kind {
+        tack::PatternKind::Random => format!(
+            "            gamma pattern random: contrast {}, correlation length {}, seed {}",
+            opt(a.contrast),
+            opt(a.correlation_length),
+            a.seed.unwrap_or(tack::gamma_map::DEFAULT_PATTERN_SEED)
+        ),
+        _ => format!(
+            "            gamma pattern {}: gamma_b = {}, period {}",
+            kind.name(),
+            opt(a.gamma_b),
+            opt(a.period)
+        ),
+    })
+}
+
+/// What the path was (an indentation, one load step or several, the retraction and where it
+/// ended), the default rule it came from, and full contact on periodic grids.
+pub fn path_lines(p: &Problem, path: &PathResult, geometry: &Geometry) -> Vec<String> {
     let stopped = if path.completed {
         String::new()
-    } else if adhesive {
+    } else if adhesive(p) {
         format!(
             "; STOPPED at {} before detachment",
             fields::PROTOCOL_MAX_STEPS
@@ -107,23 +136,9 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
             fields::PROTOCOL_MAX_STEPS
         )
     };
-    if p.path.is_indentation() {
-        lines.push(format!(
-            "path        indentation: one step to d = {}{stopped}",
-            rounded(p.path.max_approach)
-        ));
-    } else {
-        lines.push(format!(
-            "path        {} steps ({} load, {} unload), d from {} to {} and back{stopped}",
-            path.records.len(),
-            loads,
-            path.records.len() - loads,
-            rounded(p.path.start),
-            rounded(p.path.max_approach),
-        ));
-    }
+    let mut lines = vec![format!("path        {}{stopped}", describe_path(p, path))];
     if let Some(rule) = &p.path_rule {
-        lines.push(format!("            {rule}"));
+        lines.push(format!("            {}", describe_rule(rule, geometry)));
     }
     let full = path.records.iter().filter(|r| r.full_contact).count();
     if full > 0 {
@@ -133,158 +148,359 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
             path.records.len()
         ));
     }
+    lines
+}
+
+/// The path as it was walked: `indentation: one step to d = …`, or `N steps: one load step to
+/// d = …, M retraction steps to d = …` (`K load steps from d = … to …` when loaded gradually).
+pub fn describe_path(p: &Problem, path: &PathResult) -> String {
     if p.path.is_indentation() {
-        if let Some(r) = path.records.last() {
-            lines.push(format!(
-                "force       F = {} at d = {}, contact area {}{}",
-                rounded(r.force),
-                rounded(r.approach),
-                rounded(r.area),
-                if r.full_contact {
-                    " (full contact)"
-                } else {
-                    ""
-                }
-            ));
-        }
-    } else {
-        match path.pull_off_step() {
-            Some(i) if adhesive => lines.push(format!(
-                "pull-off    F = {} at d = {}{}",
-                rounded(s.pull_off_force),
-                rounded(path.records[i].approach),
-                if periodic {
-                    " (the least force over the steps not in full contact)"
-                } else {
-                    " (the least force over the path)"
-                }
-            )),
-            Some(_) => {
-                let peak = path
-                    .records
-                    .iter()
-                    .max_by(|a, b| a.force.total_cmp(&b.force));
-                lines.push(format!(
-                    "force       no adhesion (gamma = 0), no pull-off; peak load F = {} at d = {}",
-                    rounded(peak.map_or(f64::NAN, |r| r.force)),
-                    rounded(peak.map_or(f64::NAN, |r| r.approach))
-                ));
-            }
-            None => lines.push("pull-off    none: no step outside full contact".to_owned()),
-        }
+        return format!(
+            "indentation: one step to d = {}",
+            rounded(p.path.max_approach)
+        );
     }
+    let phase_end = |phase: Phase| {
+        let steps: Vec<f64> = path
+            .records
+            .iter()
+            .zip(&path.phases)
+            .filter(|(_, ph)| **ph == phase)
+            .map(|(r, _)| r.approach)
+            .collect();
+        (steps.len(), steps.first().copied(), steps.last().copied())
+    };
+    let (loads, first, deepest) = phase_end(Phase::Load);
+    let (unloads, _, last) = phase_end(Phase::Unload);
+    let load = match (loads, first, deepest) {
+        (1, _, Some(d)) => format!("one load step to d = {}", rounded(d)),
+        (_, Some(a), Some(b)) => format!(
+            "{loads} load steps from d = {} to {}",
+            rounded(a),
+            rounded(b)
+        ),
+        _ => "no load step".to_owned(),
+    };
+    let retraction = match last {
+        Some(d) => {
+            let how = match (p.path.refine_pull_off, p.path.coarse_unload_step) {
+                (true, Some(_)) => " (refined: coarse steps, the pull-off's brackets retraced)",
+                (false, Some(_)) => " (coarse while compressive)",
+                _ => "",
+            };
+            format!(
+                "{unloads} retraction step{} to d = {}{how}",
+                if unloads == 1 { "" } else { "s" },
+                rounded(d)
+            )
+        }
+        None => "no retraction".to_owned(),
+    };
+    format!("{} steps: {load}, {retraction}", path.records.len())
+}
+
+/// The path a scene asks for, before it runs (`tack check`): `indentation: one step to d = …`,
+/// or the load (`one load step to d = …`, `load from d = … to … by …`) and the retraction.
+pub fn describe_planned_path(path: &tack::solver::ApproachPath) -> String {
+    if path.is_indentation() {
+        return format!(
+            "indentation: one step to d = {}",
+            rounded(path.max_approach)
+        );
+    }
+    let load = if path.start == path.max_approach {
+        format!("one load step to d = {}", rounded(path.max_approach))
+    } else {
+        format!(
+            "load from d = {} to {} by {}",
+            rounded(path.start),
+            rounded(path.max_approach),
+            rounded(path.load_step)
+        )
+    };
+    let steps = match (path.refine_pull_off, path.coarse_unload_step) {
+        (true, Some(c)) => format!(
+            "by {}, the pull-off's brackets retraced by {}",
+            rounded(c),
+            rounded(path.unload_step)
+        ),
+        (false, Some(c)) => format!(
+            "by {} while compressive, then by {}",
+            rounded(c),
+            rounded(path.unload_step)
+        ),
+        _ => format!("by {}", rounded(path.unload_step)),
+    };
+    let end = match path.retract_to {
+        Some(r) if r == path.max_approach => return format!("{load}, no retraction"),
+        Some(r) => format!("down to d = {}", rounded(r)),
+        None => "until contact is lost".to_owned(),
+    };
+    format!("{load}, retraction {steps} {end}")
+}
+
+/// The default pull-off rule of a scene without `protocol.max_approach`, every number rounded
+/// (`tack::problem::PathRule`'s `Display` keeps every digit).
+pub fn describe_rule(rule: &PathRule, geometry: &Geometry) -> String {
+    let p = &rule.path;
+    let origin = match geometry {
+        _ if rule.fitted => "fitted",
+        Geometry::Ellipsoid { .. } => "√(Rx·Ry)",
+        _ => "given",
+    };
+    let load = if rule.stepped_load {
+        "loaded in retraction steps from out of range"
+    } else {
+        "one load step"
+    };
+    let (coarse, fine) = if rule.refined {
+        ("all the way", "the pull-off's brackets retraced by")
+    } else {
+        ("while compressive", "then by")
+    };
+    format!(
+        "default pull-off path of R = {} ({origin}), d_s = {}: {load} to d = {}, retraction by \
+         {} {coarse}, {fine} {}",
+        rounded(rule.radius),
+        rounded(p.d_s),
+        rounded(p.max_approach),
+        rounded(p.coarse_unload_step),
+        rounded(p.unload_step)
+    )
+}
+
+/// The force of an indentation, or the pull-off (or, without adhesion, the peak load).
+fn pull_off_lines(outcome: &RunOutcome) -> Vec<String> {
+    let (p, path, s) = (&outcome.problem, &outcome.path, &outcome.result.summary);
+    if p.path.is_indentation() {
+        return path
+            .records
+            .last()
+            .map(|r| {
+                format!(
+                    "force       F = {} at d = {}, contact area {}{}",
+                    rounded(r.force),
+                    rounded(r.approach),
+                    rounded(r.area),
+                    if r.full_contact {
+                        " (full contact)"
+                    } else {
+                        ""
+                    }
+                )
+            })
+            .into_iter()
+            .collect();
+    }
+    let periodic = p.grid.boundary() == Boundary::Periodic;
+    vec![match path.pull_off_step() {
+        Some(i) if adhesive(p) => format!(
+            "pull-off    F = {} at d = {}{}",
+            rounded(s.pull_off_force),
+            rounded(path.records[i].approach),
+            if periodic {
+                " (the least force over the steps not in full contact)"
+            } else {
+                " (the least force over the path)"
+            }
+        ),
+        Some(_) => {
+            let peak = path
+                .records
+                .iter()
+                .max_by(|a, b| a.force.total_cmp(&b.force));
+            format!(
+                "force       no adhesion (gamma = 0), no pull-off; peak load F = {} at d = {}",
+                rounded(peak.map_or(f64::NAN, |r| r.force)),
+                rounded(peak.map_or(f64::NAN, |r| r.approach))
+            )
+        }
+        None => "pull-off    none: no step outside full contact".to_owned(),
+    }]
+}
+
+/// The pull-off against the closed forms (JKR, Maugis, MDR, Johnson–Greenwood, Kendall),
+/// Richardson, and p* of periodic grids.
+fn reference_lines(outcome: &RunOutcome) -> Vec<String> {
+    let (p, s) = (&outcome.problem, &outcome.result.summary);
+    let mut lines = Vec::new();
+    let adhesive = adhesive(p);
+    let ratio = |f: f64| rounded_ratio(s.pull_off_force / f);
     if adhesive && s.f_jkr.is_finite() && s.f_jkr != 0.0 {
+        let whose = if p.layer.is_some() {
+            "Eq. 7, of a half-space"
+        } else {
+            "Eq. 7"
+        };
         lines.push(format!(
-            "            F_JKR = {}, F/F_JKR = {:.4} (Eq. 7)",
+            "            F_JKR = {}, F/F_JKR = {} ({whose})",
             rounded(s.f_jkr),
-            s.pull_off_ratio
+            rounded_ratio(s.pull_off_ratio)
         ));
     }
-    if let (Some(&fm), Some(&lambda)) = (s.extra.get("f_maugis"), s.extra.get("maugis_lambda")) {
+    let get = |k: &str| s.extra.get(k).copied().filter(|_| adhesive);
+    if let (Some(fm), Some(lambda)) = (get("f_maugis"), get("maugis_lambda")) {
         lines.push(format!(
-            "            F_Maugis = {}, F/F_Maugis = {:.4} (Dugdale, λ = {:.4})",
+            "            F_Maugis = {}, F/F_Maugis = {} (Dugdale, λ = {:.4})",
             rounded(fm),
-            s.pull_off_force / fm,
+            ratio(fm),
             lambda
         ));
     }
-    if let Some(&w) = s.extra.get("dissipated_energy").filter(|_| adhesive) {
-        let jump = |a: &str, f: &str| match (s.extra.get(a), s.extra.get(f)) {
-            (Some(&d), Some(&f)) => format!("d = {}, F = {}", rounded(d), rounded(f)),
-            _ => "none".to_owned(),
-        };
+    if let Some(fm) = get("f_mdr") {
         lines.push(format!(
-            "cycle       dissipated ∮F dd = {}; jump in at {}, out at {}",
-            rounded(w),
-            jump("jump_in_approach", "jump_in_force"),
-            jump("jump_out_approach", "jump_out_force")
-        ));
-    }
-    if let Some(&gr) = s.extra.get("apparent_gamma_retraction") {
-        let approach = s
-            .extra
-            .get("apparent_gamma_approach")
-            .map_or("no approach branch".to_owned(), |&g| {
-                format!("approach {}", rounded(g))
-            });
-        lines.push(format!(
-            "            apparent gamma (best JKR fit): {approach}, retraction {}",
-            rounded(gr)
-        ));
-    }
-    if let Some(&fm) = s.extra.get("f_mdr").filter(|_| adhesive) {
-        lines.push(format!(
-            "            F_MDR = {}, F/F_MDR = {:.4} (power law, exact JKR limit)",
+            "            F_MDR = {}, F/F_MDR = {} (power law, exact JKR limit)",
             rounded(fm),
-            s.pull_off_force / fm
+            ratio(fm)
         ));
     }
-    if let Some(&fe) = s.extra.get("f_elliptic_jkr").filter(|_| adhesive) {
+    if let Some(fe) = get("f_elliptic_jkr") {
         lines.push(format!(
-            "            F_JG = {}, F/F_JG = {:.4} (ellipsoid, Johnson–Greenwood approximate JKR)",
+            "            F_JG = {}, F/F_JG = {} (ellipsoid, Johnson–Greenwood approximate JKR)",
             rounded(fe),
-            s.pull_off_force / fe
+            ratio(fe)
         ));
     }
+    if let Some(fk) = get("f_kendall") {
+        lines.push(format!(
+            "            F_Kendall = {}, F/F_Kendall = {}",
+            rounded(fk),
+            ratio(fk)
+        ));
+    }
+    lines.extend(richardson_lines(s));
+    if let (Some(&p_star), Some(&p_min)) = (s.extra.get("p_star"), s.extra.get("min_mean_pressure"))
+        && p.grid.boundary() == Boundary::Periodic
+    {
+        lines.push(format!(
+            "            min mean pressure = {} = {} p* (p* = {}, complete-contact pressure)",
+            rounded(p_min),
+            rounded_ratio(p_min / p_star),
+            rounded(p_star)
+        ));
+    }
+    lines
+}
+
+/// The range of a γ that varies over the surface, beside the γ the closed forms use.
+fn gamma_range_lines(scene: &Scene, s: &tack_io::Summary) -> Vec<String> {
+    let mut lines = Vec::new();
     if let (Some(&lo), Some(&mean), Some(&hi)) = (
         s.extra.get("gamma_min"),
         s.extra.get("gamma_mean"),
         s.extra.get("gamma_max"),
     ) {
         lines.push(format!(
-            "gamma       varies over the surface: {} to {}, mean {} (F_JKR and the ratios use \
-             gamma = {})",
+            "gamma       varies over the surface: {} to {}, mean {} (the closed forms and their \
+             ratios use gamma = {})",
             rounded(lo),
             rounded(hi),
             rounded(mean),
-            rounded(f.material.gamma)
+            rounded(scene.file.material.gamma)
         ));
     }
-    if let Some(&fk) = s.extra.get("f_kendall").filter(|_| adhesive) {
-        lines.push(format!(
-            "            F_Kendall = {}, F/F_Kendall = {:.4}",
-            rounded(fk),
-            s.pull_off_force / fk
-        ));
-    }
-    if let (Some(&fr), Some(&fc)) = (
+    lines
+}
+
+/// A ratio to 4 decimals (the closed forms' agreement, not their digits).
+fn rounded_ratio(r: f64) -> String {
+    format!("{r:.4}")
+}
+
+/// The Richardson extrapolation of the pull-off and its error estimate (`--richardson`).
+fn richardson_lines(s: &tack_io::Summary) -> Vec<String> {
+    let (Some(&fr), Some(&fc)) = (
         s.extra.get("pull_off_force_richardson"),
         s.extra.get("pull_off_force_coarse"),
-    ) {
-        let ratio = s
-            .extra
-            .get("pull_off_ratio_richardson")
-            .map_or(String::new(), |r| format!(", F/F_JKR = {r:.4}"));
+    ) else {
+        return Vec::new();
+    };
+    let ratio = s
+        .extra
+        .get("pull_off_ratio_richardson")
+        .map_or(String::new(), |&r| {
+            format!(", F/F_JKR = {}", rounded_ratio(r))
+        });
+    let mut lines = vec![format!(
+        "Richardson  F = {} = 2·F(Δx) − F(2Δx), F(2Δx) = {}{ratio}",
+        rounded(fr),
+        rounded(fc)
+    )];
+    if let Some(&err) = s.extra.get("pull_off_error_estimate") {
+        let relative = if s.pull_off_force != 0.0 {
+            format!(" ({:.2}% of F)", 100.0 * err / s.pull_off_force.abs())
+        } else {
+            String::new()
+        };
         lines.push(format!(
-            "Richardson  F = {} = 2·F(Δx) − F(2Δx), F(2Δx) = {}{ratio}",
-            rounded(fr),
-            rounded(fc)
+            "            error estimate of F(Δx) = {}{relative}: the larger of |F(Δx) − F(2Δx)| \
+             and, for spheres, {}·(Δx/a_c)·|F|",
+            rounded(err),
+            tack::solver::CRITERION_ERROR_COEFFICIENT
         ));
-        if let Some(&err) = s.extra.get("pull_off_error_estimate") {
-            let relative = if s.pull_off_force != 0.0 {
-                format!(" ({:.2}% of F)", 100.0 * err / s.pull_off_force.abs())
+    }
+    lines
+}
+
+/// The cycle: dissipated energy and jumps (or why they are not measured), and the apparent
+/// work of adhesion of each branch.
+fn cycle_lines(outcome: &RunOutcome) -> Vec<String> {
+    let (p, s) = (&outcome.problem, &outcome.result.summary);
+    if !adhesive(p) {
+        return Vec::new();
+    }
+    let mut lines = Vec::new();
+    let get = |k: &str| s.extra.get(k).copied();
+    let jump = |a: &str, f: &str| match (get(a), get(f)) {
+        (Some(d), Some(f)) => format!("d = {}, F = {}", rounded(d), rounded(f)),
+        _ => "none".to_owned(),
+    };
+    if let Some(w) = get("dissipated_energy") {
+        lines.push(format!(
+            "cycle       dissipated ∮F dd = {}; jump in at {}, out at {}",
+            rounded(w),
+            jump("jump_in_approach", "jump_in_force"),
+            jump("jump_out_approach", "jump_out_force")
+        ));
+    } else if p.path.refine_pull_off && get("jump_in_approach").is_some() {
+        lines.push(format!(
+            "cycle       jump in at {}; dissipated energy and jump-out not measured: the refined \
+             retraction ({} = true) steps by {} away from the pull-off",
+            jump("jump_in_approach", "jump_in_force"),
+            fields::PROTOCOL_REFINE_PULL_OFF,
+            fields::PROTOCOL_COARSE_UNLOAD_STEP
+        ));
+    }
+    let branch = |k: &str, name: &str| {
+        get(k).map(|g| {
+            if g == 0.0 {
+                format!("{name} 0 (no adhesion)")
             } else {
-                String::new()
-            };
-            lines.push(format!(
-                "            error estimate of F(Δx) = {}{relative}: the larger of |F(Δx) − F(2Δx)| \
-                 and, for spheres, {}·(Δx/a_c)·|F|",
-                rounded(err),
-                tack::solver::CRITERION_ERROR_COEFFICIENT
-            ));
-        }
-    }
-    let sphere = matches!(f.geometry, Geometry::Sphere { .. });
-    if let (Some(&p_star), Some(&p_min)) = (s.extra.get("p_star"), s.extra.get("min_mean_pressure"))
-        && p.grid.boundary() == tack::geometry::Boundary::Periodic
-    {
+                format!("{name} {}", rounded(g))
+            }
+        })
+    };
+    let fits: Vec<String> = [
+        branch("apparent_gamma_approach", "approach"),
+        branch("apparent_gamma_retraction", "retraction"),
+    ]
+    .into_iter()
+    .flatten()
+    .collect();
+    if !fits.is_empty() {
         lines.push(format!(
-            "            min mean pressure = {} = {:.4} p* (p* = {}, complete-contact pressure)",
-            rounded(p_min),
-            p_min / p_star,
-            rounded(p_star)
+            "            apparent gamma (best JKR fit): {}",
+            fits.join(", ")
         ));
     }
+    lines
+}
+
+/// Johnson's α (waviness) and α* (random roughness) with what they predict.
+fn alpha_lines(scene: &Scene, outcome: &RunOutcome) -> Vec<String> {
+    let (f, s) = (&scene.file, &outcome.result.summary);
+    let sphere = matches!(f.geometry, Geometry::Sphere { .. });
+    let mut lines = Vec::new();
     if let Some(a) = s.johnson_alpha {
         let tail = match (&f.roughness, sphere) {
             (Some(Roughness::Waviness2d { .. }), true) => format!(
@@ -315,110 +531,86 @@ pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String
         };
         lines.push(format!("alpha*      {a:.4} (Eq. 11){tail}"));
     }
+    lines
+}
+
+/// Convergence, status, warnings, wall time and the file written.
+fn run_lines(outcome: &RunOutcome, out: Option<&Path>) -> Vec<String> {
+    let (path, s) = (&outcome.path, &outcome.result.summary);
     let bad = path.records.iter().filter(|r| !r.converged).count();
-    lines.push(format!(
-        "converged   {}/{} steps{}",
-        path.records.len() - bad,
-        path.records.len(),
-        if bad > 0 {
-            format!(" ({bad} NOT converged)")
-        } else {
-            String::new()
-        }
-    ));
-    lines.push(format!(
-        "status      {}",
-        s.status.as_deref().unwrap_or("unknown")
-    ));
-    for warning in &s.warnings {
-        lines.push(format!("WARNING     {warning}"));
-    }
-    match outcome.coarse_wall_time {
-        Some(coarse) => lines.push(format!(
+    let mut lines = vec![
+        format!(
+            "converged   {}/{} steps{}",
+            path.records.len() - bad,
+            path.records.len(),
+            if bad > 0 {
+                format!(" ({bad} NOT converged)")
+            } else {
+                String::new()
+            }
+        ),
+        format!("status      {}", s.status.as_deref().unwrap_or("unknown")),
+    ];
+    lines.extend(s.warnings.iter().map(|w| format!("WARNING     {w}")));
+    lines.push(match outcome.coarse_wall_time {
+        Some(coarse) => format!(
             "wall time   {:.2} s: {:.2} s for the run ({} CG iterations) + {:.2} s for the \
              coarse (2Δx) run",
             outcome.total_wall_time().as_secs_f64(),
             outcome.wall_time.as_secs_f64(),
             path.cg_iterations(),
             coarse.as_secs_f64()
-        )),
-        None => lines.push(format!(
+        ),
+        None => format!(
             "wall time   {:.2} s ({} CG iterations)",
             outcome.wall_time.as_secs_f64(),
             path.cg_iterations()
-        )),
-    }
+        ),
+    });
     if let Some(out) = out {
         lines.push(format!("wrote       {}", out.display()));
     }
-    lines.join("\n") + "\n"
+    lines
 }
 
 fn describe_body(geometry: &Geometry, roughness: &Option<Roughness>) -> String {
+    let r = |x: f64| rounded(x);
     let shape = match geometry {
-        Geometry::Sphere { radius } => format!("sphere R = {radius}"),
+        Geometry::Sphere { radius } => format!("sphere R = {}", r(*radius)),
         Geometry::FlatPunch {
-            radius: Some(r), ..
-        } => format!("circular flat punch a = {r}"),
+            radius: Some(a), ..
+        } => format!("circular flat punch a = {}", r(*a)),
         Geometry::FlatPunch {
             half_side: Some(s), ..
-        } => format!("square flat punch half side {s}"),
+        } => format!("square flat punch half side {}", r(*s)),
         Geometry::FlatPunch { .. } => "flat punch".to_owned(),
-        Geometry::PowerLaw { c, exponent } if *exponent == 1.0 => format!("cone z = {c}·r"),
-        Geometry::PowerLaw { c, exponent } => format!("power law z = {c}·r^{exponent}"),
+        Geometry::PowerLaw { c, exponent } if *exponent == 1.0 => format!("cone z = {}·r", r(*c)),
+        Geometry::PowerLaw { c, exponent } => {
+            format!("power law z = {}·r^{}", r(*c), r(*exponent))
+        }
         Geometry::Ellipsoid { radius_x, radius_y } => {
-            format!("ellipsoid Rx = {radius_x}, Ry = {radius_y}")
+            format!("ellipsoid Rx = {}, Ry = {}", r(*radius_x), r(*radius_y))
         }
         Geometry::None => "flat".to_owned(),
     };
     let rough = match roughness {
         None => String::new(),
         Some(Roughness::Waviness1d { h, lambda }) => {
-            format!(" + 1D waviness h = {h}, lambda = {lambda}")
+            format!(" + 1D waviness h = {}, lambda = {}", r(*h), r(*lambda))
         }
         Some(Roughness::Waviness2d { h, lambda }) => {
-            format!(" + 2D waviness h = {h}, lambda = {lambda}")
+            format!(" + 2D waviness h = {}, lambda = {}", r(*h), r(*lambda))
         }
         Some(Roughness::Random { h, hurst, seed, .. }) => {
-            format!(" + random roughness rms {h}, H = {hurst}, seed {seed}")
+            format!(
+                " + random roughness rms {}, H = {}, seed {seed}",
+                r(*h),
+                r(*hurst)
+            )
         }
         Some(Roughness::File { path, .. }) => format!(" + height map {}", path.display()),
     };
     shape + &rough
-}
-
-/// The former name of [`rounded`] (one `num` is enough: `tack_fields::num`).
-#[deprecated(since = "0.1.0", note = "renamed `rounded`")]
-pub fn num(x: f64) -> String {
-    rounded(x)
-}
-
-/// A number with 6 significant digits, in plain notation for magnitudes in [1e-3, 1e6): the
-/// report's rounded display. Messages quoting a value use the round-trip formatter
-/// `tack_fields::num` instead, which keeps every digit.
-pub fn rounded(x: f64) -> String {
-    if x == 0.0 || !x.is_finite() {
-        return format!("{x}");
-    }
-    let mag = x.abs().log10().floor();
-    if (-3.0..6.0).contains(&mag) {
-        let decimals = (5.0 - mag).max(0.0) as usize;
-        let s = format!("{x:.decimals$}");
-        if s.contains('.') {
-            s.trim_end_matches('0').trim_end_matches('.').to_owned()
-        } else {
-            s
-        }
-    } else {
-        let s = format!("{x:.5e}");
-        match s.split_once('e') {
-            Some((mantissa, exp)) if mantissa.contains('.') => format!(
-                "{}e{exp}",
-                mantissa.trim_end_matches('0').trim_end_matches('.')
-            ),
-            _ => s,
-        }
-    }
 }
 
 #[cfg(test)]
@@ -521,17 +713,5 @@ mod tests {
             text.contains(&format!("error estimate of F(Δx) = {}", rounded(err))),
             "{text}"
         );
-    }
-
-    #[test]
-    fn numbers_have_six_significant_digits() {
-        assert_eq!(rounded(-5.3454057683), "-5.34541");
-        assert_eq!(rounded(0.005), "0.005");
-        assert_eq!(rounded(3.0), "3");
-        assert_eq!(rounded(123456.7), "123457");
-        assert_eq!(rounded(1.5e-7), "1.5e-7");
-        assert_eq!(rounded(5e-4), "5e-4");
-        assert_eq!(rounded(f64::NAN), "NaN");
-        assert_eq!(rounded(0.0), "0");
     }
 }

@@ -1,6 +1,7 @@
 //! The scene fields of tack, named once: a constant per field ([`GRID_DX`] is `"grid.dx"`), the
 //! table [`FIELDS`] of every field a scene file accepts (its kind and range, and a one-line
-//! meaning), the scene's [`SECTIONS`], and [`num`], the formatter of numbers in messages.
+//! meaning), the scene's [`SECTIONS`], [`num`], the formatter of numbers in messages, and
+//! [`rounded`], that of numbers in reports (`tack run`'s account, `tack info`).
 //!
 //! Every crate of the workspace names scene fields through these constants, so a message, a
 //! check and the documentation (`docs/scenes.md`, checked against [`FIELDS`] by
@@ -468,9 +469,56 @@ pub fn num(x: f64) -> String {
     }
 }
 
+/// A number as a report shows it: 6 significant digits, in plain notation for magnitudes in
+/// [1e-3, 1e6), trailing zeros dropped (`0.00984745`, not `0.009847450218426965`). Messages that
+/// quote a value a user gave use [`num`] instead, which keeps every digit.
+///
+/// ```
+/// assert_eq!(tack_fields::rounded(0.009847450218426965), "0.00984745");
+/// assert_eq!(tack_fields::rounded(-5.3454057683), "-5.34541");
+/// ```
+pub fn rounded(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let mag = x.abs().log10().floor();
+    if (-3.0..6.0).contains(&mag) {
+        let decimals = (5.0 - mag).max(0.0) as usize;
+        let s = format!("{x:.decimals$}");
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_owned()
+        } else {
+            s
+        }
+    } else {
+        let s = format!("{x:.5e}");
+        match s.split_once('e') {
+            Some((mantissa, exp)) if mantissa.contains('.') => format!(
+                "{}e{exp}",
+                mantissa.trim_end_matches('0').trim_end_matches('.')
+            ),
+            _ => s,
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn reports_round_to_six_significant_digits() {
+        assert_eq!(rounded(-5.3454057683), "-5.34541");
+        assert_eq!(rounded(0.005), "0.005");
+        assert_eq!(rounded(3.0), "3");
+        assert_eq!(rounded(123456.7), "123457");
+        assert_eq!(rounded(1.5e-7), "1.5e-7");
+        assert_eq!(rounded(5e-4), "5e-4");
+        assert_eq!(rounded(0.009847450218426965), "0.00984745");
+        assert_eq!(rounded(0.8772053214638599), "0.877205");
+        assert_eq!(rounded(f64::NAN), "NaN");
+        assert_eq!(rounded(0.0), "0");
+    }
 
     #[test]
     fn names_are_unique_dotted_and_in_known_sections() {

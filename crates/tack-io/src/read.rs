@@ -5,7 +5,7 @@ use std::path::Path;
 
 use hdf5::{File, Group, H5Type};
 use ndarray::{Array2, Ix1, Ix2};
-use tack_fields::num;
+use tack_fields::rounded;
 
 use crate::h5::{
     Budget, check_extent, declared_shape, dims, h5err, has_attr, open_dataset, open_group,
@@ -69,7 +69,8 @@ pub fn read_result(path: &Path) -> Result<RunResult, IoError> {
 }
 
 /// A human-readable account of a result file: provenance, curve (length, approach range,
-/// minimum force), surface, snapshots and summary attributes.
+/// minimum force), surface, snapshots and summary attributes, numbers rounded to 6 significant
+/// digits ([`tack_fields::rounded`]).
 pub fn describe(path: &Path) -> Result<String, IoError> {
     let r = read_result(path)?;
     let (p, c) = (&r.provenance, &r.curve);
@@ -95,9 +96,9 @@ pub fn describe(path: &Path) -> Result<String, IoError> {
             format!(
                 "curve: {n} steps, approach {} .. {}, min force {} at step {step}, \
                  {converged}/{n} converged",
-                num(lo),
-                num(hi),
-                num(min_force),
+                rounded(lo),
+                rounded(hi),
+                rounded(min_force),
                 n = c.len(),
             )
         }
@@ -108,7 +109,7 @@ pub fn describe(path: &Path) -> Result<String, IoError> {
             "surface: {} x {} heights, dx = {}",
             h.nrows(),
             h.ncols(),
-            num(*dx)
+            rounded(*dx)
         ),
         None => "surface: not stored".to_owned(),
     });
@@ -119,8 +120,8 @@ pub fn describe(path: &Path) -> Result<String, IoError> {
             "work of adhesion: {} x {} map, {} to {}",
             g.nrows(),
             g.ncols(),
-            num(lo),
-            num(hi)
+            rounded(lo),
+            rounded(hi)
         ));
     }
     let steps: Vec<String> = r.snapshots.iter().map(|s| s.step.to_string()).collect();
@@ -129,7 +130,7 @@ pub fn describe(path: &Path) -> Result<String, IoError> {
     } else {
         format!("snapshots: {} at steps {}", steps.len(), steps.join(", "))
     });
-    lines.push("summary:".to_owned());
+    lines.push("summary: (6 significant digits; the file holds every digit)".to_owned());
     if let Some(status) = &r.summary.status {
         lines.push(format!("  status = {status}"));
     }
@@ -137,7 +138,7 @@ pub fn describe(path: &Path) -> Result<String, IoError> {
         lines.push(format!("  adhesion_model = {model}"));
     }
     for (name, value) in r.summary.attributes() {
-        lines.push(format!("  {name} = {}", num(value)));
+        lines.push(format!("  {name} = {}", rounded(value)));
     }
     for warning in &r.summary.warnings {
         lines.push(format!("  WARNING {warning}"));

@@ -87,20 +87,27 @@ pub fn summary(problem: &Problem, path: &PathResult) -> tack_io::Summary {
         extra.insert("f_maugis".to_owned(), f);
     }
     let cycle = path.cycle();
-    if let Some(w) = cycle.dissipated_energy {
+    // The refined retraction samples the retraction only every coarse step away from the
+    // pull-off's brackets: the loop integral and the jump-out are not measured by it (the
+    // trapezoids span coarse steps, and the contact may be lost anywhere in the last one), so
+    // they are left out rather than reported with the coarse step's error.
+    let retraction_measured = !problem.path.refine_pull_off;
+    if let Some(w) = cycle.dissipated_energy.filter(|_| retraction_measured) {
         extra.insert("dissipated_energy".to_owned(), w);
     }
     if let Some((d, f)) = cycle.jump_in {
         extra.insert("jump_in_approach".to_owned(), d);
         extra.insert("jump_in_force".to_owned(), f);
     }
-    if let Some((d, f)) = cycle.jump_out {
+    if let Some((d, f)) = cycle.jump_out.filter(|_| retraction_measured) {
         extra.insert("jump_out_approach".to_owned(), d);
         extra.insert("jump_out_force".to_owned(), f);
     }
+    // The fit is to a JKR sphere on a half-space: a film on a rigid base is not one.
     if let Some(f_jkr) = r.f_jkr
         && problem.gamma > 0.0
         && !problem.path.is_indentation()
+        && problem.layer.is_none()
     {
         let radius = f_jkr / (-1.5 * std::f64::consts::PI * problem.gamma);
         for (phase, branch, key) in [
@@ -251,14 +258,17 @@ pub fn warnings(problem: &Problem, path: &PathResult) -> Vec<String> {
 }
 
 /// Searched range of the apparent work of adhesion, as factors of the scene's γ: a fit at the
-/// lower end means the branch shows no adhesion and is recorded as 0.
+/// lower end of a branch without tension means the branch shows no adhesion and is recorded as
+/// 0; a fit at either end otherwise is no fit (the branch is not a JKR curve) and is left out.
 const APPARENT_GAMMA_RANGE: (f64, f64) = (1e-3, 1e3);
 
 /// The apparent work of adhesion of the path's `phase` branch: the γ whose JKR sphere of
 /// `radius` fits its (approach, force) points best under approach control
 /// ([`tack_analytics::apparent_work_of_adhesion`]); approaches from the sphere's vertex, as
 /// the JKR reference of `tack plot`. `None` when fewer than [`MIN_TENSILE_STEPS`] steps of
-/// the branch carry load.
+/// the branch carry load, and when the best fit lies at an end of [`APPARENT_GAMMA_RANGE`]
+/// although the branch has a tensile force (an adhesive branch no JKR curve fits: 0 would be
+/// false beside its pull-off); 0 when it lies at the lower end and the branch has no tension.
 fn apparent_gamma(
     problem: &Problem,
     path: &PathResult,
@@ -280,7 +290,14 @@ fn apparent_gamma(
     let (lo, hi) = (lo * problem.gamma, hi * problem.gamma);
     let g =
         tack_analytics::apparent_work_of_adhesion(problem.e_star, radius, &points, branch, lo, hi)?;
-    Some(if g <= lo * (1.0 + 1e-6) { 0.0 } else { g })
+    let tensile = points.iter().any(|p| p.1 < 0.0);
+    let at_lower = g <= lo * (1.0 + 1e-6);
+    let at_upper = g >= hi * (1.0 - 1e-6);
+    match (at_lower, at_upper, tensile) {
+        (true, _, false) => Some(0.0),
+        (true, _, true) | (_, true, _) => None,
+        _ => Some(g),
+    }
 }
 
 /// Least number of retraction steps with contact and a tensile force for the path to bracket
