@@ -188,7 +188,7 @@ fn execute(command: Command) -> anyhow::Result<()> {
                 report::describe_planned_path(&p.path)
             );
             if let Some(rule) = &p.path_rule {
-                println!("  {}", report::describe_rule(rule, &loaded.file.geometry));
+                println!("  {rule}");
             }
             let steps = p.path.step_bound();
             let bound = if steps < p.path.max_steps {

@@ -7,7 +7,7 @@ use tack::RunOutcome;
 use tack::fields;
 pub use tack::fields::rounded;
 use tack::geometry::Boundary;
-use tack::problem::{PathRule, Problem};
+use tack::problem::Problem;
 use tack::scene::{Geometry, Roughness, Scene};
 use tack::solver::{PathResult, Phase};
 
@@ -15,11 +15,7 @@ use tack::solver::{PathResult, Phase};
 /// the cycle, adhesion parameter, convergence and wall time.
 pub fn report(scene: &Scene, outcome: &RunOutcome, out: Option<&Path>) -> String {
     let mut lines = body_lines(scene, &outcome.problem);
-    lines.extend(path_lines(
-        &outcome.problem,
-        &outcome.path,
-        &scene.file.geometry,
-    ));
+    lines.extend(path_lines(&outcome.problem, &outcome.path));
     lines.extend(pull_off_lines(outcome));
     lines.extend(reference_lines(outcome));
     lines.extend(cycle_lines(outcome));
@@ -122,7 +118,7 @@ fn pattern_line(scene: &Scene) -> Option<String> {
 
 /// What the path was (an indentation, one load step or several, the retraction and where it
 /// ended), the default rule it came from, and full contact on periodic grids.
-pub fn path_lines(p: &Problem, path: &PathResult, geometry: &Geometry) -> Vec<String> {
+pub fn path_lines(p: &Problem, path: &PathResult) -> Vec<String> {
     let stopped = if path.completed {
         String::new()
     } else if adhesive(p) {
@@ -138,7 +134,7 @@ pub fn path_lines(p: &Problem, path: &PathResult, geometry: &Geometry) -> Vec<St
     };
     let mut lines = vec![format!("path        {}{stopped}", describe_path(p, path))];
     if let Some(rule) = &p.path_rule {
-        lines.push(format!("            {}", describe_rule(rule, geometry)));
+        lines.push(format!("            {}", rule));
     }
     let full = path.records.iter().filter(|r| r.full_contact).count();
     if full > 0 {
@@ -237,36 +233,6 @@ pub fn describe_planned_path(path: &tack::solver::ApproachPath) -> String {
         None => "until contact is lost".to_owned(),
     };
     format!("{load}, retraction {steps} {end}")
-}
-
-/// The default pull-off rule of a scene without `protocol.max_approach`, every number rounded
-/// (`tack::problem::PathRule`'s `Display` keeps every digit).
-pub fn describe_rule(rule: &PathRule, geometry: &Geometry) -> String {
-    let p = &rule.path;
-    let origin = match geometry {
-        _ if rule.fitted => "fitted",
-        Geometry::Ellipsoid { .. } => "√(Rx·Ry)",
-        _ => "given",
-    };
-    let load = if rule.stepped_load {
-        "loaded in retraction steps from out of range"
-    } else {
-        "one load step"
-    };
-    let (coarse, fine) = if rule.refined {
-        ("all the way", "the pull-off's brackets retraced by")
-    } else {
-        ("while compressive", "then by")
-    };
-    format!(
-        "default pull-off path of R = {} ({origin}), d_s = {}: {load} to d = {}, retraction by \
-         {} {coarse}, {fine} {}",
-        rounded(rule.radius),
-        rounded(p.d_s),
-        rounded(p.max_approach),
-        rounded(p.coarse_unload_step),
-        rounded(p.unload_step)
-    )
 }
 
 /// The force of an indentation, or the pull-off (or, without adhesion, the peak load).
@@ -575,24 +541,7 @@ fn run_lines(outcome: &RunOutcome, out: Option<&Path>) -> Vec<String> {
 
 fn describe_body(geometry: &Geometry, roughness: &Option<Roughness>) -> String {
     let r = |x: f64| rounded(x);
-    let shape = match geometry {
-        Geometry::Sphere { radius } => format!("sphere R = {}", r(*radius)),
-        Geometry::FlatPunch {
-            radius: Some(a), ..
-        } => format!("circular flat punch a = {}", r(*a)),
-        Geometry::FlatPunch {
-            half_side: Some(s), ..
-        } => format!("square flat punch half side {}", r(*s)),
-        Geometry::FlatPunch { .. } => "flat punch".to_owned(),
-        Geometry::PowerLaw { c, exponent } if *exponent == 1.0 => format!("cone z = {}·r", r(*c)),
-        Geometry::PowerLaw { c, exponent } => {
-            format!("power law z = {}·r^{}", r(*c), r(*exponent))
-        }
-        Geometry::Ellipsoid { radius_x, radius_y } => {
-            format!("ellipsoid Rx = {}, Ry = {}", r(*radius_x), r(*radius_y))
-        }
-        Geometry::None => "flat".to_owned(),
-    };
+    let shape = geometry.shape().describe();
     let rough = match roughness {
         None => String::new(),
         Some(Roughness::Waviness1d { h, lambda }) => {

@@ -147,6 +147,9 @@ pub struct PathRule {
     pub radius: f64,
     /// Whether R was fitted (a least-squares paraboloid through the heights) rather than given.
     pub fitted: bool,
+    /// Where a radius that was not fitted comes from: `"given"`, or the shape's own rule
+    /// (`crate::shape::SceneShape::path_radius_origin`, e.g. an ellipsoid's `√(Rx·Ry)`).
+    pub origin: &'static str,
     /// The rule's numbers.
     pub path: crate::pull_off_path::PullOffPath,
     /// Loaded in retraction steps from out of range (a finite-range law), not in one step.
@@ -156,17 +159,17 @@ pub struct PathRule {
 }
 
 impl std::fmt::Display for PathRule {
-    /// One line, numbers to four digits: `default pull-off path of R = 1 (given), d_s = …: one
-    /// load step to d = …, retraction by …`.
+    /// One line, numbers rounded (`tack_fields::rounded`): `default pull-off path of R = 1
+    /// (given), d_s = …: one load step to d = …, retraction by … while compressive, then by …`.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let p = &self.path;
-        let r = |x: f64| num(crate::shape::round4(x));
+        let r = tack_fields::rounded;
         write!(
             f,
             "default pull-off path of R = {} ({}), d_s = {}: {} to d = {}, retraction by {} {}, \
              {} {}",
             r(self.radius),
-            if self.fitted { "fitted" } else { "given" },
+            if self.fitted { "fitted" } else { self.origin },
             r(p.d_s),
             if self.stepped_load {
                 "loaded in retraction steps from out of range"
@@ -268,6 +271,7 @@ impl Problem {
                 grid: &grid,
                 surface: &surface,
                 sphere: path_sphere.as_ref().map(|(r, s)| (*r, s.as_ref())),
+                origin: shape.path_radius_origin(),
                 given_radius: body_radius,
                 heights_only: shape.heights_only(),
                 material,
@@ -719,6 +723,8 @@ struct PathBody<'a> {
     /// The shape's own sphere ([`crate::shape::SceneShape::path_sphere`]): its radius and the
     /// shape the roughness's top is measured above.
     sphere: Option<(f64, &'a dyn Shape)>,
+    /// Where that sphere's radius comes from (`SceneShape::path_radius_origin`).
+    origin: &'static str,
     /// The radius a body in memory was given.
     given_radius: Option<f64>,
     /// Whether the body is only heights (`geometry.shape = "none"`: a map, an array), whose
@@ -972,6 +978,7 @@ fn default_path(body: &PathBody<'_>, depth: Option<f64>) -> Result<PathRule, NoR
             refined: false,
             radius,
             fitted: false,
+            origin: body.origin,
             path: crate::pull_off_path::default_pull_off_path(
                 e_star,
                 gamma,
@@ -1068,6 +1075,7 @@ fn finish_default_path(
         refined: false,
         radius,
         fitted,
+        origin: "given",
         path,
     })
 }

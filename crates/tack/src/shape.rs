@@ -4,7 +4,7 @@
 //! new shape is one type implementing [`SceneShape`] and its variant of [`Geometry`] (the scene
 //! schema), joined in [`Geometry::shape`], the only `match` over the geometry.
 
-use tack_fields::{self as fields, field_name, num};
+use tack_fields::{self as fields, field_name, num, rounded};
 use tack_geometry::{Boundary, Ellipsoid, FlatPunch, Grid, Shape, Sphere, Surface};
 use tack_solver::ApproachPath;
 
@@ -67,7 +67,12 @@ pub trait SceneShape {
         Ok(())
     }
 
-    /// One line for reports: `sphere R = 1`, `circular punch a = 0.5`.
+    /// Where the radius of [`SceneShape::path_sphere`] comes from, as reports say it.
+    fn path_radius_origin(&self) -> &'static str {
+        "given"
+    }
+
+    /// One line for reports, numbers rounded: `sphere R = 1`, `circular flat punch a = 0.5`.
     fn describe(&self) -> String;
 }
 
@@ -399,7 +404,7 @@ impl SceneShape for SphereBody {
     }
 
     fn describe(&self) -> String {
-        format!("sphere R = {}", num(self.radius))
+        format!("sphere R = {}", rounded(self.radius))
     }
 }
 
@@ -483,8 +488,10 @@ impl SceneShape for PunchBody {
 
     fn describe(&self) -> String {
         match (self.punch, self.radius, self.half_side) {
-            (PunchKind::Circle, Some(r), _) => format!("circular punch a = {}", num(r)),
-            (PunchKind::Square, _, Some(s)) => format!("square punch half side {}", num(s)),
+            (PunchKind::Circle, Some(r), _) => format!("circular flat punch a = {}", rounded(r)),
+            (PunchKind::Square, _, Some(s)) => {
+                format!("square flat punch half side {}", rounded(s))
+            }
             _ => "flat punch".to_owned(),
         }
     }
@@ -556,9 +563,13 @@ impl SceneShape for PowerLawBody {
 
     fn describe(&self) -> String {
         if self.exponent == 1.0 {
-            format!("cone z = {}·r", num(self.c))
+            format!("cone z = {}·r", rounded(self.c))
         } else {
-            format!("power law z = {}·r^{}", num(self.c), num(self.exponent))
+            format!(
+                "power law z = {}·r^{}",
+                rounded(self.c),
+                rounded(self.exponent)
+            )
         }
     }
 }
@@ -632,6 +643,10 @@ impl SceneShape for EllipsoidBody {
         Some((self.radius_x.sqrt() * self.radius_y.sqrt(), Box::new(shape)))
     }
 
+    fn path_radius_origin(&self) -> &'static str {
+        "√(Rx·Ry)"
+    }
+
     fn check_fit(&self, fit: &FitCheck<'_>) -> Result<(), SceneError> {
         // The elliptic Hertz contact at the deepest approach, with the sphere's margin.
         let grid = fit.grid;
@@ -673,8 +688,8 @@ impl SceneShape for EllipsoidBody {
     fn describe(&self) -> String {
         format!(
             "ellipsoid Rx = {}, Ry = {}",
-            num(self.radius_x),
-            num(self.radius_y)
+            rounded(self.radius_x),
+            rounded(self.radius_y)
         )
     }
 }
