@@ -47,10 +47,7 @@ const PULL_OFF_NAMES: Names = &[
     (fields::BODY_THICKNESS, "body.thickness"),
     (fields::BODY_POISSON, "body.poisson"),
     (fields::GRID_N, "heights.shape"),
-    (
-        fields::GRID_LENGTH,
-        "the array's extent (heights.shape × dx)",
-    ),
+    (fields::GRID_LENGTH, "dx"),
     (fields::PROTOCOL_START, "the load's first approach"),
     (
         "the non-adhesive tack_solver::ContactSolver",

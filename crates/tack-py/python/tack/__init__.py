@@ -1,17 +1,23 @@
 """tack: the adhesive strength of rough elastic contacts, from Python.
 
-A boundary-element solver for an elastic half-space pressed against, and pulled off, a rigid
-rough body, with JKR-limit adhesion (the Pohrt-Popov detachment criterion; Li, Pohrt & Popov
-2019). The numerical work runs in Rust (the ``tack`` crates) with the GIL released; arrays go
+A boundary-element solver for an elastic half-space (or film) pressed against, and pulled off,
+a rigid rough body, with JKR-limit adhesion (the Pohrt-Popov detachment criterion; Li, Pohrt &
+Popov 2019) or a Dugdale cohesive zone. The numerical work runs in Rust (the ``tack`` crates) with the GIL released; arrays go
 in and come out as numpy arrays.
 
 - :func:`run` runs a scene (a TOML file or text, ``docs/scenes.md``) and returns a
   :class:`Result`; :func:`read` reads a result file.
 - :func:`pull_off` pulls a body given as a numpy height array off the half-space, with a
   default load-then-retract path.
-- :func:`contact` solves non-adhesive contact of a height array.
+- :func:`contact` solves non-adhesive contact of a height array at one approach,
+  :func:`contact_sweep` at several in turn.
+- The adhesion law and the elastic body are objects (:mod:`tack.models`): ``law=``
+  :class:`JkrLimit` or :class:`Dugdale`, ``body=`` :class:`HalfSpace` or :class:`Layer`.
+- A result that may not be trusted issues a :class:`TackWarning` of its kind
+  (:class:`UnderResolvedWarning`, :class:`ReferenceWarning`, ...) when the run returns.
 - :mod:`tack.surface` makes height arrays (seeded random roughness, spheres);
-  :mod:`tack.analytics` holds the closed forms (Hertz, JKR, Kendall, Johnson, the paper's fits).
+  :mod:`tack.analytics` holds the closed forms, keyword-only (Hertz, JKR, Kendall, Johnson,
+  the paper's fits, Maugis-Dugdale).
 
 Conventions (as in the Rust crates): arrays are ``(nx, ny)``; element ``(i, j)`` is centred at
 ``((i - nx//2)*dx, (j - ny//2)*dx)``; a height is the gap at zero approach (higher = farther
@@ -194,9 +200,16 @@ def run(
         TypeError: an argument of the wrong type (``scene`` not a str or os.PathLike,
             ``overrides`` not a dict or with a value that has no TOML form, ``threads`` not an
             int, ``richardson`` not a bool, ``progress`` neither a bool nor a callable).
-        SceneError: the scene is unreadable or invalid (the message names the scene's field).
+        SceneError: the scene is unreadable or invalid (the message names the scene's field;
+            an override that cannot be applied is named ``overrides["key"] = value``).
         TackError: ``threads`` outside 1..``MAX_THREADS``.
         KeyboardInterrupt: Ctrl-C during the run.
+
+    Warns:
+        TackWarning: one per sentence of ``summary["warnings"]``, in the class of its kind
+            (:class:`UnderResolvedWarning`, :class:`ReferenceWarning`,
+            :class:`LoadingHistoryWarning`, :class:`FullContactWarning`, ...), naming the
+            scene's fields.
     """
     if isinstance(scene, os.PathLike):
         where: Dict[str, Any] = {"path": _check.path("scene", scene)}
