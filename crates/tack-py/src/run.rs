@@ -44,8 +44,7 @@ const PULL_OFF_NAMES: Names = &[
     ),
     (fields::ADHESION_MODEL, "law"),
     (fields::OUTPUT_SNAPSHOTS, "snapshots"),
-    (fields::BODY_THICKNESS, "body.thickness"),
-    (fields::BODY_POISSON, "body.poisson"),
+    // `body.thickness` and `body.poisson` stay as they are: the attributes of `body=tack.Layer(...)`.
     (fields::GRID_N, "heights.shape"),
     (fields::GRID_LENGTH, "dx"),
     (fields::PROTOCOL_START, "the load's first approach"),

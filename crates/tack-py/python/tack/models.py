@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from typing import Any, Optional, Tuple
 
-from . import _check, _tack
+from . import _check
 
 __all__ = ["Dugdale", "HalfSpace", "JkrLimit", "Layer"]
 
@@ -176,5 +176,3 @@ def body_arguments(body: Any) -> dict:
         )
     return body._arguments()
 
-
-_ = _tack  # the compiled core backs analytics, which the constructors above call
