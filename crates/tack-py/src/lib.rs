@@ -29,6 +29,7 @@ fn _tack(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", tack::provenance::VERSION)?;
     m.add("GIT_REVISION", tack::provenance::GIT_REVISION)?;
     m.add("MAX_THREADS", run::MAX_THREADS)?;
+    m.add("MAUGIS_LAMBDA_CRITICAL", analytics::lambda_critical())?;
     m.add_class::<result::Result>()?;
     m.add_class::<contact::ContactResult>()?;
     m.add_function(wrap_pyfunction!(run::run_scene, m)?)?;

@@ -39,6 +39,15 @@ impl Result {
     }
 }
 
+/// The summary entries that count steps or elements: Python ints.
+const COUNTS: &[&str] = &[
+    "non_converged_steps",
+    "edge_contact_steps",
+    "full_contact_steps",
+    "crop_rows",
+    "crop_cols",
+];
+
 fn counts<'py>(py: Python<'py>, v: &[u64]) -> Bound<'py, PyArray1<i64>> {
     v.iter()
         .map(|&x| i64::try_from(x).unwrap_or(i64::MAX))
@@ -72,7 +81,7 @@ impl Result {
                 d.set_item("mean_pressure", p.clone().into_pyarray(py))?;
             }
             if let Some(z) = &c.n_cohesive {
-                d.set_item("n_cohesive", z.clone().into_pyarray(py))?;
+                d.set_item("n_cohesive", counts(py, z))?;
             }
             if let Some(f) = &c.full_contact {
                 d.set_item("full_contact", f.clone().into_pyarray(py))?;
@@ -101,7 +110,13 @@ impl Result {
                 d.set_item("johnson_alpha", s.johnson_alpha)?;
                 d.set_item("alpha_star", s.alpha_star)?;
                 for (name, value) in &s.extra {
-                    d.set_item(name, value)?;
+                    if COUNTS.contains(&name.as_str()) {
+                        // Counts are integers (None where a file has no number).
+                        let count = (value.is_finite() && *value >= 0.0).then_some(*value as u64);
+                        d.set_item(name, count)?;
+                    } else {
+                        d.set_item(name, value)?;
+                    }
                 }
                 d.set_item("status", s.status.as_deref())?;
                 d.set_item("adhesion_model", s.adhesion_model.as_deref())?;
@@ -109,6 +124,33 @@ impl Result {
                 Ok(d.unbind())
             })?;
         Ok(dict.clone_ref(py))
+    }
+
+    /// The Richardson extrapolation of the pull-off force (`tack.run(richardson=True)`,
+    /// `tack.pull_off(richardson=True)`), or None for a run without one: a dict of `fine`,
+    /// `coarse` (the pull-off forces at Δx and 2Δx), `extrapolated` (`2·fine − coarse`),
+    /// `error_estimate` (how far `fine` may be from converged), `order` (1, assumed: the
+    /// criterion's first order in Δx), `ratio` (`extrapolated / f_jkr`, or None) and
+    /// `aliased_rms` (height arrays only: the content the coarse array aliases, or None).
+    #[getter]
+    fn richardson(&self, py: Python<'_>) -> PyResult<Option<Py<PyDict>>> {
+        let s = &self.inner.summary;
+        let get = |key: &str| s.extra.get(key).copied();
+        let (Some(coarse), Some(extrapolated)) = (
+            get("pull_off_force_coarse"),
+            get("pull_off_force_richardson"),
+        ) else {
+            return Ok(None);
+        };
+        let d = PyDict::new(py);
+        d.set_item("fine", s.pull_off_force)?;
+        d.set_item("coarse", coarse)?;
+        d.set_item("extrapolated", extrapolated)?;
+        d.set_item("error_estimate", get("pull_off_error_estimate"))?;
+        d.set_item("order", get("richardson_order").unwrap_or(1.0))?;
+        d.set_item("ratio", get("pull_off_ratio_richardson"))?;
+        d.set_item("aliased_rms", get("richardson_aliased_rms"))?;
+        Ok(Some(d.unbind()))
     }
 
     /// The stored contact configurations: `{step: {"pressure": 2-D array, "bonded": 2-D bool

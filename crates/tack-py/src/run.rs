@@ -36,12 +36,18 @@ const PULL_OFF_NAMES: Names = &[
     (fields::PROTOCOL_COARSE_UNLOAD_STEP, "coarse_unload_step"),
     (fields::PROTOCOL_REFINE_PULL_OFF, "refine_pull_off"),
     (fields::PROTOCOL_UNLOAD_STEP, "unload_step"),
-    (fields::SOLVER_KAPPA, "kappa"),
-    (fields::ADHESION_SIGMA0, "sigma0"),
-    (fields::ADHESION_MODEL, "model"),
+    (fields::SOLVER_KAPPA, "law.kappa"),
+    (fields::ADHESION_SIGMA0, "law.sigma0"),
+    (
+        concat!(field_name!(adhesion.model), " = \"dugdale\""),
+        "law=tack.Dugdale(sigma0=...)",
+    ),
+    (fields::ADHESION_MODEL, "law"),
     (fields::OUTPUT_SNAPSHOTS, "snapshots"),
-    (fields::BODY_THICKNESS, "thickness"),
-    (fields::BODY_POISSON, "poisson"),
+    // `body.thickness` and `body.poisson` stay as they are: the attributes of `body=tack.Layer(...)`.
+    (fields::GRID_N, "heights.shape"),
+    (fields::GRID_LENGTH, "dx"),
+    (fields::PROTOCOL_START, "the load's first approach"),
     (
         "the non-adhesive tack_solver::ContactSolver",
         "tack.contact",
@@ -166,7 +172,7 @@ pub fn run_scene(
         ),
         _ => return Err(value_error("run_scene: give exactly one of path and text")),
     }
-    .map_err(|e| to_py(&e.into()))?;
+    .map_err(|e| to_py(&overrides_named(e).into()))?;
     let options = RunOptions {
         command_line: Some(command_line(py)),
         richardson,
@@ -177,6 +183,21 @@ pub fn run_scene(
     })?;
     let wall_time = outcome.total_wall_time().as_secs_f64();
     Ok(Result::new(outcome.result, Some(wall_time)))
+}
+
+/// A scene error with an override (the CLI's `--set key=value`) named as the Python argument
+/// that gave it: `overrides["key"] = value`.
+fn overrides_named(e: tack::SceneError) -> tack::SceneError {
+    match e {
+        tack::SceneError::Override { assignment, reason } => {
+            let shown = match assignment.split_once('=') {
+                Some((key, value)) => format!("overrides[\"{key}\"] = {value}"),
+                None => format!("overrides[\"{assignment}\"]"),
+            };
+            tack::SceneError::Inconsistent(format!("{shown}: {reason}"))
+        }
+        other => other,
+    }
 }
 
 /// The command line recorded in provenance: the Python process's `sys.argv`.
@@ -200,7 +221,7 @@ fn command_line(py: Python<'_>) -> String {
 
 /// The pull-off of a body given as heights (`tack::heights::pull_off`).
 #[pyfunction]
-#[pyo3(signature = (heights, *, dx, e_star, gamma, gamma_map=None, periodic=false, radius=None, max_approach=None, unload_step=None, coarse_unload_step=None, refine_pull_off=false, kappa=None, model="jkr_limit", sigma0=None, snapshots=None, threads=None, progress=None, thickness=None, poisson=None, interface=None))]
+#[pyo3(signature = (heights, *, dx, e_star, gamma, gamma_map=None, periodic=false, radius=None, max_approach=None, unload_step=None, coarse_unload_step=None, refine_pull_off=false, kappa=None, model="jkr_limit", sigma0=None, snapshots=None, threads=None, progress=None, thickness=None, poisson=None, interface=None, richardson=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn pull_off(
     py: Python<'_>,
@@ -224,6 +245,7 @@ pub fn pull_off(
     thickness: Option<f64>,
     poisson: Option<f64>,
     interface: Option<String>,
+    richardson: bool,
 ) -> PyResult<Result> {
     let threads = check_threads(threads)?;
     let body = match crate::body::layer_of(thickness, poisson, interface.as_deref())? {
@@ -285,9 +307,17 @@ pub fn pull_off(
         richardson: false,
         threads,
     };
-    let outcome = detached(py, progress, PULL_OFF_NAMES, |observer| {
-        tack::heights::pull_off(&heights, &spec, &options, observer)
+    let mut outcome = detached(py, progress, PULL_OFF_NAMES, |observer| {
+        if richardson {
+            tack::heights_richardson::pull_off_richardson(&heights, &spec, &options, observer)
+        } else {
+            tack::heights::pull_off(&heights, &spec, &options, observer)
+        }
     })?;
+    // The warnings name the arguments, as the errors do.
+    for w in &mut outcome.result.summary.warnings {
+        *w = crate::errors::rename(w, PULL_OFF_NAMES);
+    }
     let wall_time = outcome.total_wall_time().as_secs_f64();
     Ok(Result::new(outcome.result, Some(wall_time)))
 }

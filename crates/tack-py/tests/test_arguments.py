@@ -36,8 +36,7 @@ def assert_names(info, argument):
 @pytest.mark.parametrize("value", NOT_NUMBERS, ids=repr)
 @pytest.mark.parametrize(
     "argument",
-    ["dx", "e_star", "gamma", "radius", "max_approach", "unload_step", "coarse_unload_step",
-     "kappa"],
+    ["dx", "e_star", "gamma", "radius", "max_approach", "unload_step", "coarse_unload_step"],
 )
 def test_pull_off_numbers_refuse_other_types(argument, value):
     with pytest.raises(TypeError) as info:
@@ -65,15 +64,52 @@ def test_contact_numbers_refuse_other_types(argument, value):
 
 @pytest.mark.parametrize("value", ["0.5", True, 1j, [0.5]], ids=repr)
 @pytest.mark.parametrize("argument", ["thickness", "poisson"])
-def test_contact_layer_numbers_refuse_other_types(argument, value):
+def test_layer_numbers_refuse_other_types(argument, value):
     with pytest.raises(TypeError) as info:
-        tack.contact(SMALL, **{**CONTACT, "thickness": 0.5, "poisson": 0.3, argument: value})
+        tack.Layer(**{"thickness": 0.5, "poisson": 0.3, argument: value})
     assert_names(info, argument)
+
+
+@pytest.mark.parametrize("value", ["0.5", True, 1j, [0.5]], ids=repr)
+def test_law_numbers_refuse_other_types(value):
+    with pytest.raises(TypeError) as info:
+        tack.JkrLimit(kappa=value)
+    assert_names(info, "kappa")
+    with pytest.raises(TypeError) as info:
+        tack.Dugdale(sigma0=value)
+    assert_names(info, "sigma0")
+
+
+def test_laws_and_bodies_check_values_and_show_themselves():
+    with pytest.raises(ValueError, match=r"^sigma0 = -1 is invalid: must be a finite number > 0"):
+        tack.Dugdale(sigma0=-1.0)
+    with pytest.raises(ValueError, match=r"^kappa = 0 is invalid"):
+        tack.JkrLimit(kappa=0)
+    with pytest.raises(ValueError, match=r"^poisson = 0.6 is invalid: must be a number in \(-1, 0.5\]"):
+        tack.Layer(thickness=1.0, poisson=0.6)
+    with pytest.raises(ValueError, match=r"^thickness = 0 is invalid"):
+        tack.Layer(thickness=0.0, poisson=0.3)
+    with pytest.raises(ValueError, match=r"^interface = 'glued' is invalid"):
+        tack.Layer(thickness=1.0, poisson=0.3, interface="glued")
+    with pytest.raises(ValueError, match=r"^lam = -2 is invalid"):
+        tack.Dugdale.from_lambda(-2.0, radius=1.0, e_star=1.0, gamma=0.1)
+    assert repr(tack.Dugdale(sigma0=0.5)) == "tack.Dugdale(sigma0=0.5)"
+    assert repr(tack.JkrLimit()) == "tack.JkrLimit(kappa=None)"
+    assert repr(tack.HalfSpace()) == "tack.HalfSpace()"
+    layer = tack.Layer(thickness=2, poisson=0.4)
+    assert repr(layer) == "tack.Layer(thickness=2.0, poisson=0.4, interface='bonded')"
+    assert layer == tack.Layer(thickness=2.0, poisson=0.4, interface="bonded")
+    with pytest.raises(AttributeError):
+        layer.thickness = 3.0
+    with pytest.raises(TypeError, match=r"^law: expected tack.JkrLimit"):
+        tack.pull_off(SPHERE, **PULL_OFF, law="dugdale")
+    with pytest.raises(TypeError, match=r"^body: expected tack.HalfSpace"):
+        tack.contact(SMALL, **CONTACT, body=tack.Dugdale(sigma0=1.0))
 
 
 def test_contact_interface_refuses_other_types():
     with pytest.raises(TypeError) as info:
-        tack.contact(SMALL, **{**CONTACT, "thickness": 0.5, "poisson": 0.3, "interface": 1})
+        tack.Layer(thickness=0.5, poisson=0.3, interface=1)
     assert_names(info, "interface")
 
 
@@ -95,7 +131,13 @@ def test_numpy_scalars_and_ints_are_numbers():
     # A 0-d array is a number; a 1-D array of approaches is a sequence.
     assert isinstance(tack.contact(SMALL, dx=0.1, e_star=1, approach=np.array(0.01)),
                       tack.ContactResult)
-    assert len(tack.contact(SMALL, dx=0.1, e_star=1, approach=np.array([0.005, 0.01]))) == 2
+    sweep = tack.contact_sweep(SMALL, dx=0.1, e_star=1, approaches=np.array([0.005, 0.01]))
+    assert len(sweep) == 2 and all(isinstance(s, tack.ContactResult) for s in sweep)
+    assert isinstance(sweep[0].n_contact, int)
+    # One return type each: a sequence is not an approach, one approach is still a sweep.
+    with pytest.raises(TypeError, match=r"^approach: .*tack.contact_sweep"):
+        tack.contact(SMALL, dx=0.1, e_star=1, approach=[0.005, 0.01])
+    assert len(tack.contact_sweep(SMALL, dx=0.1, e_star=1, approaches=[0.01])) == 1
     # Integer heights are heights.
     flat = tack.contact(np.zeros((8, 8), dtype=np.int32), dx=0.1, e_star=1, approach=0.01)
     assert flat.n_contact == 64
@@ -187,6 +229,15 @@ CLOSED_FORMS = [
     ("rms_height_from_alpha_star", (1.0, 1e-4, 0.3, 0.5, 6.28, 400.0)),
     ("lambda_star", (0.3,)),
     ("critical_stress", (1.0, 0.1, 0.01, 0.47)),
+    ("maugis_lambda", (1.0, 0.1, 1.0, 0.5)),
+    ("maugis_pull_off_force", (1.0, 0.1, 1.0, 0.5)),
+    ("maugis_dissipated_energy", (1.0, 0.1, 1.0, 2.0)),
+    ("maugis_force_from_approach", (1.0, 0.1, 1.0, 0.5, 0.05)),
+    ("maugis_jump_out_approach", (1.0, 0.1, 1.0, 0.5)),
+    ("maugis_jump_out_force", (1.0, 0.1, 1.0, 0.5)),
+    ("maugis_jump_in_approach", (1.0, 0.1, 1.0, 0.5)),
+    ("maugis_jump_in_force", (1.0, 0.1, 1.0, 0.5)),
+    ("maugis_sigma0", (0.5, 1.0, 0.1, 1.0)),
 ]
 
 
@@ -197,39 +248,60 @@ def closed_form_arguments():
             yield pytest.param(name, args, k, argument, id=f"{name}-{argument}")
 
 
+def keywords(name, args, k=None, value=None):
+    """The closed form's keyword arguments: ``args`` by name, the k-th replaced by ``value``."""
+    params = analytics.__dict__[name].__code__.co_varnames[: len(args)]
+    out = dict(zip(params, args))
+    if k is not None:
+        out[params[k]] = value
+    return out
+
+
 @pytest.mark.parametrize("name, args, k, argument", list(closed_form_arguments()))
 def test_closed_forms_check_every_argument(name, args, k, argument):
     f = getattr(analytics, name)
-    assert isinstance(f(*args), float)
-    assert isinstance(f(*args[:k], np.array([args[k]] * 3), *args[k + 1 :]), np.ndarray)
+    assert isinstance(f(**keywords(name, args)), float)
+    assert isinstance(f(**keywords(name, args, k, np.array([args[k]] * 3))), np.ndarray)
     for wrong in ["1", None, True, 1j, np.array(["1"]), np.array([1j]), np.array([True]),
                   np.array([1.0, None])]:
         with pytest.raises(TypeError) as info:
-            f(*args[:k], wrong, *args[k + 1 :])
+            f(**keywords(name, args, k, wrong))
         assert_names(info, argument)
     bad = -1.0 if argument not in ("d", "hurst") else float("nan")
     with pytest.raises(ValueError) as info:
-        f(*args[:k], bad, *args[k + 1 :])
+        f(**keywords(name, args, k, bad))
     assert_names(info, argument)
     with pytest.raises(ValueError) as info:
-        f(*args[:k], np.array([args[k], bad]), *args[k + 1 :])
+        f(**keywords(name, args, k, np.array([args[k], bad])))
     assert_names(info, argument)
     assert str(info.value).startswith(f"{argument}[1] = ")
 
 
+@pytest.mark.parametrize("name", [n for n, _ in CLOSED_FORMS])
+def test_closed_forms_are_keyword_only(name):
+    # jkr_pull_off_radius(R, E, g) once returned another formula's number without a word.
+    args = dict(CLOSED_FORMS)[name]
+    with pytest.raises(TypeError, match="positional"):
+        getattr(analytics, name)(*args)
+
+
 def test_closed_forms_value_rules():
     with pytest.raises(ValueError, match=r"^radius\[1\] = -1 is invalid: must be a finite"):
-        analytics.hertz_force(1.0, [1.0, -1.0], 0.01)
+        analytics.hertz_force(e_star=1.0, radius=[1.0, -1.0], d=0.01)
     with pytest.raises(ValueError, match=r"^q1 = 10 is invalid: must be > q0 = 100"):
-        analytics.alpha_star(1.0, 1e-4, 0.002, 0.5, 100.0, 10.0)
+        analytics.alpha_star(e_star=1.0, gamma=1e-4, h=0.002, hurst=0.5, q0=100.0, q1=10.0)
     with pytest.raises(ValueError, match=r"^alpha_star = 0 is invalid"):
-        analytics.rms_height_from_alpha_star(1.0, 1e-4, 0.0, 0.5, 6.28, 400.0)
+        analytics.rms_height_from_alpha_star(
+            e_star=1.0, gamma=1e-4, alpha_star=0.0, hurst=0.5, q0=6.28, q1=400.0
+        )
     with pytest.raises(ValueError, match=r"^hertz_force: the arguments' shapes do not broadcast"):
-        analytics.hertz_force(1.0, [1.0, 2.0], [0.01, 0.02, 0.03])
+        analytics.hertz_force(e_star=1.0, radius=[1.0, 2.0], d=[0.01, 0.02, 0.03])
     # Broadcasting and empty arrays work as in numpy.
-    assert analytics.hertz_force(1.0, [[1.0], [2.0]], [0.01, 0.02, 0.03]).shape == (2, 3)
-    assert analytics.hertz_force(1.0, 1.0, np.array([])).shape == (0,)
-    assert analytics.lambda_star(0) == pytest.approx(1.023 * np.exp(-((0.3619 / 0.1188) ** 2)))
+    assert analytics.hertz_force(e_star=1.0, radius=[[1.0], [2.0]], d=[0.01, 0.02, 0.03]).shape == (2, 3)
+    assert analytics.hertz_force(e_star=1.0, radius=1.0, d=np.array([])).shape == (0,)
+    assert analytics.lambda_star(alpha_star=0) == pytest.approx(
+        1.023 * np.exp(-((0.3619 / 0.1188) ** 2))
+    )
 
 
 def test_paths_refuse_other_types(small_sphere, tmp_path):
@@ -327,15 +399,18 @@ def test_non_finite_heights_are_named_by_index(kind):
 
 
 def test_approach_sequences():
-    with pytest.raises(ValueError, match="^approach: the sequence is empty"):
-        tack.contact(SMALL, dx=0.1, e_star=1.0, approach=[])
-    with pytest.raises(ValueError, match=r"^approach: expected a number or a 1-D sequence"):
-        tack.contact(SMALL, dx=0.1, e_star=1.0, approach=[[0.01]])
-    with pytest.raises(ValueError, match=r"^approach\[1\] = inf is invalid"):
-        tack.contact(SMALL, dx=0.1, e_star=1.0, approach=[0.01, float("inf")])
+    sweep = lambda v: tack.contact_sweep(SMALL, dx=0.1, e_star=1.0, approaches=v)
+    with pytest.raises(ValueError, match="^approaches: the sequence is empty"):
+        sweep([])
+    with pytest.raises(ValueError, match=r"^approaches: expected a number or a 1-D sequence"):
+        sweep([[0.01]])
+    with pytest.raises(ValueError, match=r"^approaches\[1\] = inf is invalid"):
+        sweep([0.01, float("inf")])
     with pytest.raises(ValueError, match=r"^approach = NaN is invalid"):
         tack.contact(SMALL, dx=0.1, e_star=1.0, approach=float("nan"))
-    states = tack.contact(SMALL, dx=0.1, e_star=1.0, approach=(0.005, np.float32(0.01)))
+    with pytest.raises(TypeError, match=r"^approaches: expected a 1-D sequence.*tack.contact\("):
+        sweep(0.01)
+    states = sweep((0.005, np.float32(0.01)))
     assert [s.approach for s in states] == [0.005, float(np.float32(0.01))]
 
 
@@ -351,7 +426,6 @@ def test_approach_sequences():
         ({"e_star": -1.0}, "e_star = -1 is invalid: must be a finite number > 0"),
         ({"dx": float("nan")}, "dx = NaN is invalid"),
         ({"radius": -8.0}, "radius = -8 is invalid"),
-        ({"kappa": 0.0}, "kappa = 0 is invalid"),
         ({"unload_step": 0.0}, "unload_step = 0 is invalid"),
         ({"coarse_unload_step": float("inf")}, "coarse_unload_step = inf is invalid"),
         ({"max_approach": float("-inf")}, "max_approach = -inf is invalid"),
@@ -377,12 +451,6 @@ def test_pull_off_values_name_the_argument(changes, message):
         ({"tolerance": 2.0}, "tolerance = 2 is invalid: must be a number in (0, 1)"),
         ({"max_iterations": 0}, "max_iterations = 0 is invalid: must be an integer ≥ 1"),
         ({"approach": float("inf")}, "approach = inf is invalid"),
-        ({"thickness": 0.0, "poisson": 0.3}, "thickness = 0 is invalid: must be a finite number > 0"),
-        ({"poisson": 0.7, "thickness": 0.5}, "poisson = 0.7 is invalid: must be a number in (-1, 0.5]"),
-        ({"poisson": None, "thickness": 0.5}, "poisson is missing"),
-        ({"poisson": 0.3}, "poisson is given without thickness"),
-        ({"interface": "bonded"}, "interface is given without thickness"),
-        ({"interface": "glued", "thickness": 0.5, "poisson": 0.3}, "interface = glued is invalid"),
     ],
 )
 def test_contact_values_name_the_argument(changes, message):
@@ -425,7 +493,7 @@ def test_the_compiled_core_renames_library_fields():
         (lambda: core.pull_off(SPHERE, dx=0.45, e_star=-1.0, gamma=0.1), "e_star = -1 "),
         (lambda: core.pull_off(SPHERE, dx=0.0, e_star=1.0, gamma=0.1), "dx = 0 "),
         (lambda: core.pull_off(SPHERE, dx=0.45, e_star=1.0, gamma=0.1, kappa=-1.0),
-         "kappa = -1 "),
+         "law.kappa = -1 "),
         (lambda: core.pull_off(np.zeros((0, 4)), dx=0.45, e_star=1.0, gamma=0.1),
          "heights.shape[0] = 0 "),
         (lambda: core.contact(SMALL, dx=-0.1, e_star=1.0, approaches=[0.01]), "dx = -0.1 "),

@@ -50,9 +50,9 @@ def test_full_contact_is_flagged_and_warned():
 def test_the_mean_pressure_of_full_contact_does_not_follow_the_approach():
     heights = rough()
     with pytest.warns(tack.FullContactWarning, match=r"full contact at 2 of 3 approaches "
-                      r"\(approach\[1\] = 0.01, approach\[2\] = 1\)"):
-        partial, full, deeper = tack.contact(
-            heights, dx=DX, e_star=1.0, approach=[-1e-3, 0.01, 1.0], periodic=True
+                      r"\(approaches\[1\] = 0.01, approaches\[2\] = 1\)"):
+        partial, full, deeper = tack.contact_sweep(
+            heights, dx=DX, e_star=1.0, approaches=[-1e-3, 0.01, 1.0], periodic=True
         )
     assert not partial.full_contact and 0 < partial.n_contact < N * N
     assert full.full_contact and deeper.full_contact
@@ -73,7 +73,7 @@ def test_full_contact_starts_at_the_mean_height():
     assert at.full_contact
     # For one Fourier mode the periodic operator is exact: full contact takes Johnson's
     # p*_2D = sqrt(2) pi E* h / lambda (Eq. 5), and that is the reported mean pressure.
-    p_star = tack.analytics.johnson_2d_p_star(1.0, 0.01, 1.0)
+    p_star = tack.analytics.johnson_2d_p_star(e_star=1.0, h=0.01, wavelength=1.0)
     assert at.mean_pressure == pytest.approx(p_star, rel=1e-9)
     assert below.mean_pressure < p_star
 

@@ -17,7 +17,7 @@ def test_hertz_against_the_closed_form():
     heights = tack.surface.sphere(41, dx=dx, radius=radius)
     state = tack.contact(heights, dx=dx, e_star=1.0, approach=d)
     assert state.converged
-    hertz = tack.analytics.hertz_force(1.0, radius, d)
+    hertz = tack.analytics.hertz_force(e_star=1.0, radius=radius, d=d)
     assert state.force == pytest.approx(hertz, rel=0.01)
     assert abs(math.sqrt(state.area / math.pi) - a) < dx
     assert state.pressure.shape == heights.shape == state.gap.shape
@@ -31,10 +31,10 @@ def test_contact_over_several_approaches_follows_hertz():
     dx = 0.01
     heights = tack.surface.sphere(41, dx=dx, radius=1.0)
     ds = [0.0025, 0.005, 0.01]
-    states = tack.contact(heights, dx=dx, e_star=2.0, approach=ds)
+    states = tack.contact_sweep(heights, dx=dx, e_star=2.0, approaches=ds)
     assert [s.approach for s in states] == ds
     forces = np.array([s.force for s in states])
-    expected = tack.analytics.hertz_force(2.0, 1.0, np.array(ds))
+    expected = tack.analytics.hertz_force(e_star=2.0, radius=1.0, d=np.array(ds))
     np.testing.assert_allclose(forces, expected, rtol=0.03)
 
 
@@ -47,8 +47,8 @@ def test_contact_on_a_layer_tends_to_the_half_space_and_stiffens_as_it_thins():
     d = 0.01
     half = tack.contact(heights, dx=dx, e_star=1.0, approach=d).force
     def layer(h, nu, interface="bonded"):
-        s = tack.contact(heights, dx=dx, e_star=1.0, approach=d, thickness=h, poisson=nu,
-                         interface=interface)
+        body = tack.Layer(thickness=h, poisson=nu, interface=interface)
+        s = tack.contact(heights, dx=dx, e_star=1.0, approach=d, body=body)
         assert s.converged
         return s.force
     thick = layer(10.0, 0.5)
@@ -131,7 +131,7 @@ def test_result_fields(small_sphere):
     assert summary["f_jkr"] == pytest.approx(-1.5 * math.pi * 0.125 * 8.0)
     assert summary["johnson_alpha"] is None and summary["alpha_star"] is None
     assert summary["d_jkr"] == pytest.approx(
-        tack.analytics.jkr_pull_off_approach(1.0, 0.125, 8.0)
+        tack.analytics.jkr_pull_off_approach(e_star=1.0, gamma=0.125, radius=8.0)
     )
     steps = list(result.snapshots)
     assert steps[0] == result.pull_off_step
@@ -198,7 +198,7 @@ def test_pull_off_of_a_sphere_given_as_an_array(tmp_path):
     np.testing.assert_array_equal(back.surface["heights"], heights)
     assert back.scene == result.scene and back.pull_off_force == result.pull_off_force
     # The default path: one load step to 3 d_s, then retraction.
-    d_s = tack.analytics.jkr_approach_scale(1.0, 0.125, radius)
+    d_s = tack.analytics.jkr_approach_scale(e_star=1.0, gamma=0.125, radius=radius)
     assert result.curve["approach"][0] == pytest.approx(3 * d_s)
     # Any array-like of numbers works (here float32 and a list of lists).
     again = tack.pull_off(heights.astype(np.float32).tolist(), dx=dx, e_star=1.0,
@@ -226,17 +226,18 @@ def test_pull_off_on_a_layer_runs_the_scene_body_and_tends_to_the_half_space():
     dx, radius = 0.45, 8.0
     heights = tack.surface.sphere(32, dx=dx, radius=radius)
     half = tack.pull_off(heights, dx=dx, e_star=1.0, gamma=0.125, snapshots="none")
-    film = tack.pull_off(heights, dx=dx, e_star=1.0, gamma=0.125, snapshots="none",
-                         thickness=330.0, poisson=0.5)
+    with pytest.warns(tack.ReferenceWarning, match="half-space's: the layer of body.thickness"):
+        film = tack.pull_off(heights, dx=dx, e_star=1.0, gamma=0.125, snapshots="none",
+                             body=tack.Layer(thickness=330.0, poisson=0.5))
     assert film.summary["layer_thickness"] == 330.0
     assert film.summary["layer_poisson"] == 0.5
     assert "kind = \"layer\"" in film.scene
     assert any("half-space" in w for w in film.summary["warnings"])
     assert film.pull_off_force == pytest.approx(half.pull_off_force, rel=0.02)
-    with pytest.raises(tack.TackError, match="^poisson is missing"):
-        tack.pull_off(heights, dx=dx, e_star=1.0, gamma=0.125, thickness=1.0)
+    with pytest.raises(TypeError, match="poisson"):
+        tack.Layer(thickness=1.0)
     with pytest.raises(tack.TackError, match="^thickness = -1 is invalid"):
-        tack.pull_off(heights, dx=dx, e_star=1.0, gamma=0.125, thickness=-1.0, poisson=0.3)
+        tack.Layer(thickness=-1.0, poisson=0.3)
 
 
 def test_pull_off_of_a_rough_sphere_is_deterministic():
@@ -330,7 +331,7 @@ def test_dugdale_pull_off_of_a_sphere_matches_maugis_and_has_both_branches():
     heights = (x[:, None] ** 2 + x[None, :] ** 2) / 2.0
     sigma0 = 0.8871133596609792  # lambda = 2 sigma0 (R/(pi gamma K^2))^(1/3) = 1, K = 4/3
     r = tack.pull_off(
-        heights, dx=dx, e_star=1.0, gamma=1.0, radius=1.0, model="dugdale", sigma0=sigma0
+        heights, dx=dx, e_star=1.0, gamma=1.0, radius=1.0, law=tack.Dugdale(sigma0=sigma0)
     )
     s = r.summary
     assert s["adhesion_model"] == "dugdale"
@@ -344,18 +345,14 @@ def test_dugdale_pull_off_of_a_sphere_matches_maugis_and_has_both_branches():
 
 def test_dugdale_arguments_are_checked():
     heights = np.zeros((8, 8))
+    with pytest.raises(TypeError, match="^law: expected"):
+        tack.pull_off(heights, dx=0.1, e_star=1.0, gamma=1.0, max_approach=0.1,
+                      unload_step=0.01, law="dugdale")
+    with pytest.raises(ValueError, match="^sigma0 = -1 is invalid"):
+        tack.Dugdale(sigma0=-1.0)
+    with pytest.raises(TypeError, match="sigma0"):
+        tack.Dugdale()
+    # The old flat keywords are gone (unpublished 0.1.0): law= and body= take objects.
     with pytest.raises(TypeError, match="model"):
         tack.pull_off(heights, dx=0.1, e_star=1.0, gamma=1.0, max_approach=0.1,
-                      unload_step=0.01, model=1)
-    with pytest.raises(ValueError, match='model = dmt is invalid: must be "jkr_limit" or "dugdale"'):
-        tack.pull_off(heights, dx=0.1, e_star=1.0, gamma=1.0, max_approach=0.1,
-                      unload_step=0.01, model="dmt")
-    with pytest.raises(ValueError, match="sigma0 = -1 is invalid"):
-        tack.pull_off(heights, dx=0.1, e_star=1.0, gamma=1.0, max_approach=0.1,
-                      unload_step=0.01, model="dugdale", sigma0=-1.0)
-    with pytest.raises(ValueError, match="sigma0 is required"):
-        tack.pull_off(heights, dx=0.1, e_star=1.0, gamma=1.0, max_approach=0.1,
                       unload_step=0.01, model="dugdale")
-    with pytest.raises(ValueError, match="sigma0 = 1 is read by the Dugdale law only"):
-        tack.pull_off(heights, dx=0.1, e_star=1.0, gamma=1.0, max_approach=0.1,
-                      unload_step=0.01, sigma0=1.0)

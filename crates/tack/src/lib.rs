@@ -44,7 +44,8 @@
 //!   [`run()`] runs a scene through it;
 //! - [`summary`]: the result's summary, warnings and curve; [`coarse`]: the Richardson grid;
 //! - [`heights`]: runs on a body given as a height array in memory, with a default pull-off
-//!   path (what the Python package's `tack.pull_off` calls);
+//!   path (what the Python package's `tack.pull_off` calls); [`heights_richardson`]: their
+//!   Richardson extrapolation (the array sampled at the coarse centres);
 //! - [`provenance`]: git revision, timestamps, command line; [`memory`]: the memory bound.
 //!
 //! Parameter sweeps (sharded, parallel, resumable) and their merge into one table are the
@@ -60,6 +61,7 @@ pub mod engine;
 pub mod error;
 pub mod gamma_map;
 pub mod heights;
+pub mod heights_richardson;
 pub mod layer;
 mod map_file;
 pub mod memory;

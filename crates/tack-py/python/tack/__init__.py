@@ -1,17 +1,23 @@
 """tack: the adhesive strength of rough elastic contacts, from Python.
 
-A boundary-element solver for an elastic half-space pressed against, and pulled off, a rigid
-rough body, with JKR-limit adhesion (the Pohrt-Popov detachment criterion; Li, Pohrt & Popov
-2019). The numerical work runs in Rust (the ``tack`` crates) with the GIL released; arrays go
+A boundary-element solver for an elastic half-space (or film) pressed against, and pulled off,
+a rigid rough body, with JKR-limit adhesion (the Pohrt-Popov detachment criterion; Li, Pohrt &
+Popov 2019) or a Dugdale cohesive zone. The numerical work runs in Rust (the ``tack`` crates) with the GIL released; arrays go
 in and come out as numpy arrays.
 
 - :func:`run` runs a scene (a TOML file or text, ``docs/scenes.md``) and returns a
   :class:`Result`; :func:`read` reads a result file.
 - :func:`pull_off` pulls a body given as a numpy height array off the half-space, with a
   default load-then-retract path.
-- :func:`contact` solves non-adhesive contact of a height array.
+- :func:`contact` solves non-adhesive contact of a height array at one approach,
+  :func:`contact_sweep` at several in turn.
+- The adhesion law and the elastic body are objects (:mod:`tack.models`): ``law=``
+  :class:`JkrLimit` or :class:`Dugdale`, ``body=`` :class:`HalfSpace` or :class:`Layer`.
+- A result that may not be trusted issues a :class:`TackWarning` of its kind
+  (:class:`UnderResolvedWarning`, :class:`ReferenceWarning`, ...) when the run returns.
 - :mod:`tack.surface` makes height arrays (seeded random roughness, spheres);
-  :mod:`tack.analytics` holds the closed forms (Hertz, JKR, Kendall, Johnson, the paper's fits).
+  :mod:`tack.analytics` holds the closed forms, keyword-only (Hertz, JKR, Kendall, Johnson,
+  the paper's fits, Maugis-Dugdale).
 
 Conventions (as in the Rust crates): arrays are ``(nx, ny)``; element ``(i, j)`` is centred at
 ``((i - nx//2)*dx, (j - ny//2)*dx)``; a height is the gap at zero approach (higher = farther
@@ -28,11 +34,10 @@ field), the value and the allowed range. Ctrl-C stops a running solve within abo
 
 from __future__ import annotations
 
-import math
 import os
 import sys
 import warnings
-from typing import Any, Callable, Dict, Mapping, Optional, Sequence, Tuple, Union, overload
+from typing import Any, Callable, Dict, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -46,7 +51,18 @@ from ._tack import (
     SolverError,
     TackError,
 )
-from . import analytics, surface
+from . import _warnings, analytics, surface
+from ._warnings import (
+    ConvergenceWarning,
+    EdgeContactWarning,
+    FullContactWarning,
+    LoadingHistoryWarning,
+    ReferenceWarning,
+    RichardsonWarning,
+    TackWarning,
+    UnderResolvedWarning,
+)
+from .models import Dugdale, HalfSpace, JkrLimit, Layer, body_arguments, law_arguments
 
 __version__: str = _tack.__version__
 
@@ -55,16 +71,28 @@ MAX_THREADS: int = _tack.MAX_THREADS
 
 __all__ = [
     "ContactResult",
+    "ConvergenceWarning",
+    "Dugdale",
+    "EdgeContactWarning",
     "FullContactWarning",
+    "HalfSpace",
     "InternalError",
+    "JkrLimit",
+    "Layer",
+    "LoadingHistoryWarning",
     "MAX_THREADS",
+    "ReferenceWarning",
     "Result",
     "ResultFileError",
+    "RichardsonWarning",
     "SceneError",
     "SolverError",
     "TackError",
+    "TackWarning",
+    "UnderResolvedWarning",
     "analytics",
     "contact",
+    "contact_sweep",
     "pull_off",
     "read",
     "run",
@@ -172,9 +200,16 @@ def run(
         TypeError: an argument of the wrong type (``scene`` not a str or os.PathLike,
             ``overrides`` not a dict or with a value that has no TOML form, ``threads`` not an
             int, ``richardson`` not a bool, ``progress`` neither a bool nor a callable).
-        SceneError: the scene is unreadable or invalid (the message names the scene's field).
+        SceneError: the scene is unreadable or invalid (the message names the scene's field;
+            an override that cannot be applied is named ``overrides["key"] = value``).
         TackError: ``threads`` outside 1..``MAX_THREADS``.
         KeyboardInterrupt: Ctrl-C during the run.
+
+    Warns:
+        TackWarning: one per sentence of ``summary["warnings"]``, in the class of its kind
+            (:class:`UnderResolvedWarning`, :class:`ReferenceWarning`,
+            :class:`LoadingHistoryWarning`, :class:`FullContactWarning`, ...), naming the
+            scene's fields.
     """
     if isinstance(scene, os.PathLike):
         where: Dict[str, Any] = {"path": _check.path("scene", scene)}
@@ -197,7 +232,7 @@ def run(
     fine_and_coarse = _check.flag("richardson", richardson)
     callback = _progress(progress)
     try:
-        return _tack.run_scene(
+        result = _tack.run_scene(
             **where,
             overrides=dict(overrides) if overrides is not None else None,
             richardson=fine_and_coarse,
@@ -206,6 +241,8 @@ def run(
         )
     finally:
         _closing(callback)
+    _warnings.issue(result.summary["warnings"], "run")
+    return result
 
 
 def read(path: PathLike) -> Result:
@@ -218,18 +255,12 @@ def read(path: PathLike) -> Result:
     return _tack.read(_check.path("path", path))
 
 
-def _model(model: Any) -> str:
-    """``model`` of :func:`pull_off`: ``"jkr_limit"`` or ``"dugdale"``."""
-    if not isinstance(model, str):
-        raise TypeError(f"model: expected a str, got {_check.describe(model)}")
-    if model not in ("jkr_limit", "dugdale"):
-        raise _check.invalid("model", model, '"jkr_limit" or "dugdale"')
-    return model
-
-
-def _gamma(value: Any, shape: Tuple[int, ...]) -> Tuple[float, Optional[np.ndarray]]:
-    """``pull_off``'s ``gamma``: a number > 0, or an array of the heights' shape (finite, >= 0,
-    mean > 0) whose mean is the reference; returns the reference and the array (or None)."""
+def _gamma(
+    value: Any, shape: Tuple[int, ...], reference: Any
+) -> Tuple[float, Optional[np.ndarray]]:
+    """``pull_off``'s ``gamma`` and ``gamma_reference``: a number > 0 (the reference), or an
+    array of the heights' shape (finite, >= 0, mean > 0) whose reference is ``gamma_reference``
+    when given, else its mean; returns the reference and the array (or None)."""
     note = " (a pull-off needs adhesion; for contact without it use tack.contact)"
     if _check._ndim(value) == 2:
         g = _check.heights(value, "gamma")
@@ -244,11 +275,18 @@ def _gamma(value: Any, shape: Tuple[int, ...]) -> Tuple[float, Optional[np.ndarr
         mean = float(g.mean())
         if not mean > 0.0:
             raise _check.invalid("gamma.mean()", mean, "a number > 0" + note)
+        if reference is not None:
+            return _check.positive("gamma_reference", reference), g
         return mean, g
     if _check._ndim(value) > 0 and not isinstance(value, (str, bytes)):
         raise TypeError(
             "gamma: expected a real number (int or float) or a 2-D array of the heights' shape, "
             f"got {_check.describe(value)}"
+        )
+    if reference is not None:
+        raise TackError(
+            "gamma_reference is given with a uniform gamma: it is the reference of a gamma "
+            "array only (a uniform gamma is its own reference); leave it out"
         )
     return _check.positive("gamma", value, note), None
 
@@ -259,24 +297,22 @@ def pull_off(
     dx: float,
     e_star: float,
     gamma: Any,
+    law: Union[JkrLimit, Dugdale] = JkrLimit(),
+    body: Union[HalfSpace, Layer] = HalfSpace(),
+    gamma_reference: Optional[float] = None,
     periodic: bool = False,
     radius: Optional[float] = None,
     max_approach: Optional[float] = None,
     unload_step: Optional[float] = None,
     coarse_unload_step: Optional[float] = None,
     refine_pull_off: bool = False,
-    kappa: Optional[float] = None,
-    model: str = "jkr_limit",
-    sigma0: Optional[float] = None,
+    richardson: bool = False,
     snapshots: Union[str, int, Sequence[int]] = "pull_off",
     threads: Optional[int] = None,
     progress: Progress = False,
-    thickness: Optional[float] = None,
-    poisson: Optional[float] = None,
-    interface: Optional[str] = None,
 ) -> Result:
-    """Pulls a rigid body given as a height array off the elastic half-space (JKR-limit
-    adhesion) and returns the :class:`Result` of the run.
+    """Pulls a rigid body given as a height array off an elastic body (the half-space, or a
+    film) and returns the :class:`Result` of the run.
 
     Args:
         heights: 2-D array ``(nx, ny)`` of the body's heights, the gap at zero approach
@@ -287,9 +323,24 @@ def pull_off(
         e_star: effective modulus E* (> 0).
         gamma: work of adhesion (> 0; without adhesion use :func:`contact`), or a 2-D array
             of the heights' shape with one gamma per element (finite, >= 0, mean > 0):
-            patterned adhesion. The mean is then the reference of ``f_jkr``, the ratios and the
-            default path; the summary holds ``gamma_min``, ``gamma_mean``, ``gamma_max`` and
-            ``result.surface["gamma"]`` the array (e.g. ``tack.surface.stripes(...)``).
+            patterned adhesion (e.g. ``tack.surface.stripes(...)``; the summary then holds
+            ``gamma_min``, ``gamma_mean``, ``gamma_max`` and ``result.surface["gamma"]`` the
+            array).
+        law: the adhesion law, :class:`tack.JkrLimit` (default: the zero-range Pohrt-Popov
+            criterion, ``kappa`` its constant) or :class:`tack.Dugdale` (a cohesive zone of
+            tension ``sigma0``; the path approaches from out of range, so the curve has both
+            branches, and the summary holds ``maugis_lambda`` and ``f_maugis`` (spheres),
+            ``dissipated_energy``, the jumps in and out and the apparent work of adhesion of
+            each branch).
+        body: :class:`tack.HalfSpace` (default) or :class:`tack.Layer` (a film on a rigid
+            base; the closed-form references such as ``f_jkr`` stay the half-space's, and a
+            :class:`tack.ReferenceWarning` says so).
+        gamma_reference: with a gamma array only: the reference work of adhesion of ``f_jkr``,
+            the ratios and the default path (> 0). The rule, the same as a scene's: the
+            reference is the gamma given explicitly as a number (``gamma`` when uniform; a
+            scene's ``material.gamma``, phase a of its pattern); an array alone is referred to
+            its mean. Give ``gamma_reference=0.1`` with ``gamma=tack.surface.stripes(...,
+            gamma=0.1, ...)`` for the numbers of the scene with ``material.gamma = 0.1``.
         periodic: the array is one period of a periodic body (default: free, non-periodic).
             On a periodic grid the approach is measured from the deformed mean plane (see
             :func:`contact`), and steps in full contact (approach >= mean of the heights) are
@@ -305,24 +356,17 @@ def pull_off(
             retraced in steps of ``unload_step`` from the solver state saved at its start. The
             same pull-off as the fine path on the same approaches, in a quarter to two thirds
             of the steps (``docs/theory.md`` section 3.5).
-        kappa: the Pohrt-Popov constant (> 0; default 0.473201, curved crack fronts); the
-            zero-range model only.
-        model: the adhesion law: ``"jkr_limit"`` (default; the zero-range Pohrt-Popov
-            criterion) or ``"dugdale"`` (a cohesive zone of tension ``sigma0`` and range
-            gamma/sigma0, Maugis 1992). The Dugdale path approaches from out of range in
-            retraction steps, so the curve has both branches; the summary then holds
-            ``maugis_lambda`` (spheres), ``dissipated_energy``, the jumps in and out, and the
-            apparent work of adhesion of each branch (``apparent_gamma_approach``,
-            ``apparent_gamma_retraction``: the gamma of the best-fitting JKR sphere).
-        sigma0: the cohesive tension (> 0), required with ``model="dugdale"`` only.
+        richardson: also pull off the array sampled at the centres of the grid of twice the
+            element size (even sides needed) along the same path, and extrapolate
+            ``2F(dx) - F(2dx)`` (first order, the criterion's). ``result.richardson`` holds
+            ``fine``, ``coarse``, ``extrapolated``, ``order``, ``error_estimate``. Exact for a
+            smooth body and for roughness band-limited to ``q1 <= pi/(2 dx)``; with content
+            above it the coarse run samples another body and a
+            :class:`tack.RichardsonWarning` says so. A gamma array is refused.
         snapshots: which steps keep pressure and bonded fields: ``"pull_off"`` (the pull-off
             step and the last contact), ``"all"``, ``"none"``, every k-th step (an int) or a
             list of step indices.
         threads, progress: as for :func:`run`.
-        thickness, poisson, interface: an elastic layer on a rigid base instead of the
-            half-space, as for :func:`contact` (a scene's ``[body] kind = "layer"``; the
-            closed-form references such as ``f_jkr`` stay the half-space's, and the result
-            says so in a warning).
 
     The default path (the paper's rough-sphere runs): with d_s = (R gamma^2/E*^2)^(1/3), one
     load step to ``max_approach = apex + top of the roughness + 3 d_s`` (apex and roughness
@@ -338,17 +382,21 @@ def pull_off(
     Raises:
         TypeError: an argument of the wrong type (a str, bytes, None, bool or complex number
             where a number is expected; an array of strings, objects, booleans or complex
-            numbers); the message names the argument.
+            numbers; a ``law`` or ``body`` that is not one of tack's objects); the message
+            names the argument.
         TackError: a bad value (a ``ValueError``; the message names the argument, the value and
             the allowed range), or a path that cannot work (e.g. an array too small for the
             contact at ``max_approach``).
         KeyboardInterrupt: Ctrl-C during the run.
 
     Warns:
-        RuntimeWarning: contact reached the edge of a free array, or steps did not converge.
+        TackWarning: one per sentence of ``summary["warnings"]``, in the class of its kind
+            (:class:`UnderResolvedWarning`, :class:`ReferenceWarning`,
+            :class:`EdgeContactWarning`, :class:`ConvergenceWarning`, ...), naming the
+            arguments.
     """
     array = _check.heights(heights)
-    gamma, gamma_map = _gamma(gamma, array.shape)
+    gamma, gamma_map = _gamma(gamma, array.shape, gamma_reference)
     args = dict(
         dx=_check.positive("dx", dx),
         e_star=_check.positive("e_star", e_star),
@@ -362,109 +410,54 @@ def pull_off(
             _check.positive, "coarse_unload_step", coarse_unload_step
         ),
         refine_pull_off=_check.flag("refine_pull_off", refine_pull_off),
-        kappa=_check.optional(_check.positive, "kappa", kappa),
-        model=_model(model),
-        sigma0=_check.optional(_check.positive, "sigma0", sigma0),
+        richardson=_check.flag("richardson", richardson),
         snapshots=_snapshots(snapshots),
         threads=_threads(threads),
-        thickness=_check.optional(_check.positive, "thickness", thickness),
-        poisson=_check.optional(_check.real, "poisson", poisson),
-        interface=_interface(interface),
+        **law_arguments(law),
+        **body_arguments(body),
     )
     callback = _progress(progress)
     try:
         result = _tack.pull_off(array, **args, progress=callback)
     finally:
         _closing(callback)
-    summary = result.summary
-    edge = summary.get("edge_contact_steps", 0.0)
-    if edge and not math.isnan(edge):
-        warnings.warn(
-            f"tack.pull_off: contact reached the edge of the {array.shape[0]} x "
-            f"{array.shape[1]} array in {int(edge)} steps; the domain cuts the contact off "
-            "(use a larger array or a smaller max_approach)",
-            RuntimeWarning,
-            stacklevel=2,
-        )
-    bad = summary.get("non_converged_steps", 0.0)
-    if bad and not math.isnan(bad):
-        warnings.warn(
-            f"tack.pull_off: {int(bad)} steps did not converge (solver caps)",
-            RuntimeWarning,
-            stacklevel=2,
-        )
+    _warnings.issue(result.summary["warnings"], "pull_off")
     return result
 
 
-@overload
 def contact(
     heights: Any,
     *,
     dx: float,
     e_star: float,
     approach: float,
-    periodic: bool = ...,
-    tolerance: Optional[float] = ...,
-    max_iterations: Optional[int] = ...,
-    threads: Optional[int] = ...,
-    thickness: Optional[float] = ...,
-    poisson: Optional[float] = ...,
-    interface: Optional[str] = ...,
-) -> ContactResult: ...
-@overload
-def contact(
-    heights: Any,
-    *,
-    dx: float,
-    e_star: float,
-    approach: Sequence[float],
-    periodic: bool = ...,
-    tolerance: Optional[float] = ...,
-    max_iterations: Optional[int] = ...,
-    threads: Optional[int] = ...,
-    thickness: Optional[float] = ...,
-    poisson: Optional[float] = ...,
-    interface: Optional[str] = ...,
-) -> "list[ContactResult]": ...
-def contact(
-    heights: Any,
-    *,
-    dx: float,
-    e_star: float,
-    approach: Union[float, Sequence[float]],
+    body: Union[HalfSpace, Layer] = HalfSpace(),
     periodic: bool = False,
     tolerance: Optional[float] = None,
     max_iterations: Optional[int] = None,
     threads: Optional[int] = None,
-    thickness: Optional[float] = None,
-    poisson: Optional[float] = None,
-    interface: Optional[str] = None,
-) -> Union[ContactResult, "list[ContactResult]"]:
-    """Frictionless non-adhesive contact of a height array pressed by ``approach``.
+) -> ContactResult:
+    """Frictionless non-adhesive contact of a height array pressed by ``approach``; one
+    :class:`ContactResult` (for several approaches in turn, :func:`contact_sweep`).
 
     Args:
         heights: 2-D array ``(nx, ny)`` of the rigid body's heights (the gap at zero approach).
         dx: element size (> 0).
-        e_star: effective modulus E* (> 0).
-        approach: the prescribed approach d (positive = pressing; see *Periodic grids*), or
-            a sequence of them (solved in turn, each warm-started from the previous; Ctrl-C is
-            checked between them).
+        e_star: effective modulus E* (> 0; of a :class:`tack.Layer`, its E/(1 - nu^2)).
+        approach: the prescribed approach d, a number (positive = pressing; see *Periodic
+            grids*).
+        body: :class:`tack.HalfSpace` (default) or :class:`tack.Layer` (an elastic film on a
+            rigid base, docs/theory.md section 2.5).
         periodic: the array is one period of a periodic body (default: free, non-periodic).
         tolerance, max_iterations: the conjugate-gradient stopping rule (``0 < tolerance <
             1``, default 1e-10; ``max_iterations >= 1``, default 5000).
         threads: threads of the solve, 1..``MAX_THREADS`` (default: every core); the result is
             the same bits on any count.
-        thickness: make the body an elastic layer of this thickness (> 0) on a rigid base
-            instead of a half-space (``e_star`` is then the layer's E/(1 - nu^2); a scene's
-            ``[body] kind = "layer"``, docs/theory.md §2.5).
-        poisson: the layer's Poisson ratio nu, in (-1, 0.5]; required with ``thickness``.
-        interface: how the layer meets the base: ``"bonded"`` (welded, the default) or
-            ``"frictionless"``; with ``thickness`` only.
 
     Returns:
         A :class:`ContactResult` (``pressure`` and ``gap`` arrays of the heights' shape,
-        ``force``, ``mean_pressure``, ``area``, ``converged``, ``iterations``,
-        ``full_contact``, ...), or a list of them when ``approach`` is a sequence.
+        ``force``, ``mean_pressure``, ``area``, ``n_contact`` (an int), ``converged``,
+        ``iterations``, ``full_contact``, ...).
 
     Periodic grids: the periodic half-space has no rigid-body mode, so the approach is measured
     from the mean plane of the *deformed* surface, not from the first touch: the mean gap is
@@ -481,17 +474,59 @@ def contact(
 
     Raises:
         TypeError: an argument of the wrong type (a str, bytes, None, bool or complex number
-            where a number is expected; an array of strings, objects, booleans or complex
+            where a number is expected, a sequence of approaches (use
+            :func:`contact_sweep`); an array of strings, objects, booleans or complex
             numbers); the message names the argument.
         TackError: a bad value (a ``ValueError``; the message names the argument, the value and
             the allowed range).
 
     Warns:
-        FullContactWarning: a periodic contact is full at some of the approaches (the message
-            gives the range of approaches of partial contact).
+        FullContactWarning: a periodic contact is full (the message gives the range of
+            approaches of partial contact).
     """
+    if _check._ndim(approach) != 0 or isinstance(approach, (str, bytes)):
+        hint = " (for several approaches in turn use tack.contact_sweep(..., approaches=...))"
+        if isinstance(approach, (str, bytes)) or approach is None:
+            hint = ""
+        raise TypeError(
+            f"approach: expected a real number, got {_check.describe(approach)}{hint}"
+        )
+    d = _check.finite_as("approach", approach, "a real number")
+    return _contact(heights, [d], True, dx, e_star, body, periodic, tolerance,
+                    max_iterations, threads)[0]
+
+
+def contact_sweep(
+    heights: Any,
+    *,
+    dx: float,
+    e_star: float,
+    approaches: Sequence[float],
+    body: Union[HalfSpace, Layer] = HalfSpace(),
+    periodic: bool = False,
+    tolerance: Optional[float] = None,
+    max_iterations: Optional[int] = None,
+    threads: Optional[int] = None,
+) -> "list[ContactResult]":
+    """:func:`contact` at each of ``approaches`` (a non-empty 1-D sequence of finite numbers)
+    in turn, each solve warm-started from the previous; Ctrl-C is checked between them.
+    Returns a list of :class:`ContactResult`, one per approach, always a list (also for one
+    approach). The other arguments, the errors and :class:`FullContactWarning` are
+    :func:`contact`'s."""
+    if _check._ndim(approaches) == 0 and not isinstance(approaches, np.ndarray):
+        raise TypeError(
+            "approaches: expected a 1-D sequence of real numbers, got "
+            f"{_check.describe(approaches)} (for one approach use tack.contact(..., "
+            "approach=...))"
+        )
+    values, _ = _check.approaches(approaches, "approaches")
+    return _contact(heights, values, False, dx, e_star, body, periodic, tolerance,
+                    max_iterations, threads)
+
+
+def _contact(heights, approaches, single, dx, e_star, body, periodic, tolerance,
+             max_iterations, threads):  # type: ignore[no-untyped-def]
     array = _check.heights(heights)
-    approaches, scalar = _check.approaches(approach)
     args = dict(
         dx=_check.positive("dx", dx),
         e_star=_check.positive("e_star", e_star),
@@ -499,45 +534,30 @@ def contact(
         tolerance=_check.optional(_check.fraction, "tolerance", tolerance),
         max_iterations=_check.optional(_check.count, "max_iterations", max_iterations),
         threads=_threads(threads),
-        thickness=_check.optional(_check.positive, "thickness", thickness),
-        poisson=_check.optional(_check.real, "poisson", poisson),
-        interface=_interface(interface),
+        **body_arguments(body),
     )
     states = _tack.contact(array, approaches=approaches, **args)
-    _warn_full_contact(states, array)
-    return states[0] if scalar else states
+    _warn_full_contact(states, array, single)
+    return states
 
 
-def _interface(interface: Any) -> Optional[str]:
-    """``interface`` of :func:`contact`: None, ``"bonded"`` or ``"frictionless"``."""
-    if interface is None:
-        return None
-    if not isinstance(interface, str):
-        raise TypeError(f"interface: expected a str, got {_check.describe(interface)}")
-    if interface not in ("bonded", "frictionless"):
-        raise _check.invalid("interface", interface, '"bonded" or "frictionless"')
-    return interface
-
-
-class FullContactWarning(UserWarning):
-    """:func:`contact` reached full contact on a periodic grid: every gap is closed, and the
-    result is the state in which contact has just become full (the least mean pressure that
-    keeps every element compressive), whatever the approach beyond ``mean(heights)``."""
-
-
-def _warn_full_contact(states: "list[ContactResult]", heights: np.ndarray) -> None:
+def _warn_full_contact(
+    states: "list[ContactResult]", heights: np.ndarray, single: bool
+) -> None:
     full = [k for k, s in enumerate(states) if s.full_contact]
     if not full:
         return
-    if len(states) == 1:
+    if single:
         where = f"approach = {states[0].approach:.6g}"
+        function = "contact"
     else:
-        listed = ", ".join(f"approach[{k}] = {states[k].approach:.6g}" for k in full[:3])
+        listed = ", ".join(f"approaches[{k}] = {states[k].approach:.6g}" for k in full[:3])
         more = ", ..." if len(full) > 3 else ""
         where = f"{len(full)} of {len(states)} approaches ({listed}{more})"
+        function = "contact_sweep"
     first = states[full[0]]
     warnings.warn(
-        f"tack.contact: full contact at {where}. On a periodic grid the approach is measured "
+        f"tack.{function}: full contact at {where}. On a periodic grid the approach is measured "
         "from the deformed mean plane: contact is partial only for min(heights) = "
         f"{float(heights.min()):.6g} < approach < mean(heights) = {float(heights.mean()):.6g} "
         "(negative approaches for zero-mean heights such as tack.surface.random), and full "
@@ -547,5 +567,5 @@ def _warn_full_contact(states: "list[ContactResult]", heights: np.ndarray) -> No
         f"{first.mean_pressure:.6g}), the same for every approach >= mean(heights), computed "
         "in closed form (iterations = 0). Check result.full_contact.",
         FullContactWarning,
-        stacklevel=3,
+        stacklevel=4,
     )

@@ -254,31 +254,31 @@ def heights(value: Any, name: str = "heights") -> np.ndarray:
     return out
 
 
-def approaches(value: Any) -> Tuple[List[float], bool]:
-    """``approach`` of :func:`tack.contact`: a number, or a non-empty 1-D sequence of them;
-    returns the list and whether a single number was given."""
+def approaches(value: Any, name: str = "approach") -> Tuple[List[float], bool]:
+    """The approaches of :func:`tack.contact_sweep` (``name``): a number, or a non-empty 1-D
+    sequence of them; returns the list and whether a single number was given."""
     what = "a real number or a 1-D sequence of them"
     if _ndim(value) == 0 and not isinstance(value, np.ndarray):
-        return [finite_as("approach", value, what)], True
+        return [finite_as(name, value, what)], True
     if isinstance(value, Mapping) or not isinstance(value, Iterable):
-        raise TypeError(f"approach: expected {what}, got {describe(value)}")
+        raise TypeError(f"{name}: expected {what}, got {describe(value)}")
     if not isinstance(value, (Sequence, np.ndarray)):
         value = list(value)
-    array = _as_array("approach", value, what)
+    array = _as_array(name, value, what)
     if array.ndim == 0:
-        return [finite("approach", float(array))], True
+        return [finite(name, float(array))], True
     if array.ndim != 1:
         raise TackError(
-            f"approach: expected a number or a 1-D sequence of numbers, got an array of shape "
+            f"{name}: expected a number or a 1-D sequence of numbers, got an array of shape "
             f"{array.shape}"
         )
     if array.size == 0:
-        raise TackError("approach: the sequence is empty; give at least one approach")
+        raise TackError(f"{name}: the sequence is empty; give at least one approach")
     out = array.astype(np.float64)
     bad = ~np.isfinite(out)
     if bad.any():
         k = int(np.argmax(bad))
-        raise invalid(f"approach[{k}]", float(out[k]), "a finite number")
+        raise invalid(f"{name}[{k}]", float(out[k]), "a finite number")
     return [float(d) for d in out], False
 
 
@@ -333,6 +333,8 @@ _DOMAINS = {
     "d": (lambda x: np.isfinite(x), "a finite number"),
     "c": (lambda x: np.isfinite(x) & (x > 0), "a finite number > 0"),
     "exponent": (lambda x: (x >= 1) & (x <= 16), "a number in [1, 16]"),
+    "sigma0": (lambda x: np.isfinite(x) & (x > 0), "a finite number > 0"),
+    "lam": (lambda x: np.isfinite(x) & (x > 0), "a finite number > 0"),
 }
 
 

@@ -89,7 +89,9 @@ def random(
         gamma_ = _check.positive("gamma", gamma)
         if not q1_ > q0_:
             raise _check.invalid("q1", q1_, f"> q0 = {_check.num(q0_)}")
-        rms_ = analytics.rms_height_from_alpha_star(e_star_, gamma_, alpha, hurst_, q0_, q1_)
+        rms_ = analytics.rms_height_from_alpha_star(
+            e_star=e_star_, gamma=gamma_, alpha_star=alpha, hurst=hurst_, q0=q0_, q1=q1_
+        )
     else:
         if e_star is not None or gamma is not None:
             raise _tack.TackError(

@@ -1,0 +1,178 @@
+"""The adhesion laws and elastic bodies that :func:`tack.pull_off` and :func:`tack.contact`
+take as ``law=`` and ``body=``: :class:`JkrLimit`, :class:`Dugdale`, :class:`HalfSpace`,
+:class:`Layer`.
+
+Each object checks its arguments when it is made (``TypeError`` naming the argument and the
+type expected, :class:`tack.TackError` naming the argument, the value and the allowed range),
+is immutable, compares by value and has a repr that makes it again. They stand for a scene's
+``[adhesion]`` and ``[body]`` tables (``docs/scenes.md``).
+
+A material model other than the linear-elastic E* (a viscoelastic one, say) would be one more
+object of this family, passed as ``material=`` beside ``e_star`` (``docs/python.md``, "Design
+note").
+"""
+
+from __future__ import annotations
+
+from typing import Any, Optional, Tuple
+
+from . import _check
+
+__all__ = ["Dugdale", "HalfSpace", "JkrLimit", "Layer"]
+
+
+class _Value:
+    """Immutable, compared by value; ``_fields`` names the attributes in repr order."""
+
+    _fields: Tuple[str, ...] = ()
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        raise AttributeError(f"{type(self).__name__} is immutable; make a new one")
+
+    def _set(self, name: str, value: Any) -> None:
+        object.__setattr__(self, name, value)
+
+    def _key(self) -> Tuple[Any, ...]:
+        return tuple(getattr(self, f) for f in self._fields)
+
+    def __eq__(self, other: Any) -> bool:
+        return type(other) is type(self) and other._key() == self._key()
+
+    def __hash__(self) -> int:
+        return hash((type(self).__name__,) + self._key())
+
+    def __repr__(self) -> str:
+        shown = ", ".join(f"{f}={getattr(self, f)!r}" for f in self._fields)
+        return f"tack.{type(self).__name__}({shown})"
+
+
+class JkrLimit(_Value):
+    """The zero-range adhesion law (the default): an element detaches when its tension exceeds
+    the Pohrt-Popov stress sigma_c = sqrt(E* gamma / (kappa dx)) (a scene's ``[adhesion] model
+    = "jkr_limit"``).
+
+    Args:
+        kappa: the Pohrt-Popov constant (finite, > 0); None: tack's 0.473201 (curved crack
+            fronts).
+    """
+
+    _fields = ("kappa",)
+    model = "jkr_limit"
+
+    def __init__(self, kappa: Optional[float] = None) -> None:
+        self._set("kappa", _check.optional(_check.positive, "kappa", kappa))
+
+    def _arguments(self) -> dict:
+        return {"model": self.model, "kappa": self.kappa, "sigma0": None}
+
+
+class Dugdale(_Value):
+    """A Dugdale cohesive zone (Maugis 1992): a constant tension ``sigma0`` wherever the gap is
+    below the range h0 = gamma/sigma0 (a scene's ``[adhesion] model = "dugdale"``). The path
+    approaches from out of range, so the curve has both branches, and the summary holds the
+    Maugis parameter, F_Maugis, the dissipated energy and the jumps.
+
+    Args:
+        sigma0: the cohesive tension (finite, > 0).
+    """
+
+    _fields = ("sigma0",)
+    model = "dugdale"
+
+    def __init__(self, sigma0: float) -> None:
+        self._set("sigma0", _check.positive("sigma0", sigma0))
+
+    @classmethod
+    def from_lambda(
+        cls, lam: float, *, radius: float, e_star: float, gamma: float
+    ) -> "Dugdale":
+        """The law whose Maugis parameter is ``lam`` for a sphere of ``radius`` (all finite, >
+        0): sigma0 = lam / (2 (R/(pi gamma K^2))^(1/3)), K = 4E*/3
+        (:func:`tack.analytics.maugis_sigma0`)."""
+        from . import analytics
+
+        return cls(analytics.maugis_sigma0(lam=lam, radius=radius, e_star=e_star, gamma=gamma))
+
+    def maugis_lambda(self, *, radius: float, e_star: float, gamma: float) -> float:
+        """Maugis' parameter of this law for a sphere of ``radius``
+        (:func:`tack.analytics.maugis_lambda`)."""
+        from . import analytics
+
+        return analytics.maugis_lambda(
+            e_star=e_star, gamma=gamma, radius=radius, sigma0=self.sigma0
+        )
+
+    def _arguments(self) -> dict:
+        return {"model": self.model, "kappa": None, "sigma0": self.sigma0}
+
+
+class HalfSpace(_Value):
+    """The elastic half-space of effective modulus ``e_star`` (the default body; a scene's
+    ``[body] kind = "half_space"``)."""
+
+    _fields = ()
+
+    def _arguments(self) -> dict:
+        return {"thickness": None, "poisson": None, "interface": None}
+
+
+class Layer(_Value):
+    """An elastic film of ``thickness`` on a rigid base in place of the half-space (a scene's
+    ``[body] kind = "layer"``, docs/theory.md section 2.5); ``e_star`` is then the film's
+    E/(1 - nu^2). The closed-form references (F_JKR, ...) stay the half-space's, and results say
+    so in a :class:`tack.ReferenceWarning`.
+
+    Args:
+        thickness: the film's thickness (finite, > 0).
+        poisson: its Poisson ratio nu, in (-1, 0.5].
+        interface: ``"bonded"`` (welded to the base, the default) or ``"frictionless"``.
+    """
+
+    _fields = ("thickness", "poisson", "interface")
+
+    def __init__(
+        self, *, thickness: float, poisson: float, interface: str = "bonded"
+    ) -> None:
+        self._set("thickness", _check.positive("thickness", thickness))
+        nu = _check.real("poisson", poisson)
+        if not (-1.0 < nu <= 0.5):
+            raise _check.invalid("poisson", nu, "a number in (-1, 0.5]")
+        self._set("poisson", nu)
+        if not isinstance(interface, str):
+            raise TypeError(f"interface: expected a str, got {_check.describe(interface)}")
+        if interface not in ("bonded", "frictionless"):
+            raise _check.invalid("interface", repr(interface), '"bonded" or "frictionless"')
+        self._set("interface", interface)
+
+    def _arguments(self) -> dict:
+        return {
+            "thickness": self.thickness,
+            "poisson": self.poisson,
+            "interface": self.interface,
+        }
+
+
+def law_arguments(law: Any) -> dict:
+    """``law=`` of :func:`tack.pull_off`: a :class:`JkrLimit` or :class:`Dugdale`."""
+    if law is None:
+        law = JkrLimit()
+    if not isinstance(law, (JkrLimit, Dugdale)):
+        raise TypeError(
+            "law: expected tack.JkrLimit(...) or tack.Dugdale(sigma0=...), got "
+            f"{_check.describe(law)}"
+        )
+    return law._arguments()
+
+
+def body_arguments(body: Any) -> dict:
+    """``body=`` of :func:`tack.pull_off` and :func:`tack.contact`: a :class:`HalfSpace` or
+    :class:`Layer`."""
+    if body is None:
+        body = HalfSpace()
+    if not isinstance(body, (HalfSpace, Layer)):
+        raise TypeError(
+            "body: expected tack.HalfSpace() or tack.Layer(thickness=..., poisson=...), got "
+            f"{_check.describe(body)}"
+        )
+    return body._arguments()
+
