@@ -163,11 +163,12 @@ pub fn execute(
         let extra = &mut result.summary.extra;
         extra.insert("pull_off_force_coarse".into(), coarse_f);
         extra.insert("pull_off_force_richardson".into(), extrapolated);
-        // The pull-off contact radius (a sphere's a_c, a punch's a, …) sets the criterion's
-        // error floor.
+        // The pull-off contact radius (a sphere's a_c, a punch's a, …) sets the zero-range
+        // criterion's error floor; a finite-range law has none of its own.
         let dx_over_a_c = problem
             .references
             .pull_off_radius
+            .filter(|_| matches!(problem.law, tack_solver::AdhesionLaw::JkrLimit { .. }))
             .map(|a| problem.grid.dx() / a);
         extra.insert(
             "pull_off_error_estimate".into(),

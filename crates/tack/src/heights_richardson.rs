@@ -197,17 +197,21 @@ pub fn pull_off_richardson(
         richardson: false,
         ..options.clone()
     };
-    let protocol = &plan.scene.file.protocol;
+    // The fine problem's path (the builder's default rule, or as given), taken by the coarse
+    // run too: the coarse grid would see the roughness's top at other centres.
+    let fine = crate::heights::problem(&plan.scene, &plan.body(heights))?;
+    let path = &fine.path;
     let coarse_spec = PullOffSpec {
         dx: 2.0 * spec.dx,
-        radius: plan.radius,
-        max_approach: protocol.max_approach,
-        unload_step: protocol.unload_step,
-        coarse_unload_step: protocol.coarse_unload_step,
+        radius: fine.path_rule.map(|r| r.radius).or(spec.radius),
+        max_approach: Some(path.max_approach),
+        unload_step: Some(path.unload_step),
+        coarse_unload_step: path.coarse_unload_step,
         ..spec.clone()
     };
-    // Both scenes are checked before the (longer) fine solve.
-    pull_off_scene(&coarse, &coarse_spec)?;
+    // Both problems are checked before the (longer) fine solve.
+    let coarse_plan = pull_off_scene(&coarse, &coarse_spec)?;
+    crate::heights::problem(&coarse_plan.scene, &coarse_plan.body(&coarse))?;
     let mut outcome = pull_off(heights, spec, &single, observer)?;
     let started = std::time::Instant::now();
     let coarse_f = pull_off(&coarse, &coarse_spec, &single, observer)?.pull_off_force();
