@@ -1061,6 +1061,7 @@ fn finish_default_path(
     );
     if body.grid.boundary() == Boundary::Free {
         crate::pull_off_path::check_contact_fits(
+            body.surface.heights(),
             body.grid,
             radius,
             &fit,

@@ -218,10 +218,13 @@ pub const SPHERE_FIT_MARGIN: f64 = 1.3;
 
 /// On a free grid the loaded contact must lie inside the array around the paraboloid's vertex:
 /// the reach of [`crate::shape::sphere_contact_reach`] (Hertz with the 30% margin of the scene
-/// check; under a law of finite `range`, loaded in steps, the JKR contact radius; under the
-/// zero-range law, loaded in one step, the penetrated disc √(2R·d)), measured from the vertex
-/// to the array's edge.
+/// check; under a law of finite `range`, loaded in steps, the JKR contact radius), measured
+/// from the vertex to the array's edge; and under the zero-range law, loaded in one step, the
+/// elements that step bonds — every element the body penetrates, `h < max_approach`, exactly,
+/// whatever the body's shape — must keep off the array's outermost ring.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn check_contact_fits(
+    heights: &Array2<f64>,
     grid: &Grid,
     radius: f64,
     fit: &Paraboloid,
@@ -238,8 +241,11 @@ pub(crate) fn check_contact_fits(
         dx,
         1.0,
         material,
-        (range.is_none(), range.is_some()),
+        (false, range.is_some()),
     );
+    if range.is_none() {
+        check_one_step_load(heights, grid, max_approach)?;
+    }
     // A vertex within round-off of an element centre prints as that centre.
     let snap = |v: f64| if v.abs() < 1e-9 * dx { 0.0 } else { v };
     let (x0, y0) = (snap(fit.vertex.0), snap(fit.vertex.1));
@@ -270,6 +276,37 @@ pub(crate) fn check_contact_fits(
         )));
     }
     Ok(())
+}
+
+/// The one-step load to `max_approach` bonds every element with `h < max_approach`: none of
+/// them may lie on the array's outermost ring (the run would report contact at the edge).
+fn check_one_step_load(
+    heights: &Array2<f64>,
+    grid: &Grid,
+    max_approach: f64,
+) -> Result<(), SceneError> {
+    let (nx, ny) = heights.dim();
+    let on_edge = heights
+        .indexed_iter()
+        .filter(|&((i, j), &h)| {
+            (i == 0 || j == 0 || i + 1 == nx || j + 1 == ny) && h < max_approach
+        })
+        .count();
+    if on_edge == 0 {
+        return Ok(());
+    }
+    Err(SceneError::Inconsistent(format!(
+        "heights: the {nx} × {ny} array at {} = {} is too small for the pull-off: the one-step \
+         load to {} = {} bonds every element the body penetrates (height < {}), and {on_edge} \
+         of them lie on the array's edge, where the contact would be cut; use a larger array \
+         or a smaller {}",
+        tack_fields::GRID_DX,
+        tack_fields::num(grid.dx()),
+        tack_fields::PROTOCOL_MAX_APPROACH,
+        tack_fields::num(crate::shape::round4(max_approach)),
+        tack_fields::num(crate::shape::round4(max_approach)),
+        tack_fields::PROTOCOL_MAX_APPROACH,
+    )))
 }
 
 /// How the default path loads, as `(start, load_step)`: under the zero-range law one step from
