@@ -75,6 +75,7 @@ fn body_vs_floor(n: usize, boundary: Boundary, body: Body) -> Result<(f64, f64)>
 
 /// `cargo xtask bench-kernels`: operator application vs the bare FFT pair of its padded size.
 pub fn kernels() -> Result<()> {
+    construction()?;
     println!("operator application vs bare forward+inverse r2c FFT pair of the same padded size");
     println!("(layer: a bonded incompressible film of thickness 4Δx on a rigid base)");
     println!(
@@ -99,6 +100,52 @@ pub fn kernels() -> Result<()> {
             }
         }
     }
+    Ok(())
+}
+
+/// Sides of the sub-grid operators of [`construction`]: every pair is built, as a rough-sphere
+/// run's sub-grid cache builds operators of many rectangular sizes.
+const SUBGRID_SIDES: [usize; 9] = [16, 24, 32, 48, 64, 96, 128, 192, 256];
+
+/// Times the construction of the free operators of every pair of [`SUBGRID_SIDES`] (81
+/// operators, each with its two FFT pairs), first in this process (the FFT plans of every
+/// length made once, docs of `tack_kernels::Fft2`), then again with every plan already made.
+fn construction() -> Result<()> {
+    let build_all = || -> Result<f64> {
+        let t = Instant::now();
+        for &nx in &SUBGRID_SIDES {
+            for &ny in &SUBGRID_SIDES {
+                let grid = Grid::new(nx, ny, 1.0, Boundary::Free)?;
+                std::hint::black_box(operator_for(grid, 1.0)?);
+            }
+        }
+        Ok(t.elapsed().as_secs_f64())
+    };
+    // The FFT pairs alone, as the free operator plans them (padded and preconditioner sizes).
+    let plan_all = || {
+        let t = Instant::now();
+        for &nx in &SUBGRID_SIDES {
+            for &ny in &SUBGRID_SIDES {
+                let (px, py) = (tack_kernels::padded_size(nx), tack_kernels::padded_size(ny));
+                std::hint::black_box(tack_kernels::Fft2::new(px, py));
+                let (fx, fy) = (tack_kernels::fast_size(nx), tack_kernels::fast_size(ny));
+                std::hint::black_box(tack_kernels::Fft2::new(fx, fy));
+            }
+        }
+        t.elapsed().as_secs_f64()
+    };
+    let first = build_all()?;
+    let again = build_all()?;
+    let plans = plan_all();
+    println!(
+        "operator construction, {} free sub-grid operators ({:?}²): first {:.1} ms, again {:.1} ms \
+         (their FFT pairs alone {:.1} ms)",
+        SUBGRID_SIDES.len() * SUBGRID_SIDES.len(),
+        SUBGRID_SIDES,
+        first * 1e3,
+        again * 1e3,
+        plans * 1e3
+    );
     Ok(())
 }
 
