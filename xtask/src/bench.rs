@@ -75,6 +75,7 @@ fn body_vs_floor(n: usize, boundary: Boundary, body: Body) -> Result<(f64, f64)>
 
 /// `cargo xtask bench-kernels`: operator application vs the bare FFT pair of its padded size.
 pub fn kernels() -> Result<()> {
+    construction()?;
     println!("operator application vs bare forward+inverse r2c FFT pair of the same padded size");
     println!("(layer: a bonded incompressible film of thickness 4Δx on a rigid base)");
     println!(
@@ -99,6 +100,52 @@ pub fn kernels() -> Result<()> {
             }
         }
     }
+    Ok(())
+}
+
+/// Sides of the sub-grid operators of [`construction`]: every pair is built, as a rough-sphere
+/// run's sub-grid cache builds operators of many rectangular sizes.
+const SUBGRID_SIDES: [usize; 9] = [16, 24, 32, 48, 64, 96, 128, 192, 256];
+
+/// Times the construction of the free operators of every pair of [`SUBGRID_SIDES`] (81
+/// operators, each with its two FFT pairs), first in this process (the FFT plans of every
+/// length made once, docs of `tack_kernels::Fft2`), then again with every plan already made.
+fn construction() -> Result<()> {
+    let build_all = || -> Result<f64> {
+        let t = Instant::now();
+        for &nx in &SUBGRID_SIDES {
+            for &ny in &SUBGRID_SIDES {
+                let grid = Grid::new(nx, ny, 1.0, Boundary::Free)?;
+                std::hint::black_box(operator_for(grid, 1.0)?);
+            }
+        }
+        Ok(t.elapsed().as_secs_f64())
+    };
+    // The FFT pairs alone, as the free operator plans them (padded and preconditioner sizes).
+    let plan_all = || {
+        let t = Instant::now();
+        for &nx in &SUBGRID_SIDES {
+            for &ny in &SUBGRID_SIDES {
+                let (px, py) = (tack_kernels::padded_size(nx), tack_kernels::padded_size(ny));
+                std::hint::black_box(tack_kernels::Fft2::new(px, py));
+                let (fx, fy) = (tack_kernels::fast_size(nx), tack_kernels::fast_size(ny));
+                std::hint::black_box(tack_kernels::Fft2::new(fx, fy));
+            }
+        }
+        t.elapsed().as_secs_f64()
+    };
+    let first = build_all()?;
+    let again = build_all()?;
+    let plans = plan_all();
+    println!(
+        "operator construction, {} free sub-grid operators ({:?}²): first {:.1} ms, again {:.1} ms \
+         (their FFT pairs alone {:.1} ms)",
+        SUBGRID_SIDES.len() * SUBGRID_SIDES.len(),
+        SUBGRID_SIDES,
+        first * 1e3,
+        again * 1e3,
+        plans * 1e3
+    );
     Ok(())
 }
 
@@ -278,6 +325,40 @@ pub fn all(args: &[String]) -> Result<()> {
     let huge = args.iter().any(|a| a == "--4096");
     let mut rows = Vec::new();
 
+    operator_table(full, &mut rows)?;
+    cg_iteration_table(&mut rows)?;
+    println!("3. smooth-sphere approach-retract path: speed against error");
+    let ratios: &[f64] = if full {
+        &[5.0, 10.0, 20.0, 40.0, 80.0]
+    } else {
+        &[5.0, 10.0, 20.0, 40.0]
+    };
+    rows.extend(jkr_table(ratios));
+
+    rough_sphere_tables(full, huge, &mut rows)?;
+    sweep_point_table(&mut rows)?;
+
+    println!("6. periodic rough non-adhesive contact (H = 0.8, ~7% contact), cold start");
+    periodic_scaling(&[256, 512, 1024, 2048, 4096], 1024, &mut rows)?;
+
+    println!("7. one run on 1 and 2 threads (every step compared bit for bit)");
+    thread_speed_up(&[512, 1024], &[1024, 2048], &mut rows)?;
+
+    println!("8. free Hertz, 1024², both methods");
+    rows.extend(hertz_only(1024)?);
+
+    println!("9. the Dugdale law (bench-dugdale's tables)");
+    dugdale_tables(&[], &mut rows)?;
+
+    std::fs::create_dir_all("results")?;
+    tack_io::write_text_atomically("results/bench.json".as_ref(), &json(&rows))?;
+    println!("wrote results/bench.json");
+    Ok(())
+}
+
+/// Table 1 of `cargo xtask bench`: one operator application against the bare FFT round trip of
+/// the same padded size, half-space and layer, free and periodic (1024² with `full`).
+fn operator_table(full: bool, rows: &mut Vec<Row>) -> Result<()> {
     println!("1. operator application vs bare FFT round trip of the same padded size");
     for n in if full {
         vec![256usize, 512, 1024]
@@ -313,55 +394,56 @@ pub fn all(args: &[String]) -> Result<()> {
             });
         }
     }
+    Ok(())
+}
 
+/// Table 2 of `cargo xtask bench`: one CG iteration on a bonded disc (256² free grid, no
+/// sub-grid), plain and preconditioned, against the FFT floor.
+fn cg_iteration_table(rows: &mut Vec<Row>) -> Result<()> {
     println!("2. one CG iteration on a bonded disc (256² free grid, no sub-grid) vs the floor");
-    {
-        use tack_geometry::{Sphere, Surface};
-        use tack_solver::{AdhesiveOptions, AdhesiveSolver, KAPPA};
-        let n = 256;
-        let grid = Grid::square(n, 1.0 / n as f64, Boundary::Free)?;
-        let surface = Surface::from_shape(grid, &Sphere::new(1.0)?);
-        let m = tack_kernels::padded_size(n);
-        let t_fft = median_time(bare_fft_pair(m, m));
-        for pre in [false, true] {
-            let options = AdhesiveOptions {
-                preconditioned: pre,
-                bonded_subgrid: false,
-                ..AdhesiveOptions::default()
-            };
-            let op = operator_for(grid, 1.0)?;
-            let mut s = AdhesiveSolver::new(op, &surface, 0.0, KAPPA, options)?;
-            let t = Instant::now();
-            let rec = s.step(0.1)?;
-            let per_it = t.elapsed().as_secs_f64() / rec.cg_iterations.max(1) as f64;
-            let label = if pre { "preconditioned" } else { "plain" };
-            println!(
-                "   {label:<16} {:5} iterations, {:.3} ms per iteration = {:.2} × floor ({:.3} ms)",
-                rec.cg_iterations,
-                per_it * 1e3,
-                per_it / t_fft,
-                t_fft * 1e3
-            );
-            rows.push(Row {
-                table: "cg_iteration",
-                label: label.into(),
-                fields: vec![
-                    ("iterations", rec.cg_iterations as f64),
-                    ("ms_per_iteration", per_it * 1e3),
-                    ("ratio_to_floor", per_it / t_fft),
-                ],
-            });
-        }
+    use tack_geometry::{Sphere, Surface};
+    use tack_solver::{AdhesiveOptions, AdhesiveSolver, KAPPA};
+    let n = 256;
+    let grid = Grid::square(n, 1.0 / n as f64, Boundary::Free)?;
+    let surface = Surface::from_shape(grid, &Sphere::new(1.0)?);
+    let m = tack_kernels::padded_size(n);
+    let t_fft = median_time(bare_fft_pair(m, m));
+    for pre in [false, true] {
+        let options = AdhesiveOptions {
+            preconditioned: pre,
+            bonded_subgrid: false,
+            ..AdhesiveOptions::default()
+        };
+        let op = operator_for(grid, 1.0)?;
+        let mut s = AdhesiveSolver::new(op, &surface, 0.0, KAPPA, options)?;
+        let t = Instant::now();
+        let rec = s.step(0.1)?;
+        let per_it = t.elapsed().as_secs_f64() / rec.cg_iterations.max(1) as f64;
+        let label = if pre { "preconditioned" } else { "plain" };
+        println!(
+            "   {label:<16} {:5} iterations, {:.3} ms per iteration = {:.2} × floor ({:.3} ms)",
+            rec.cg_iterations,
+            per_it * 1e3,
+            per_it / t_fft,
+            t_fft * 1e3
+        );
+        rows.push(Row {
+            table: "cg_iteration",
+            label: label.into(),
+            fields: vec![
+                ("iterations", rec.cg_iterations as f64),
+                ("ms_per_iteration", per_it * 1e3),
+                ("ratio_to_floor", per_it / t_fft),
+            ],
+        });
     }
+    Ok(())
+}
 
-    println!("3. smooth-sphere approach-retract path: speed against error");
-    let ratios: &[f64] = if full {
-        &[5.0, 10.0, 20.0, 40.0, 80.0]
-    } else {
-        &[5.0, 10.0, 20.0, 40.0]
-    };
-    rows.extend(jkr_table(ratios));
-
+/// Table 4 of `cargo xtask bench`: the rough-sphere pull-off against n (4096² with `huge`),
+/// against the exact rounds, the refined retraction and the run without local relaxation
+/// (1024² too with `full`).
+fn rough_sphere_tables(full: bool, huge: bool, rows: &mut Vec<Row>) -> Result<()> {
     println!(
         "4. sphere + random roughness (H = 0.5, L = R, a_c ≈ 0.078 R) pull-off: scaling with n"
     );
@@ -371,10 +453,10 @@ pub fn all(args: &[String]) -> Result<()> {
     } else {
         &[128, 256, 512, 1024, 2048]
     };
-    pull_off_scaling(sizes, threads, &mut rows)?;
+    pull_off_scaling(sizes, threads, rows)?;
     println!("   previous version (every detach/attach round solved to 1e-9), one thread:");
     for n in [256, 512] {
-        pull_off_before_after(n, &mut rows)?;
+        pull_off_before_after(n, rows)?;
     }
     println!(
         "   refined retraction ({}: coarse steps all the way, the pull-off's",
@@ -389,7 +471,7 @@ pub fn all(args: &[String]) -> Result<()> {
         .map(|&n| rough_sphere_pull_off(n, threads, false))
         .collect::<Result<Vec<_>>>()?;
     for (&n, default) in compared.iter().zip(&defaults) {
-        refined_vs_fine(n, default, threads, &mut rows)?;
+        refined_vs_fine(n, default, threads, rows)?;
     }
 
     println!(
@@ -398,9 +480,14 @@ pub fn all(args: &[String]) -> Result<()> {
     );
     println!("   before the next solve) against none, the same scene and threads:");
     for (&n, default) in compared.iter().zip(&defaults) {
-        relaxed_vs_plain(n, default, threads, &mut rows)?;
+        relaxed_vs_plain(n, default, threads, rows)?;
     }
+    Ok(())
+}
 
+/// Table 5 of `cargo xtask bench`: a Fig. 7 style sweep point (15 realizations, 128²,
+/// H = 0.5) on 1 and 2 threads.
+fn sweep_point_table(rows: &mut Vec<Row>) -> Result<()> {
     println!("5. a Fig. 7 style sweep point: 15 realizations (128², H = 0.5), 1 vs 2 threads");
     let mut one = 0.0;
     for threads in [1usize, 2] {
@@ -435,22 +522,6 @@ pub fn all(args: &[String]) -> Result<()> {
             ],
         });
     }
-
-    println!("6. periodic rough non-adhesive contact (H = 0.8, ~7% contact), cold start");
-    periodic_scaling(&[256, 512, 1024, 2048, 4096], 1024, &mut rows)?;
-
-    println!("7. one run on 1 and 2 threads (every step compared bit for bit)");
-    thread_speed_up(&[512, 1024], &[1024, 2048], &mut rows)?;
-
-    println!("8. free Hertz, 1024², both methods");
-    rows.extend(hertz_only(1024)?);
-
-    println!("9. the Dugdale law (bench-dugdale's tables)");
-    dugdale_tables(&[], &mut rows)?;
-
-    std::fs::create_dir_all("results")?;
-    tack_io::write_text_atomically("results/bench.json".as_ref(), &json(&rows))?;
-    println!("wrote results/bench.json");
     Ok(())
 }
 

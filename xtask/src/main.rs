@@ -69,7 +69,10 @@ commands:
                           every scene field of tack_fields::FIELDS is documented in
                           docs/scenes.md, no scene field spelled as a string literal outside
                           tack-fields (test code aside), every command here is mentioned in
-                          ARCHITECTURE.md; prints path:line: finding, fails on any";
+                          ARCHITECTURE.md, no import circle, no library function over 150 lines,
+                          no inline test module over 300, every integration-test file named in
+                          ARCHITECTURE.md; prints path:line: finding, fails on any (but those
+                          listed as pending in tidy.rs); also run by `cargo test -p xtask`";
 
 fn main() -> Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();

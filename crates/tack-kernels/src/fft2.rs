@@ -13,8 +13,16 @@
 //! (`rayon::ThreadPool::install` chooses it). Every row and column is transformed by the same
 //! plan with the same arithmetic whatever band it falls in, so the result is bit-identical for
 //! any thread count; there are no reductions.
+//!
+//! Plans: every `Fft2` of the process takes its plans from one pair of planners ([`planned`]),
+//! as RustFFT advises, so operators of the same lengths (a run's free operator and its
+//! preconditioner, the sub-grid operators of many sizes, the runs of a sweep) share plans and
+//! twiddle tables instead of planning again. A planner's choice of algorithm depends on the
+//! length and the CPU's instruction set only, never on which thread asks first or when, and a
+//! shared plan is only read by `process_with_scratch` (the scratch is each lane's own), so
+//! sharing changes no bit.
 
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, OnceLock};
 
 use ndarray::parallel::prelude::*;
 use ndarray::{Array2, ArrayView2, ArrayViewMut2, Axis};
@@ -58,16 +66,64 @@ const BANDS_PER_THREAD: usize = 4;
 /// Grids with fewer elements than this run on one lane (threads would cost more than they save).
 const PARALLEL_MIN: usize = 64 * 64;
 
+/// The planners every [`Fft2`] of the process takes its plans from: real transforms of the
+/// rows, complex ones of the columns. Each caches the plan of every length it has made, so a
+/// length is planned once per process (the cache holds a few twiddle tables per length, a
+/// small fraction of an operator of that length).
+struct Planners {
+    real: RealFftPlanner<f64>,
+    complex: FftPlanner<f64>,
+}
+
+/// The plans of an `mx × my` real grid from the process's [`Planners`]: `(r2c, c2r)` of the
+/// rows (length `my`) and `(forward, inverse)` of the columns (length `mx`).
+#[allow(clippy::type_complexity)]
+fn planned(
+    mx: usize,
+    my: usize,
+) -> (
+    (Arc<dyn RealToComplex<f64>>, Arc<dyn ComplexToReal<f64>>),
+    (Arc<dyn Fft<f64>>, Arc<dyn Fft<f64>>),
+) {
+    static PLANNERS: OnceLock<Mutex<Planners>> = OnceLock::new();
+    let planners = PLANNERS.get_or_init(|| {
+        Mutex::new(Planners {
+            real: RealFftPlanner::new(),
+            complex: FftPlanner::new(),
+        })
+    });
+    // A panic while planning leaves the caches as they were before the failed length: still
+    // valid, so a poisoned lock is taken over.
+    let mut p = planners
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner());
+    let rows = (p.real.plan_fft_forward(my), p.real.plan_fft_inverse(my));
+    let columns = (
+        p.complex.plan_fft_forward(mx),
+        p.complex.plan_fft_inverse(mx),
+    );
+    (rows, columns)
+}
+
 impl Fft2 {
-    /// Plans the transforms of an `mx × my` real grid.
+    /// Plans the transforms of an `mx × my` real grid (plans of lengths planned before in this
+    /// process are reused, module docs).
     pub fn new(mx: usize, my: usize) -> Self {
+        Self::with_plans(mx, my, planned(mx, my))
+    }
+
+    /// An `mx × my` grid's transforms with the given plans (`(r2c, c2r)` of length `my`,
+    /// `(forward, inverse)` of length `mx`).
+    #[allow(clippy::type_complexity)]
+    fn with_plans(
+        mx: usize,
+        my: usize,
+        ((r2c, c2r), (fwd, inv)): (
+            (Arc<dyn RealToComplex<f64>>, Arc<dyn ComplexToReal<f64>>),
+            (Arc<dyn Fft<f64>>, Arc<dyn Fft<f64>>),
+        ),
+    ) -> Self {
         let mh = my / 2 + 1;
-        let mut real_planner = RealFftPlanner::<f64>::new();
-        let r2c = real_planner.plan_fft_forward(my);
-        let c2r = real_planner.plan_fft_inverse(my);
-        let mut planner = FftPlanner::<f64>::new();
-        let fwd = planner.plan_fft_forward(mx);
-        let inv = planner.plan_fft_inverse(mx);
         let zero = Complex::new(0.0, 0.0);
         Self {
             mx,
@@ -360,6 +416,50 @@ mod tests {
             let err = (&out - &input).iter().fold(0.0f64, |m, v| m.max(v.abs()));
             assert!(err < 1e-13, "{mx}x{my}: {err}");
         }
+    }
+
+    /// The convolution of a fixed input and kernel on `f` (an `mx × my` grid, input `nx × ny`).
+    fn convolved(f: &mut Fft2, nx: usize, ny: usize) -> Array2<f64> {
+        let (mx, my) = f.dim();
+        let input = Array2::from_shape_fn((nx, ny), |(i, j)| ((i * 7 + j * 13) % 17) as f64 - 8.3);
+        let spectrum =
+            Array2::from_shape_fn((mx, my / 2 + 1), |(i, j)| 1.0 / (1.0 + (i + 2 * j) as f64));
+        let k = f.prepare_kernel(&spectrum);
+        let mut out = Array2::zeros((nx, ny));
+        f.convolve(input.view(), &k, out.view_mut());
+        out
+    }
+
+    #[test]
+    fn shared_plans_are_reused_and_give_the_bits_of_fresh_planners() {
+        // Other lengths planned first, from several threads at once, in no set order.
+        std::thread::scope(|scope| {
+            for t in 0..3 {
+                scope.spawn(move || {
+                    for m in [48, 90, 100, 126, 150, 180, 250] {
+                        Fft2::new(m + t, 2 * m);
+                    }
+                });
+            }
+        });
+        let (mx, my) = (180, 250);
+        let (a, b) = (Fft2::new(mx, my), Fft2::new(mx, my));
+        assert!(Arc::ptr_eq(&a.fwd, &b.fwd) && Arc::ptr_eq(&a.inv, &b.inv));
+        assert!(Arc::ptr_eq(&a.r2c, &b.r2c) && Arc::ptr_eq(&a.c2r, &b.c2r));
+        let mut real = RealFftPlanner::<f64>::new();
+        let mut complex = FftPlanner::<f64>::new();
+        let fresh_plans = (
+            (real.plan_fft_forward(my), real.plan_fft_inverse(my)),
+            (complex.plan_fft_forward(mx), complex.plan_fft_inverse(mx)),
+        );
+        let mut fresh = Fft2::with_plans(mx, my, fresh_plans);
+        let mut shared = a;
+        let (x, y) = (
+            convolved(&mut fresh, 90, 125),
+            convolved(&mut shared, 90, 125),
+        );
+        assert!(x.iter().any(|v| *v != 0.0));
+        assert!(x.iter().zip(&y).all(|(p, q)| p.to_bits() == q.to_bits()));
     }
 
     #[test]

@@ -46,8 +46,12 @@ const GL_POINTS: usize = 8;
 /// Most sub-squares per element side.
 const MAX_SUB: usize = 64;
 
-/// Nodes and weights of the `n`-point Gauss–Legendre rule on [−1, 1] (Newton on P_n).
-pub(crate) fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
+/// The `n`-point Gauss–Legendre rule on [−1, 1] as `(node, weight)` pairs, nodes from the
+/// largest down: exact for polynomials of degree up to `2n − 1`. Each node is the root of the
+/// Legendre polynomial P_n found by Newton's method from the classical estimate
+/// `cos(π(i + 3/4)/(n + 1/2))` (to a step below 1e-16), its weight `2/((1 − x²) P_n′(x)²)`.
+/// Used by the layer kernel's quadratures here and by the layer theory of the tests.
+pub fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
     (0..n)
         .map(|i| {
             let mut x = (std::f64::consts::PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();

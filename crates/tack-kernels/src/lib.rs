@@ -55,7 +55,7 @@ mod periodic;
 mod periodic_layer;
 
 pub use free::{FreeOperator, fast_size, padded_size};
-pub use free_layer::FreeLayerOperator;
+pub use free_layer::{FreeLayerOperator, gauss_legendre};
 pub use layer::{Interface, Layer, layer_compliance_factor};
 pub use love::{MEAN_SELF_COMPLIANCE, SELF_COMPLIANCE, love_rectangle};
 pub use periodic::PeriodicOperator;

@@ -134,56 +134,20 @@ pub(crate) fn pcg_holding(
     options: &SolverOptions,
     preconditioned: bool,
 ) -> Convergence {
-    let len = heights.len();
     let f = flat(&heights);
     let c = bonded.as_slice().expect("contiguous mask");
-    // One pass: zero the pressure off the bonded (and held) elements, and gather the bonded
-    // count, height range and Σ(d − f)² per chunk (the sum in chunk order, as `chunk_sum`).
-    let stats: Vec<(usize, f64, f64, f64)> = {
-        use rayon::prelude::*;
-        let h = held
-            .as_ref()
-            .map(|h| h.as_slice().expect("contiguous mask"));
-        let body = |k: usize, p: &mut [f64]| {
-            let base = k * CHUNK;
-            let (mut n, mut hi, mut lo, mut s) = (0usize, f64::NEG_INFINITY, f64::INFINITY, 0.0);
-            for (i, p) in p.iter_mut().enumerate() {
-                let e = base + i;
-                if c[e] {
-                    let fe = f[e];
-                    n += 1;
-                    hi = hi.max(fe);
-                    lo = lo.min(fe);
-                    s += (d - fe) * (d - fe);
-                } else if h.is_none_or(|h| !h[e]) {
-                    *p = 0.0;
-                }
-            }
-            (n, hi, lo, s)
-        };
-        let p = pressure.as_slice_mut().expect("contiguous pressure");
-        if parallel(len) {
-            p.par_chunks_mut(CHUNK)
-                .enumerate()
-                .map(|(k, p)| body(k, p))
-                .collect()
-        } else {
-            p.chunks_mut(CHUNK)
-                .enumerate()
-                .map(|(k, p)| body(k, p))
-                .collect()
-        }
-    };
-    let (mut n_c, mut fmax, mut fmin, mut b2) = (0usize, f64::NEG_INFINITY, f64::INFINITY, 0.0);
-    for &(n, hi, lo, s) in &stats {
-        n_c += n;
-        fmax = fmax.max(hi);
-        fmin = fmin.min(lo);
-        b2 += s;
-    }
-    let scale = (b2 / n_c as f64)
+    let stats = clear_off_set(
+        f,
+        c,
+        held.as_ref()
+            .map(|h| h.as_slice().expect("contiguous mask")),
+        d,
+        pressure.as_slice_mut().expect("contiguous pressure"),
+    );
+    let n_c = stats.count;
+    let scale = (stats.rhs_squared / n_c as f64)
         .sqrt()
-        .max(1e-3 * (fmax - fmin))
+        .max(1e-3 * (stats.highest - stats.lowest))
         .max(f64::MIN_POSITIVE);
     let target = (options.tolerance * scale).powi(2) * n_c as f64;
     let max_it = options.max_iterations;
@@ -192,20 +156,7 @@ pub(crate) fn pcg_holding(
     // carried along (`disp += α K s`), so a converged solve needs no further product.
     op.apply(pressure.view(), w.disp.view_mut());
     loop {
-        let rr = {
-            let u = w.disp.as_slice().expect("contiguous");
-            let resid = pw.resid.as_slice_mut().expect("contiguous");
-            chunked_mut(resid, |k, r| {
-                let base = k * CHUNK;
-                let mut s = 0.0;
-                for (i, r) in r.iter_mut().enumerate() {
-                    let e = base + i;
-                    *r = if c[e] { d - f[e] - u[e] } else { 0.0 };
-                    s += *r * *r;
-                }
-                s
-            })
-        };
+        let rr = bonded_residual(f, c, d, &w.disp, &mut pw.resid);
         let residual = (rr / n_c as f64).sqrt() / scale;
         if rr <= target || it >= max_it {
             return Convergence {
@@ -220,79 +171,15 @@ pub(crate) fn pcg_holding(
         while it < max_it {
             it += 1;
             op.apply(w.dir.view(), w.kdir.view_mut());
-            let sq = {
-                let (s, q) = (
-                    w.dir.as_slice().expect("contiguous"),
-                    w.kdir.as_slice().expect("contiguous"),
-                );
-                chunk_sum(len, |r| {
-                    let mut acc = 0.0;
-                    for e in r {
-                        if c[e] {
-                            acc += s[e] * q[e];
-                        }
-                    }
-                    acc
-                })
-            };
-            let alpha = rz / sq;
-            let rr_new = {
-                use rayon::prelude::*;
-                let p = pressure.as_slice_mut().expect("contiguous pressure");
-                let r = pw.resid.as_slice_mut().expect("contiguous");
-                let u = w.disp.as_slice_mut().expect("contiguous");
-                let (s, q) = (
-                    w.dir.as_slice().expect("contiguous"),
-                    w.kdir.as_slice().expect("contiguous"),
-                );
-                let step = |k: usize, p: &mut [f64], r: &mut [f64], u: &mut [f64]| {
-                    let base = k * CHUNK;
-                    let mut acc = 0.0;
-                    for i in 0..p.len() {
-                        let e = base + i;
-                        u[i] += alpha * q[e];
-                        if c[e] {
-                            p[i] += alpha * s[e];
-                            r[i] -= alpha * q[e];
-                            acc += r[i] * r[i];
-                        }
-                    }
-                    acc
-                };
-                let sums: Vec<f64> = if parallel(len) {
-                    p.par_chunks_mut(CHUNK)
-                        .zip(r.par_chunks_mut(CHUNK))
-                        .zip(u.par_chunks_mut(CHUNK))
-                        .enumerate()
-                        .map(|(k, ((p, r), u))| step(k, p, r, u))
-                        .collect()
-                } else {
-                    p.chunks_mut(CHUNK)
-                        .zip(r.chunks_mut(CHUNK))
-                        .zip(u.chunks_mut(CHUNK))
-                        .enumerate()
-                        .map(|(k, ((p, r), u))| step(k, p, r, u))
-                        .collect()
-                };
-                sums.iter().sum::<f64>()
-            };
+            let alpha = rz / curvature(c, w);
+            let rr_new = advance(alpha, c, pressure.view_mut(), &mut pw.resid, w);
             if rr_new <= target {
                 break;
             }
             let rz_new = precondition(op, pw, bonded, preconditioned);
             let beta = rz_new / rz;
             rz = rz_new;
-            {
-                let z = pw.zres.as_slice().expect("contiguous");
-                let s = w.dir.as_slice_mut().expect("contiguous");
-                chunked_mut(s, |k, s| {
-                    let base = k * CHUNK;
-                    for (i, s) in s.iter_mut().enumerate() {
-                        *s = z[base + i] + beta * *s;
-                    }
-                    0.0
-                });
-            }
+            next_direction(&pw.zres, beta, &mut w.dir);
             if it % REFRESH == 0 {
                 // Long runs: refresh `K p` so round-off in the carried product cannot build up.
                 op.apply(pressure.view(), w.disp.view_mut());
@@ -302,6 +189,166 @@ pub(crate) fn pcg_holding(
             op.apply(pressure.view(), w.disp.view_mut());
         }
     }
+}
+
+/// What [`clear_off_set`] gathers over the bonded set: its element count, its height range and
+/// Σ(d − f)², the squared norm of the right-hand side.
+struct SetStats {
+    count: usize,
+    highest: f64,
+    lowest: f64,
+    rhs_squared: f64,
+}
+
+/// One pass over the elements: zero the pressure `p` off the bonded set `c` (and off the
+/// `held` elements) and gather the bonded set's [`SetStats`] per chunk (the sum in chunk order,
+/// as [`chunk_sum`]).
+fn clear_off_set(f: &[f64], c: &[bool], h: Option<&[bool]>, d: f64, p: &mut [f64]) -> SetStats {
+    use rayon::prelude::*;
+    let body = |k: usize, p: &mut [f64]| {
+        let base = k * CHUNK;
+        let (mut n, mut hi, mut lo, mut s) = (0usize, f64::NEG_INFINITY, f64::INFINITY, 0.0);
+        for (i, p) in p.iter_mut().enumerate() {
+            let e = base + i;
+            if c[e] {
+                let fe = f[e];
+                n += 1;
+                hi = hi.max(fe);
+                lo = lo.min(fe);
+                s += (d - fe) * (d - fe);
+            } else if h.is_none_or(|h| !h[e]) {
+                *p = 0.0;
+            }
+        }
+        (n, hi, lo, s)
+    };
+    let stats: Vec<(usize, f64, f64, f64)> = if parallel(p.len()) {
+        p.par_chunks_mut(CHUNK)
+            .enumerate()
+            .map(|(k, p)| body(k, p))
+            .collect()
+    } else {
+        p.chunks_mut(CHUNK)
+            .enumerate()
+            .map(|(k, p)| body(k, p))
+            .collect()
+    };
+    let mut total = SetStats {
+        count: 0,
+        highest: f64::NEG_INFINITY,
+        lowest: f64::INFINITY,
+        rhs_squared: 0.0,
+    };
+    for &(n, hi, lo, s) in &stats {
+        total.count += n;
+        total.highest = total.highest.max(hi);
+        total.lowest = total.lowest.min(lo);
+        total.rhs_squared += s;
+    }
+    total
+}
+
+/// The residual `r = d − f − u` on the bonded set `c` (0 off it) into `resid`, from the
+/// displacement `disp`; returns Σ r².
+fn bonded_residual(
+    f: &[f64],
+    c: &[bool],
+    d: f64,
+    disp: &Array2<f64>,
+    resid: &mut Array2<f64>,
+) -> f64 {
+    let u = disp.as_slice().expect("contiguous");
+    let resid = resid.as_slice_mut().expect("contiguous");
+    chunked_mut(resid, |k, r| {
+        let base = k * CHUNK;
+        let mut s = 0.0;
+        for (i, r) in r.iter_mut().enumerate() {
+            let e = base + i;
+            *r = if c[e] { d - f[e] - u[e] } else { 0.0 };
+            s += *r * *r;
+        }
+        s
+    })
+}
+
+/// The curvature `sᵀ K s` of the search direction `w.dir` over the bonded set `c`, from its
+/// image `w.kdir`.
+fn curvature(c: &[bool], w: &Work) -> f64 {
+    let (s, q) = (
+        w.dir.as_slice().expect("contiguous"),
+        w.kdir.as_slice().expect("contiguous"),
+    );
+    chunk_sum(s.len(), |r| {
+        let mut acc = 0.0;
+        for e in r {
+            if c[e] {
+                acc += s[e] * q[e];
+            }
+        }
+        acc
+    })
+}
+
+/// One CG step of length `alpha` along `w.dir`: the pressure and the residual on the bonded set
+/// `c`, and the carried displacement `w.disp += α K s` everywhere; returns the new Σ r².
+fn advance(
+    alpha: f64,
+    c: &[bool],
+    mut pressure: ArrayViewMut2<f64>,
+    resid: &mut Array2<f64>,
+    w: &mut Work,
+) -> f64 {
+    use rayon::prelude::*;
+    let p = pressure.as_slice_mut().expect("contiguous pressure");
+    let r = resid.as_slice_mut().expect("contiguous");
+    let u = w.disp.as_slice_mut().expect("contiguous");
+    let (s, q) = (
+        w.dir.as_slice().expect("contiguous"),
+        w.kdir.as_slice().expect("contiguous"),
+    );
+    let step = |k: usize, p: &mut [f64], r: &mut [f64], u: &mut [f64]| {
+        let base = k * CHUNK;
+        let mut acc = 0.0;
+        for i in 0..p.len() {
+            let e = base + i;
+            u[i] += alpha * q[e];
+            if c[e] {
+                p[i] += alpha * s[e];
+                r[i] -= alpha * q[e];
+                acc += r[i] * r[i];
+            }
+        }
+        acc
+    };
+    let sums: Vec<f64> = if parallel(p.len()) {
+        p.par_chunks_mut(CHUNK)
+            .zip(r.par_chunks_mut(CHUNK))
+            .zip(u.par_chunks_mut(CHUNK))
+            .enumerate()
+            .map(|(k, ((p, r), u))| step(k, p, r, u))
+            .collect()
+    } else {
+        p.chunks_mut(CHUNK)
+            .zip(r.chunks_mut(CHUNK))
+            .zip(u.chunks_mut(CHUNK))
+            .enumerate()
+            .map(|(k, ((p, r), u))| step(k, p, r, u))
+            .collect()
+    };
+    sums.iter().sum::<f64>()
+}
+
+/// The next search direction `s = z + β s` from the preconditioned residual `zres`.
+fn next_direction(zres: &Array2<f64>, beta: f64, dir: &mut Array2<f64>) {
+    let z = zres.as_slice().expect("contiguous");
+    let s = dir.as_slice_mut().expect("contiguous");
+    chunked_mut(s, |k, s| {
+        let base = k * CHUNK;
+        for (i, s) in s.iter_mut().enumerate() {
+            *s = z[base + i] + beta * *s;
+        }
+        0.0
+    });
 }
 
 /// Runs `f(chunk index, chunk)` over the [`CHUNK`]s of `v` (in parallel when long) and returns

@@ -21,13 +21,13 @@
 //! one finds nothing, the tolerance tightens until the exact round, which judges the whole
 //! grid without those margins; so every step ends on an exact solve and an exact test.
 
-use crate::rounds::Rounds;
+use crate::rounds::{Rounds, Tally};
 use ndarray::{Array2, Zip};
 use tack_geometry::Window;
 
 use crate::adhesive::{
     LOOSE_ATTACH_MARGIN, LOOSE_DETACH_MARGIN, LOOSE_REFERENCE_TOLERANCE, bounding_box,
-    hash_masks_in,
+    hash_masks_in, round_block,
 };
 use crate::{AdhesiveSolver, StepRecord};
 
@@ -49,8 +49,7 @@ impl AdhesiveSolver {
             (c.sigma0, c.range)
         };
         let tolerance = self.options.cg.tolerance;
-        let (mut cg_total, mut worst, mut converged, mut full) = (0, 0.0f64, true, false);
-        let mut rounds = 0;
+        let mut tally = Tally::new();
         let closed = self.base.closed(d);
         if closed {
             self.bonded.fill(true);
@@ -70,18 +69,18 @@ impl AdhesiveSolver {
         // A window known to hold every loaded element (`None`: the whole grid).
         let mut extent: Option<Window> = None;
         loop {
-            if rounds == self.options.max_active_set_iterations {
-                converged = false;
+            if tally.rounds == self.options.max_active_set_iterations {
+                tally.converged = false;
                 break;
             }
-            rounds += 1;
+            tally.rounds += 1;
             if periodic && self.bonded.iter().all(|&b| b) {
                 // Full contact: as under the criterion, with σ0 the greatest tension; the
                 // released element joins the zone.
                 let map = self.patterned.then_some(self.tension.view());
                 match self.base.full_contact_or_weakest(closed, sigma0, map) {
                     None => {
-                        full = true;
+                        tally.full = true;
                         break;
                     }
                     Some(weakest) => {
@@ -91,23 +90,7 @@ impl AdhesiveSolver {
                     }
                 }
             }
-            // The loaded set (contact or zone), its bounding box and fingerprint, searched only
-            // in `extent`: after an inexact sub-grid round every loaded element lies in its
-            // window.
-            let (tight, fingerprint) = {
-                let coh = self.cohesive.as_mut().expect("the Dugdale law");
-                let block = match extent {
-                    Some(w) => ndarray::s![w.i0..w.i1, w.j0..w.j1],
-                    None => ndarray::s![.., ..],
-                };
-                Zip::from(coh.loaded.slice_mut(block))
-                    .and(self.bonded.slice(block))
-                    .and(coh.zone.slice(block))
-                    .for_each(|l, &b, &z| *l = b || z);
-                let (tight, _) = bounding_box(&coh.loaded, extent.as_ref());
-                let fingerprint = hash_masks_in(&[&self.bonded, &coh.zone], tight.as_ref());
-                (tight, fingerprint)
-            };
+            let (tight, fingerprint) = self.loaded_set(extent);
             let window = self.subgrid_around(tight);
             let cycle = schedule.visit(fingerprint);
             let (exact, level) = (schedule.exact, schedule.level);
@@ -117,87 +100,103 @@ impl AdhesiveSolver {
                 self.solve_set(d, level, false, window, extent.as_ref())
             };
             extent = fresh;
-            cg_total += c.iterations;
+            tally.cg += c.iterations;
             if exact {
-                worst = worst.max(c.residual);
-                converged &= c.converged;
+                tally.exact(&c);
             }
             stale = fresh.is_some();
-            match fresh {
-                None => self.base.update_gap(d),
-                Some(w) => self.base.update_gap_in(d, &w),
-            }
+            self.update_gap_after_round(d, fresh);
             if cycle {
-                converged = false;
+                tally.converged = false;
                 break;
             }
             // Exact rounds: the `C ↔ Z` tests carry the CG tolerance (module docs), `Z ↔ F`
             // none. Inexact rounds: every test carries the inexact solve's error, so each
             // transition they make is one the exact solve would make too; the gap is fresh only
             // in the round's sub-grid, so only elements there may change.
-            let (p_margin, g_margin, r_margin) = if exact {
+            let margins = if exact {
                 (tolerance * sigma0, tolerance * c.scale.max(range), 0.0)
             } else {
                 let relative = level / LOOSE_REFERENCE_TOLERANCE;
                 let g = LOOSE_ATTACH_MARGIN * level * c.scale.max(range);
                 (LOOSE_DETACH_MARGIN * relative * sigma0, g, g)
             };
-            let block = match fresh {
-                Some(w) => ndarray::s![w.i0..w.i1, w.j0..w.j1],
-                None => ndarray::s![.., ..],
-            };
-            let coh = self.cohesive.as_mut().expect("the Dugdale law");
-            let tension = self
-                .tension
-                .broadcast(self.bonded.dim())
-                .expect("a 1 × 1 array or the grid's shape");
-            let zip = Zip::from(self.bonded.slice_mut(block))
-                .and(coh.zone.slice_mut(block))
-                .and(self.base.pressure.slice_mut(block))
-                .and(self.base.gap.slice(block))
-                .and(tension.slice(block));
-            // Each element's tests read only that element: the split over threads cannot
-            // change the outcome.
-            let judge =
-                |changed: bool, b: &mut bool, z: &mut bool, p: &mut f64, &g: &f64, &s: &f64| {
-                    if *b {
-                        if *p < -s - p_margin {
-                            (*b, *z, *p) = (false, true, -s);
-                            return true;
-                        }
-                    } else if *z {
-                        if g < -g_margin {
-                            (*b, *z) = (true, false);
-                            return true;
-                        } else if g > range + r_margin {
-                            (*z, *p) = (false, 0.0);
-                            return true;
-                        }
-                    } else if g < -g_margin {
-                        *b = true;
-                        return true;
-                    } else if g < range - r_margin {
-                        (*z, *p) = (true, -s);
-                        return true;
-                    }
-                    changed
-                };
-            let changed = if crate::cg::parallel(zip.size()) {
-                zip.par_fold(|| false, judge, |a, b| a || b)
-            } else {
-                zip.fold(false, judge)
-            };
-            if schedule.done(changed) {
+            if schedule.done(self.judge_dugdale(fresh, margins, range)) {
                 break;
             }
         }
         if stale {
             // The step ended on an inexact sub-grid round (the round cap): `K p` and the gap.
-            let b = &mut self.base;
-            b.op.apply(b.pressure.view(), b.work.disp.view_mut());
-            b.update_gap(d);
+            self.refresh_after_inexact_round(d);
         }
-        self.record(d, cg_total, rounds, worst, converged, full)
+        self.record(d, &tally)
+    }
+
+    /// The loaded set (contact or zone, into the law's `loaded` mask), its bounding box and
+    /// fingerprint, searched only in `extent`: after an inexact sub-grid round every loaded
+    /// element lies in its window.
+    fn loaded_set(&mut self, extent: Option<Window>) -> (Option<Window>, u64) {
+        let coh = self.cohesive.as_mut().expect("the Dugdale law");
+        let block = round_block(extent);
+        Zip::from(coh.loaded.slice_mut(block))
+            .and(self.bonded.slice(block))
+            .and(coh.zone.slice(block))
+            .for_each(|l, &b, &z| *l = b || z);
+        let (tight, _) = bounding_box(&coh.loaded, extent.as_ref());
+        let fingerprint = hash_masks_in(&[&self.bonded, &coh.zone], tight.as_ref());
+        (tight, fingerprint)
+    }
+
+    /// A Dugdale round's transitions (module docs) in the window `fresh` where the gap is up
+    /// to date (`None`: the grid), with the `(p_margin, g_margin, r_margin)` of the round's
+    /// tests and the law's `range`; returns whether any set changed.
+    fn judge_dugdale(
+        &mut self,
+        fresh: Option<Window>,
+        (p_margin, g_margin, r_margin): (f64, f64, f64),
+        range: f64,
+    ) -> bool {
+        let block = round_block(fresh);
+        let coh = self.cohesive.as_mut().expect("the Dugdale law");
+        let tension = self
+            .tension
+            .broadcast(self.bonded.dim())
+            .expect("a 1 × 1 array or the grid's shape");
+        let zip = Zip::from(self.bonded.slice_mut(block))
+            .and(coh.zone.slice_mut(block))
+            .and(self.base.pressure.slice_mut(block))
+            .and(self.base.gap.slice(block))
+            .and(tension.slice(block));
+        // Each element's tests read only that element: the split over threads cannot
+        // change the outcome.
+        let judge = |changed: bool, b: &mut bool, z: &mut bool, p: &mut f64, &g: &f64, &s: &f64| {
+            if *b {
+                if *p < -s - p_margin {
+                    (*b, *z, *p) = (false, true, -s);
+                    return true;
+                }
+            } else if *z {
+                if g < -g_margin {
+                    (*b, *z) = (true, false);
+                    return true;
+                } else if g > range + r_margin {
+                    (*z, *p) = (false, 0.0);
+                    return true;
+                }
+            } else if g < -g_margin {
+                *b = true;
+                return true;
+            } else if g < range - r_margin {
+                (*z, *p) = (true, -s);
+                return true;
+            }
+            changed
+        };
+        if crate::cg::parallel(zip.size()) {
+            zip.par_fold(|| false, judge, |a, b| a || b)
+        } else {
+            zip.fold(false, judge)
+        }
     }
 
     fn zone_mut(&mut self) -> &mut Array2<bool> {

@@ -7,6 +7,37 @@ use std::collections::HashSet;
 /// The inexact rounds' tolerance tightens by this factor each time a round finds nothing.
 pub(crate) const LOOSE_TIGHTENING: f64 = 100.0;
 
+/// What a step's rounds add up to, for its record: CG iterations, rounds, the worst residual
+/// of an exact solve, whether every exact solve converged and no cap or cycle stopped the
+/// step, and whether it ended in full contact.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Tally {
+    pub(crate) cg: usize,
+    pub(crate) rounds: usize,
+    pub(crate) worst: f64,
+    pub(crate) converged: bool,
+    pub(crate) full: bool,
+}
+
+impl Tally {
+    /// Nothing yet: no iteration, no round, converged.
+    pub(crate) fn new() -> Self {
+        Self {
+            cg: 0,
+            rounds: 0,
+            worst: 0.0,
+            converged: true,
+            full: false,
+        }
+    }
+
+    /// Counts an exact solve's residual and convergence.
+    pub(crate) fn exact(&mut self, c: &crate::state::Convergence) {
+        self.worst = self.worst.max(c.residual);
+        self.converged &= c.converged;
+    }
+}
+
 /// Where a step's rounds stand: whether the next round is exact, the inexact rounds'
 /// tolerance, and the sets already visited.
 pub(crate) struct Rounds {

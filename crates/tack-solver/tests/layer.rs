@@ -2,12 +2,15 @@
 //! waviness in full contact against the layer's compliance (and its thick and thin limits), and
 //! a rigid sphere on a bonded incompressible film — Hertz and JKR pull-off — against an exact
 //! axisymmetric layer theory (a Nyström solve of the Fredholm equation, sharing only the
-//! compliance factor S with the library) and Shull's finite-thickness corrections.
+//! compliance factor S and the Gauss–Legendre rule with the library) and Shull's
+//! finite-thickness corrections.
 
 use std::f64::consts::PI;
 use tack_analytics::westergaard_p_star;
 use tack_geometry::{Boundary, Grid, Sphere, Surface, Waviness1d};
-use tack_kernels::{Interface, Layer, layer_compliance_factor, layer_operator_for, operator_for};
+use tack_kernels::{
+    Interface, Layer, gauss_legendre, layer_compliance_factor, layer_operator_for, operator_for,
+};
 use tack_solver::{
     AdhesiveOptions, AdhesiveSolver, ApproachPath, ContactSolver, KAPPA, SnapshotRequest,
     SolverOptions,
@@ -254,31 +257,6 @@ fn shull_pull_off(gamma: f64, h: f64, mut lo: f64, mut hi: f64) -> (f64, f64) {
 // For a contact of radius a: the flat-punch stiffness k(a) = 1/C(a) = 2π∫φ₁ (unit δ), the Hertz
 // depth δ_H = −φ₂(a)/φ₁(a) and load P_H = δ_H k + 2π∫φ₂, and the JKR branch (exact for the
 // zero-range limit by superposing a punch on the Hertz field: G = (P_H − P)² k′/(4πa k²) = γ).
-
-/// Nodes and weights of the `n`-point Gauss–Legendre rule on [−1, 1] (Newton on P_n).
-fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
-    (0..n)
-        .map(|i| {
-            let mut x = (PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
-            let mut dp = 1.0;
-            for _ in 0..100 {
-                let (mut p0, mut p1) = (1.0, x);
-                for k in 2..=n {
-                    let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
-                    p0 = p1;
-                    p1 = p2;
-                }
-                dp = n as f64 * (x * p1 - p0) / (x * x - 1.0);
-                let step = p1 / dp;
-                x -= step;
-                if step.abs() < 1e-16 {
-                    break;
-                }
-            }
-            (x, 2.0 / ((1.0 - x * x) * dp * dp))
-        })
-        .collect()
-}
 
 /// The bonded ν = 1/2 layer of thickness `h` (E* = R = 1) in the exact axisymmetric theory.
 struct LayerTheory {

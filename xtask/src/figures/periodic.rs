@@ -235,6 +235,43 @@ pub fn fig2(ctx: &Ctx) -> Result<FigureSummary> {
             spec.path.display()
         );
     };
+    let (detail_chart, maps, shown) = break_up_detail(
+        &r,
+        params.detail_alpha.unwrap_or(0.0),
+        (p_star, color),
+        &x_of,
+        &mut summary,
+    );
+    table.shown = shown;
+    write_figure(
+        ctx,
+        &spec,
+        &table,
+        &summary,
+        RunFiles::Engine(&runs),
+        (1400, 900),
+        |root| {
+            let (top, bottom) = root.split_vertically(600);
+            let (a, b) = top.split_horizontally(700);
+            draw_chart(&a, &chart)?;
+            draw_chart(&b, &detail_chart)?;
+            draw_maps(&bottom, &maps, maps.len().max(1))
+        },
+    )?;
+    Ok(summary)
+}
+
+/// Figure 2's detail panel at `alpha` (the run `r`, with its `p*_2D` and colour): the unload
+/// curve with the break-up of the connected contact (the two kept unload steps around the
+/// first 1 → >1 cluster transition) marked, and the contact configurations around it as maps
+/// (with the steps shown); the break-up's numbers go to `summary`.
+fn break_up_detail(
+    r: &FigureRun,
+    alpha: f64,
+    (p_star, color): (f64, usize),
+    x_of: &dyn Fn(f64) -> f64,
+    summary: &mut FigureSummary,
+) -> (Chart, Vec<Map>, Vec<(String, usize)>) {
     // The break-up: the two kept unload steps around the first 1 → >1 cluster transition.
     let periodic = true;
     let breaks: Vec<_> = r
@@ -249,10 +286,7 @@ pub fn fig2(ctx: &Ctx) -> Result<FigureSummary> {
         .map(|w| (w[0].step, w[1].step))
         .collect();
     let mut detail_chart = Chart {
-        title: format!(
-            "(B) α = {}: connected (C) → separated (D)",
-            params.detail_alpha.unwrap_or(0.0)
-        ),
+        title: format!("(B) α = {}: connected (C) → separated (D)", alpha),
         x_label: "πa*/λ".into(),
         y_label: "p̄ / p*_2D".into(),
         x_range: Some((0.0, 1.85)),
@@ -325,21 +359,5 @@ pub fn fig2(ctx: &Ctx) -> Result<FigureSummary> {
     } else {
         summary.add("detail_holes_before_break_up", 0.0);
     }
-    table.shown = shown;
-    write_figure(
-        ctx,
-        &spec,
-        &table,
-        &summary,
-        RunFiles::Engine(&runs),
-        (1400, 900),
-        |root| {
-            let (top, bottom) = root.split_vertically(600);
-            let (a, b) = top.split_horizontally(700);
-            draw_chart(&a, &chart)?;
-            draw_chart(&b, &detail_chart)?;
-            draw_maps(&bottom, &maps, maps.len().max(1))
-        },
-    )?;
-    Ok(summary)
+    (detail_chart, maps, shown)
 }
