@@ -43,17 +43,7 @@ use lengths::{MAX_FUNCTION_LINES, MAX_TEST_MODULE_LINES};
 /// A finding is pending when its path is the entry's and it names the item in backticks.
 /// Remove an entry with the rewrite that fixes it; `cargo xtask tidy` lists the entries that
 /// no longer match anything.
-pub const PENDING: &[(&str, &str)] = &[
-    ("crates/tack/src/coarse.rs", "coarse_problem"),
-    ("crates/tack/src/engine.rs", "mod tests"),
-    ("crates/tack/src/heights.rs", "pull_off_scene"),
-    ("crates/tack/src/problem.rs", "Problem::build"),
-    ("crates/tack/src/problem.rs", "approach_path"),
-    ("crates/tack/src/problem.rs", "check_fits"),
-    ("crates/tack/src/problem.rs", "mod tests"),
-    ("crates/tack-cli/src/plot.rs", "draw_curve"),
-    ("crates/tack-cli/src/report.rs", "report"),
-];
+pub const PENDING: &[(&str, &str)] = &[];
 
 /// One thing tidy found wrong: the file (relative to the repository root), the line
 /// (1-based) and what is wrong there.

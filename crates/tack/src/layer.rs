@@ -100,7 +100,7 @@ pub(crate) fn body_layer(
 /// calibrated on the half-space.
 pub(crate) fn film_warnings(
     layer: &Layer,
-    references: &crate::problem::References,
+    references: &crate::references::References,
     law: tack_solver::AdhesionLaw,
     gamma: f64,
     dx: f64,

@@ -69,6 +69,7 @@ pub mod overrides;
 pub mod problem;
 pub mod provenance;
 pub mod pull_off_path;
+pub mod references;
 pub mod scene;
 pub mod shape;
 pub mod summary;

@@ -26,8 +26,12 @@ use crate::scene::{
 
 pub use crate::map_file::DX_MATCH_TOLERANCE;
 pub(crate) use crate::map_file::read_map;
+pub use crate::references::References;
+pub use crate::shape::{
+    MAX_ELLIPSOID_RATIO, MIN_PERIOD_CONTACT_DIAMETERS, MIN_PULL_OFF_RADIUS_ELEMENTS,
+};
 
-pub use crate::pull_off_path::SPHERE_FIT_MARGIN;
+pub use crate::pull_off_path::{SPHERE_FIT_MARGIN, loaded_steps};
 
 /// Largest number of grid elements `nx·ny` a scene may ask for (8192 × 8192): beyond it the
 /// solver's fields and FFT buffers would not fit in memory, and the run would abort instead of
@@ -40,52 +44,8 @@ pub const TOLERANCE_RANGE: (f64, f64) = (1e-14, 1e-1);
 /// The grid's size field when it is given as `nx` and `ny`.
 const GRID_NX_BY_NY: &str = concat!(field_name!(grid.nx), " × ", field_name!(grid.ny));
 
-/// Greatest ratio of an ellipsoid's radii: beyond it the elliptic Hertz and JKR references lose
-/// their digits (the eccentricity rounds to 1).
-pub const MAX_ELLIPSOID_RATIO: f64 = 1e6;
-
 /// Smallest wavelength, in elements, a waviness may have.
 pub const MIN_ELEMENTS_PER_WAVELENGTH: f64 = 4.0;
-
-/// Closed-form reference values for the summary; `None` where they do not apply.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct References {
-    /// JKR pull-off force −(3/2)πγR of the smooth sphere (Eq. 7), spheres only.
-    pub f_jkr: Option<f64>,
-    /// Approach at the JKR pull-off (Eq. 8), spheres only.
-    pub d_jkr: Option<f64>,
-    /// Johnson's parameter α (Eq. 3) of a waviness.
-    pub johnson_alpha: Option<f64>,
-    /// The adhesion parameter α* (Eq. 11) of random roughness.
-    pub alpha_star: Option<f64>,
-    /// Dugdale law on a sphere: the Maugis parameter λ = 2σ0 (R/(πγK²))^(1/3), K = 4E*/3.
-    pub maugis_lambda: Option<f64>,
-    /// Dugdale law on a sphere: the Maugis–Dugdale pull-off force under approach control.
-    pub f_maugis: Option<f64>,
-    /// Kendall's pull-off force −sqrt(8πa³E*γ) (signed: tensile) of a circular punch.
-    pub f_kendall: Option<f64>,
-    /// The exact JKR-limit pull-off force of a power-law body c·r^m on a free grid (method of
-    /// dimensionality reduction; `tack_analytics::power_law_pull_off_force`).
-    pub f_mdr: Option<f64>,
-    /// The approximate (Johnson–Greenwood) JKR pull-off force of an ellipsoid under approach
-    /// control, signed (tensile negative): `tack_analytics::elliptic_jkr_pull_off`.
-    pub f_elliptic: Option<f64>,
-    /// Mean pressure of complete non-adhesive contact of a waviness: p*_1D = πE*h/λ (Eq. 2)
-    /// or p*_2D = √2πE*h/λ (Eq. 5).
-    pub p_star: Option<f64>,
-    /// The contact radius at the pull-off that sets the detachment criterion's mesh error
-    /// (a_c of a sphere, a punch's radius, a power law's a_F, an ellipse's shorter semi-axis):
-    /// the error floor of a Richardson extrapolation.
-    pub pull_off_radius: Option<f64>,
-}
-
-impl References {
-    /// The JKR references of a sphere of radius `radius`: F_JKR and d_JKR.
-    pub fn set_jkr(&mut self, e_star: f64, gamma: f64, radius: f64) {
-        self.f_jkr = Some(tack_analytics::jkr_pull_off_force(gamma, radius));
-        self.d_jkr = Some(tack_analytics::jkr_pull_off_approach(e_star, gamma, radius));
-    }
-}
 
 /// A validated scene, ready to run.
 #[derive(Debug, Clone)]
@@ -192,16 +152,6 @@ impl std::fmt::Display for PathRule {
         )
     }
 }
-
-/// Least pull-off contact radius over element size, a_c/Δx (JKR radius for spheres, the punch
-/// radius for circular punches), below which a run is flagged as under-resolved: the
-/// detachment criterion's error grows like Δx/a_c and is +33% at 5 (`docs/theory.md` §9).
-pub const MIN_PULL_OFF_RADIUS_ELEMENTS: f64 = 5.0;
-
-/// Least number of grid elements a periodic cell must span along each side, measured in
-/// pull-off contact diameters 2a_c, for the isolated sphere's F_JKR to be the reference: a
-/// closer neighbour (the periodic image) changes the pull-off.
-pub const MIN_PERIOD_CONTACT_DIAMETERS: f64 = 2.0;
 
 impl Problem {
     /// Validates `scene` and builds grid, surface and path.
@@ -1131,15 +1081,6 @@ fn check_memory(
         &steps_from,
         &snapshots,
     )
-}
-
-/// Load steps of `path` that carry the body beyond its first touch (the deepest approach
-/// included), counted up to `limit` (the path's own steps, `ApproachPath::load_approaches`).
-pub fn loaded_steps(path: &tack_solver::ApproachPath, first_touch: f64, limit: usize) -> usize {
-    path.load_approaches()
-        .filter(|&d| d > first_touch)
-        .take(limit)
-        .count()
 }
 
 /// The zero-range law on a rough body loaded in more than one step from its first touch: the

@@ -11,6 +11,7 @@
 //! the tensile part, until nothing is bonded.
 
 use ndarray::Array2;
+use tack_fields::num;
 use tack_geometry::Grid;
 
 use crate::error::SceneError;
@@ -217,7 +218,7 @@ fn min_max(values: impl Iterator<Item = f64>) -> (f64, f64) {
 pub const SPHERE_FIT_MARGIN: f64 = 1.3;
 
 /// On a free grid the loaded contact must lie inside the array around the paraboloid's vertex:
-/// the reach of [`crate::shape::sphere_contact_reach`] (Hertz with the 30% margin of the scene
+/// the reach of [`sphere_contact_reach`] (Hertz with the 30% margin of the scene
 /// check; under a law of finite `range`, loaded in steps, the JKR contact radius), measured
 /// from the vertex to the array's edge; and under the zero-range law, loaded in one step, the
 /// elements that step bonds — every element the body penetrates, `h < max_approach`, exactly,
@@ -230,19 +231,13 @@ pub(crate) fn check_contact_fits(
     fit: &Paraboloid,
     max_approach: f64,
     first_touch: f64,
-    material: crate::shape::Material,
+    material: Material,
     range: Option<f64>,
 ) -> Result<(), SceneError> {
     let depth = (max_approach - first_touch).max(0.0);
     let dx = grid.dx();
-    let (needed, rule) = crate::shape::sphere_contact_reach(
-        radius,
-        depth,
-        dx,
-        1.0,
-        material,
-        (false, range.is_some()),
-    );
+    let (needed, rule) =
+        sphere_contact_reach(radius, depth, dx, 1.0, material, (false, range.is_some()));
     if range.is_none() {
         check_one_step_load(heights, grid, max_approach)?;
     }
@@ -253,7 +248,7 @@ pub(crate) fn check_contact_fits(
     let (y_lo, y_hi) = (grid.y(0) - 0.5 * dx, grid.y(grid.ny() - 1) + 0.5 * dx);
     let room = (x0 - x_lo).min(x_hi - x0).min(y0 - y_lo).min(y_hi - y0);
     if needed > room {
-        let r4 = |x: f64| tack_fields::num(crate::shape::round4(x));
+        let r4 = |x: f64| tack_fields::num(round4(x));
         return Err(SceneError::Inconsistent(format!(
             "heights: the {} × {} array at {} = {} is too small for the pull-off: at {} = {} \
              (R = {}, d = {} from the first touch) {rule} reaches {} from the vertex at ({}, \
@@ -271,7 +266,7 @@ pub(crate) fn check_contact_fits(
             r4(x0),
             r4(y0),
             r4(room),
-            crate::shape::count_text((2.0 * needed / dx).ceil() + 1.0),
+            count_text((2.0 * needed / dx).ceil() + 1.0),
             tack_fields::PROTOCOL_MAX_APPROACH,
         )));
     }
@@ -303,8 +298,8 @@ fn check_one_step_load(
         tack_fields::GRID_DX,
         tack_fields::num(grid.dx()),
         tack_fields::PROTOCOL_MAX_APPROACH,
-        tack_fields::num(crate::shape::round4(max_approach)),
-        tack_fields::num(crate::shape::round4(max_approach)),
+        tack_fields::num(round4(max_approach)),
+        tack_fields::num(round4(max_approach)),
         tack_fields::PROTOCOL_MAX_APPROACH,
     )))
 }
@@ -319,6 +314,91 @@ pub fn load_plan(first_touch: f64, max_approach: f64, step: f64, range: Option<f
         None => (max_approach, (max_approach - first_touch).max(step)),
         Some(range) => (first_touch - range - step, step),
     }
+}
+
+/// What a shape's references and checks read besides its own parameters.
+#[derive(Debug, Clone, Copy)]
+pub struct Material {
+    /// Effective modulus E*.
+    pub e_star: f64,
+    /// The reference work of adhesion γ (0: no adhesion, no adhesive references).
+    pub gamma: f64,
+}
+
+/// The radius a sphere-like contact reaches at approach `depth` beyond the first touch, and
+/// the rule that gives it, with what must stay free around it: the Hertz radius √(R·d) (times
+/// √2.5 on a film) with [`SPHERE_FIT_MARGIN`]; under a `finite_range` law (which attracts
+/// ahead of the contact) also the JKR contact radius a(d) plus one element; after a one-step
+/// load also the penetrated disc √(2R·d) plus one element (that step bonds all of it under
+/// either law). The zero-range criterion loaded in steps bonds only what penetrates, so its
+/// contact stays near Hertz's.
+pub fn sphere_contact_reach(
+    radius: f64,
+    depth: f64,
+    dx: f64,
+    reach: f64,
+    material: Material,
+    (one_step, finite_range): (bool, bool),
+) -> (f64, String) {
+    let hertz = reach * (radius * depth).sqrt();
+    let mut needed = SPHERE_FIT_MARGIN * hertz;
+    let mut rule = format!(
+        "the contact radius {} = {} plus a 30% margin",
+        if reach > 1.0 {
+            "sqrt(2.5·R·d) (a thin film's)"
+        } else {
+            "sqrt(R·d) (Hertz)"
+        },
+        num(round4(hertz))
+    );
+    if finite_range
+        && material.gamma > 0.0
+        && let Some(a) =
+            tack_analytics::jkr_radius_from_approach(material.e_star, material.gamma, radius, depth)
+        && reach * a + dx > needed
+    {
+        needed = reach * a + dx;
+        rule = format!(
+            "the JKR contact radius a(d) = {} plus one element",
+            num(round4(reach * a))
+        );
+    }
+    let penetrated = (2.0 * radius * depth).sqrt();
+    if one_step && penetrated + dx > needed {
+        needed = penetrated + dx;
+        rule = format!(
+            "the disc the one-step load bonds, sqrt(2·R·d) = {}, plus one element",
+            num(round4(penetrated))
+        );
+    }
+    (needed, rule)
+}
+
+/// `x` to four significant digits, for messages.
+pub fn round4(x: f64) -> f64 {
+    if x == 0.0 || !x.is_finite() {
+        return x;
+    }
+    let scale = 10f64.powi(3 - x.abs().log10().floor() as i32);
+    (x * scale).round() / scale
+}
+
+/// An element count for a message: exact when it is a plausible size, else `2.000e300`.
+pub fn count_text(n: f64) -> String {
+    if n < 1e15 {
+        format!("{n:.0}")
+    } else {
+        format!("{n:.3e}")
+    }
+}
+
+/// Load steps of `path` that carry the body beyond its first touch (the deepest approach
+/// included), counted up to `limit` (the path's own steps, `ApproachPath::load_approaches`).
+pub fn loaded_steps(path: &tack_solver::ApproachPath, first_touch: f64, limit: usize) -> usize {
+    path.load_approaches()
+        .filter(|&d| d > first_touch)
+        .take(limit)
+        .count()
 }
 
 #[cfg(test)]

@@ -8,20 +8,24 @@ use tack_fields::{self as fields, field_name, num, rounded};
 use tack_geometry::{Boundary, Ellipsoid, FlatPunch, Grid, Shape, Sphere, Surface};
 use tack_solver::ApproachPath;
 
-use crate::problem::{
-    MAX_ELLIPSOID_RATIO, MIN_PERIOD_CONTACT_DIAMETERS, MIN_PULL_OFF_RADIUS_ELEMENTS, References,
-    SPHERE_FIT_MARGIN,
-};
+pub use crate::pull_off_path::{Material, count_text, round4, sphere_contact_reach};
+use crate::pull_off_path::{SPHERE_FIT_MARGIN, loaded_steps};
+use crate::references::References;
 use crate::scene::{Geometry, GridSpec, PunchKind, SceneError};
 
-/// What a shape's references and checks read besides its own parameters.
-#[derive(Debug, Clone, Copy)]
-pub struct Material {
-    /// Effective modulus E*.
-    pub e_star: f64,
-    /// The reference work of adhesion γ (0: no adhesion, no adhesive references).
-    pub gamma: f64,
-}
+/// Greatest ratio of an ellipsoid's radii: beyond it the elliptic Hertz and JKR references lose
+/// their digits (the eccentricity rounds to 1).
+pub const MAX_ELLIPSOID_RATIO: f64 = 1e6;
+
+/// Least number of grid elements a periodic cell must span along each side, measured in
+/// pull-off contact diameters 2a_c, for the isolated sphere's F_JKR to be the reference: a
+/// closer neighbour (the periodic image) changes the pull-off.
+pub const MIN_PERIOD_CONTACT_DIAMETERS: f64 = 2.0;
+
+/// Least pull-off contact radius over element size, a_c/Δx (JKR radius for spheres, the punch
+/// radius for circular punches), below which a run is flagged as under-resolved: the
+/// detachment criterion's error grows like Δx/a_c and is +33% at 5 (`docs/theory.md` §9).
+pub const MIN_PULL_OFF_RADIUS_ELEMENTS: f64 = 5.0;
 
 /// A macroscopic shape of a scene: one type per `geometry.shape`.
 pub trait SceneShape {
@@ -179,8 +183,7 @@ impl FitCheck<'_> {
     /// Whether the path reaches its deepest approach in one load step from out of contact:
     /// that step bonds every element the body penetrates.
     pub fn one_step_load(&self) -> bool {
-        !self.path.is_indentation()
-            && crate::problem::loaded_steps(self.path, self.first_touch, 2) <= 1
+        !self.path.is_indentation() && loaded_steps(self.path, self.first_touch, 2) <= 1
     }
 
     /// The error of an axisymmetric contact of radius `needed` around the origin that a free
@@ -202,73 +205,6 @@ impl FitCheck<'_> {
             size_field = self.size_field(),
             dx_field = fields::GRID_DX
         )))
-    }
-}
-
-/// The radius a sphere-like contact reaches at approach `depth` beyond the first touch, and
-/// the rule that gives it, with what must stay free around it: the Hertz radius √(R·d) (times
-/// √2.5 on a film) with [`SPHERE_FIT_MARGIN`]; under a `finite_range` law (which attracts
-/// ahead of the contact) also the JKR contact radius a(d) plus one element; after a one-step
-/// load also the penetrated disc √(2R·d) plus one element (that step bonds all of it under
-/// either law). The zero-range criterion loaded in steps bonds only what penetrates, so its
-/// contact stays near Hertz's.
-pub fn sphere_contact_reach(
-    radius: f64,
-    depth: f64,
-    dx: f64,
-    reach: f64,
-    material: Material,
-    (one_step, finite_range): (bool, bool),
-) -> (f64, String) {
-    let hertz = reach * (radius * depth).sqrt();
-    let mut needed = SPHERE_FIT_MARGIN * hertz;
-    let mut rule = format!(
-        "the contact radius {} = {} plus a 30% margin",
-        if reach > 1.0 {
-            "sqrt(2.5·R·d) (a thin film's)"
-        } else {
-            "sqrt(R·d) (Hertz)"
-        },
-        num(round4(hertz))
-    );
-    if finite_range
-        && material.gamma > 0.0
-        && let Some(a) =
-            tack_analytics::jkr_radius_from_approach(material.e_star, material.gamma, radius, depth)
-        && reach * a + dx > needed
-    {
-        needed = reach * a + dx;
-        rule = format!(
-            "the JKR contact radius a(d) = {} plus one element",
-            num(round4(reach * a))
-        );
-    }
-    let penetrated = (2.0 * radius * depth).sqrt();
-    if one_step && penetrated + dx > needed {
-        needed = penetrated + dx;
-        rule = format!(
-            "the disc the one-step load bonds, sqrt(2·R·d) = {}, plus one element",
-            num(round4(penetrated))
-        );
-    }
-    (needed, rule)
-}
-
-/// `x` to four significant digits, for messages.
-pub fn round4(x: f64) -> f64 {
-    if x == 0.0 || !x.is_finite() {
-        return x;
-    }
-    let scale = 10f64.powi(3 - x.abs().log10().floor() as i32);
-    (x * scale).round() / scale
-}
-
-/// An element count for a message: exact when it is a plausible size, else `2.000e300`.
-pub fn count_text(n: f64) -> String {
-    if n < 1e15 {
-        format!("{n:.0}")
-    } else {
-        format!("{n:.3e}")
     }
 }
 
