@@ -53,7 +53,9 @@ pub use error::GeometryError;
 pub use grid::{Boundary, Grid, MAX_ELEMENTS_PER_AXIS};
 pub use heightmap::{height_map_surface, read_height_map_file, read_height_map_text};
 pub use pattern::AdhesionPattern;
-pub use resample::{BAND_LIMIT_TOLERANCE, coarsen_band_limited, share_above_coarse_nyquist};
+pub use resample::{
+    BAND_LIMIT_TOLERANCE, coarse_centres, coarsen_band_limited, share_above_coarse_nyquist,
+};
 pub use rough::{RoughSpec, rough_surface};
 pub use shapes::{
     DEFAULT_PUNCH_LIFT, Ellipsoid, FlatPunch, MAX_POWER_LAW_EXPONENT, PowerLaw, PunchFace, Shape,

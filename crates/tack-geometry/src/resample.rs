@@ -81,7 +81,15 @@ pub fn coarsen_band_limited(
             allowed: tolerance,
         });
     }
-    // Coarse centre i sits at (i − ⌊n/4⌋)·2Δx, the fine centre 2i − 2⌊n/4⌋ + n/2.
+    Ok(coarse_centres(heights))
+}
+
+/// The map sampled at the element centres of the grid of twice its element size (shape
+/// `(nx/2, ny/2)` for even sides, a side of one element staying one): coarse centre `i` sits at
+/// `(i − ⌊n/4⌋)·2Δx`, which is the fine centre `2i − 2⌊n/4⌋ + n/2`. No band check: see
+/// [`coarsen_band_limited`] for the checked form.
+pub fn coarse_centres(heights: &Array2<f64>) -> Array2<f64> {
+    let (nx, ny) = heights.dim();
     let fine = |i: usize, n: usize| {
         if n == 1 {
             0
@@ -90,9 +98,9 @@ pub fn coarsen_band_limited(
         }
     };
     let half = |n: usize| if n == 1 { 1 } else { n / 2 };
-    Ok(Array2::from_shape_fn((half(nx), half(ny)), |(i, j)| {
+    Array2::from_shape_fn((half(nx), half(ny)), |(i, j)| {
         heights[[fine(i, nx), fine(j, ny)]]
-    }))
+    })
 }
 
 #[cfg(test)]

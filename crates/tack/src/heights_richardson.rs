@@ -38,10 +38,10 @@ pub const ASSUMED_ORDER: f64 = 1.0;
 /// `(nx/2, ny/2)`, a side of one element staying one; odd sides are refused.
 pub fn coarse_heights(heights: &Array2<f64>) -> Result<Array2<f64>, SceneError> {
     let (nx, ny) = heights.dim();
-    for (axis, n) in [(0, nx), (1, ny)] {
+    for (field, n) in [(tack_fields::GRID_NX, nx), (tack_fields::GRID_NY, ny)] {
         if n != 1 && n % 2 == 1 {
             return Err(SceneError::OutOfRange {
-                field: format!("heights.shape[{axis}]"),
+                field: field.into(),
                 value: n.to_string(),
                 allowed: "an even number of elements (or 1) with richardson: the grid of twice \
                           the element size keeps the array's extent and centres"
@@ -49,17 +49,7 @@ pub fn coarse_heights(heights: &Array2<f64>) -> Result<Array2<f64>, SceneError> 
             });
         }
     }
-    let fine = |i: usize, n: usize| {
-        if n == 1 {
-            0
-        } else {
-            2 * i + n / 2 - 2 * (n / 4)
-        }
-    };
-    let half = |n: usize| if n == 1 { 1 } else { n / 2 };
-    Ok(Array2::from_shape_fn((half(nx), half(ny)), |(i, j)| {
-        heights[[fine(i, nx), fine(j, ny)]]
-    }))
+    Ok(tack_geometry::coarse_centres(heights))
 }
 
 /// `heights` minus its least-squares quadratic `c0 + c1 x + c2 y + c3 x² + c4 xy + c5 y²`
@@ -276,7 +266,7 @@ mod tests {
         let e = coarse_heights(&Array2::zeros((33, 32)))
             .unwrap_err()
             .to_string();
-        assert!(e.starts_with("heights.shape[0] = 33 is invalid"), "{e}");
+        assert!(e.starts_with("grid.nx = 33 is invalid"), "{e}");
     }
 
     #[test]
