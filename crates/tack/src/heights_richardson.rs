@@ -200,8 +200,18 @@ pub fn pull_off_richardson(
         ..spec.clone()
     };
     // Both problems are checked before the (longer) fine solve.
-    let coarse_plan = pull_off_scene(&coarse, &coarse_spec)?;
-    crate::heights::problem(&coarse_plan.scene, &coarse_plan.body(&coarse))?;
+    let coarse_problem = pull_off_scene(&coarse, &coarse_spec)
+        .and_then(|plan| crate::heights::problem(&plan.scene, &plan.body(&coarse)));
+    if let Err(e) = coarse_problem {
+        let (nx, ny) = coarse.dim();
+        return Err(SceneError::Inconsistent(format!(
+            "richardson runs the body again on the coarse array (every second element: {nx} × \
+             {ny} at {} = {}), which fails where the fine one passes: {e}",
+            tack_fields::GRID_DX,
+            tack_fields::num(2.0 * spec.dx)
+        ))
+        .into());
+    }
     let mut outcome = pull_off(heights, spec, &single, observer)?;
     let started = std::time::Instant::now();
     let coarse_f = pull_off(&coarse, &coarse_spec, &single, observer)?.pull_off_force();
@@ -246,6 +256,22 @@ pub fn pull_off_richardson(
 mod tests {
     use super::*;
     use tack_geometry::{Boundary, Grid, RoughSpec, Sphere, Surface, rough_surface};
+
+    #[test]
+    fn a_coarse_array_that_does_not_hold_the_contact_is_named() {
+        // The 36² sphere array passes alone; its coarse array loses a fine element at the
+        // positive edge, where the one-step load's disc then reaches.
+        let heights = sphere(36, 0.3, 8.0);
+        let spec = PullOffSpec::new(0.3, 1.0, 0.125);
+        let e = pull_off_richardson(&heights, &spec, &RunOptions::default(), &mut ())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("richardson runs the body again on the coarse array"),
+            "{e}"
+        );
+        assert!(e.contains("18 × 18 at grid.dx = 0.6"), "{e}");
+    }
 
     fn sphere(n: usize, dx: f64, radius: f64) -> Array2<f64> {
         let grid = Grid::square(n, dx, Boundary::Free).unwrap();
