@@ -75,9 +75,10 @@ pub fn run(
 /// enough for the JKR pull-off), then retracts by [`COARSE_UNLOAD_STEP`]`·d_s` while the force
 /// is compressive and by `min(`[`UNLOAD_STEP`]`, `[`UNLOAD_STEP_PER_ELEMENT`]`·Δx/a_c)·d_s` through
 /// the tensile part (a_c the JKR pull-off radius of R), until no element is
-/// bonded. The summary gets the JKR references of `R`. On a free grid the Hertz contact radius
-/// `sqrt(R·d)` at that depth (from the first touch) plus 30% must fit inside the array around
-/// the vertex. Each of `max_approach`, `unload_step`, `coarse_unload_step` can be given
+/// bonded. The summary gets the JKR references of `R`. On a free grid the contact must fit the
+/// array: the Hertz radius `sqrt(R·d)` at that depth (from the first touch) plus 30% around the
+/// vertex, and every element the one-step load penetrates must keep off the array's edge (the
+/// rule is the scenes', applied by the problem builder). Each of `max_approach`, `unload_step`, `coarse_unload_step` can be given
 /// instead; a body with no radius (flat, wavy, a strip) needs `max_approach` and `unload_step`
 /// (the coarse step is then [`COARSE_PER_UNLOAD_STEP`] times the fine one).
 #[derive(Debug, Clone, PartialEq)]
