@@ -64,14 +64,11 @@ struct StudyRun {
 }
 
 /// Runs `scene` loading in `load_steps` equal steps to its deepest approach from just out of
-/// reach: from the first touch (zero-range law) or from the first touch less the range
-/// (Dugdale); `load_steps = 1` jumps there in one step from out of reach.
+/// reach: from the first touch (zero-range law) or from the first touch less the law's reach
+/// (`AdhesionLaw::reach`); `load_steps = 1` jumps there in one step from out of reach.
 fn run_loaded(scene: &tack::Scene, load_steps: usize) -> Result<StudyRun> {
     let mut problem = Problem::from_scene(scene)?;
-    let range = match problem.law {
-        tack_solver::AdhesionLaw::Dugdale { sigma0 } => problem.gamma / sigma0,
-        tack_solver::AdhesionLaw::JkrLimit { .. } => 0.0,
-    };
+    let range = problem.law.reach(problem.gamma).unwrap_or(0.0);
     let reach = problem.first_touch - range;
     let depth = problem.path.max_approach - reach;
     let step = depth / load_steps as f64;

@@ -50,6 +50,16 @@ fn body_lines(scene: &Scene, p: &Problem) -> Vec<String> {
             rounded(sigma0),
             rounded(p.gamma / sigma0)
         ),
+        tack::solver::AdhesionLaw::Exponential { range } => format!(
+            "exponential, range rho = {}, peak tension = {}",
+            rounded(range),
+            rounded(p.law.peak_tension(p.gamma, p.e_star, p.grid.dx()))
+        ),
+        tack::solver::AdhesionLaw::LennardJones { range } => format!(
+            "Lennard-Jones 9-3, range epsilon = {}, peak tension = {}",
+            rounded(range),
+            rounded(p.law.peak_tension(p.gamma, p.e_star, p.grid.dx()))
+        ),
     };
     lines.push(format!(
         "material    E* = {}, gamma = {} ({law})",
@@ -311,6 +321,14 @@ fn reference_lines(outcome: &RunOutcome) -> Vec<String> {
             rounded(fm),
             ratio(fm),
             lambda
+        ));
+    }
+    if let Some(mu) = get("tabor_mu") {
+        lines.push(format!(
+            "            Tabor mu = {:.4} (JKR 1.5 pi gamma R as mu grows, DMT 2 pi gamma R as it \
+             vanishes); process zone {} elements",
+            mu,
+            get("process_zone_elements").map_or_else(|| "?".to_owned(), |z| format!("{z:.2}"))
         ));
     }
     if let Some(fm) = get("f_mdr") {

@@ -10,10 +10,11 @@ use std::process::Command;
 use common::{Scratch, examples_dir, files_with_extension, have_h5py, run, text};
 
 /// The examples this file tests, one `#[test]` each (see `example!`).
-const EXAMPLES: [&str; 13] = [
+const EXAMPLES: [&str; 14] = [
     "cone",
     "dugdale_sphere",
     "elliptic_tip",
+    "exponential_sphere",
     "flat_punch",
     "patterned_punch",
     "smooth_jkr_sphere",
@@ -146,6 +147,33 @@ example!(dugdale_sphere, |r, info| {
     assert!((s.extra["maugis_lambda"] - 1.0).abs() < 1e-3);
     // Both branches: out of range first, the jump in with tension, a loop that dissipates.
     assert_eq!(r.curve.force[0], 0.0);
+    assert!(s.extra["jump_in_force"] < 0.0 && s.extra["dissipated_energy"] > 0.0);
+    assert!(
+        r.curve
+            .n_cohesive
+            .as_ref()
+            .is_some_and(|z| z.iter().any(|&n| n > 0))
+    );
+});
+
+example!(exponential_sphere, |r, info| {
+    let s = &r.summary;
+    assert_eq!(s.adhesion_model.as_deref(), Some("exponential"));
+    assert!(info.contains("adhesion_model = exponential"), "{info}");
+    assert!((s.extra["tabor_mu"] - 3.0).abs() < 1e-3);
+    // μ = 3 between JKR (1.5 πγR) and DMT (2 πγR); the process zone spans 0.6 elements here,
+    // which puts the pull-off about 6% above the converged 1.54 πγR (docs/theory.md §3.9).
+    let hat = s.pull_off_force / (-std::f64::consts::PI * 1e-3);
+    assert!((1.5..1.75).contains(&hat), "F/(πγR) = {hat}");
+    assert!(s.extra["process_zone_elements"] < 1.0);
+    assert!(
+        s.warnings
+            .iter()
+            .any(|w| w.contains("under-resolved process zone")),
+        "{:?}",
+        s.warnings
+    );
+    // Both branches: the jump in with tension, a loop that dissipates, a zone of tension.
     assert!(s.extra["jump_in_force"] < 0.0 && s.extra["dissipated_energy"] > 0.0);
     assert!(
         r.curve

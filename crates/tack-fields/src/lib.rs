@@ -126,6 +126,7 @@ scene_fields! {
     BODY_INTERFACE = body.interface,
     ADHESION_MODEL = adhesion.model,
     ADHESION_SIGMA0 = adhesion.sigma0,
+    ADHESION_RANGE = adhesion.range,
     ADHESION_GAMMA_MAP = adhesion.gamma_map,
     ADHESION_DATASET = adhesion.dataset,
     ADHESION_PATTERN = adhesion.pattern,
@@ -229,13 +230,20 @@ pub const FIELDS: &[Field] = &[
     ),
     f(
         ADHESION_MODEL,
-        Kind::Choice(&["jkr_limit", "dugdale"]),
-        "zero-range criterion or a Dugdale cohesive zone",
+        Kind::Choice(&["jkr_limit", "dugdale", "exponential", "lennard_jones"]),
+        "zero-range criterion, a Dugdale cohesive zone, or a smooth law (exponential, \
+         Lennard-Jones 9–3) with a hard wall",
     ),
     f(
         ADHESION_SIGMA0,
         Kind::Number,
         "Dugdale: cohesive tension σ0 (the range is γ/σ0)",
+    ),
+    f(
+        ADHESION_RANGE,
+        Kind::Number,
+        "smooth laws: the range ρ of the exponential law, the equilibrium separation ε of the \
+         Lennard-Jones law",
     ),
     f(
         ADHESION_GAMMA_MAP,

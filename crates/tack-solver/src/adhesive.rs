@@ -21,6 +21,7 @@ use crate::cg::{PcgWork, assign};
 use crate::clusters::count_clusters;
 use crate::law::Cohesive;
 use crate::relax::{Relaxation, Released, take_released};
+use crate::smooth::SmoothState;
 use crate::state::Convergence;
 use crate::subgrid::{SubProblem, SubgridCache};
 use crate::{AdhesionLaw, SolverError, SolverOptions, StepRecord, validate};
@@ -144,6 +145,8 @@ pub struct AdhesiveSolver {
     pub(crate) last_approach: Option<f64>,
     /// The Dugdale law's cohesive zone and scratch (`None`: the zero-range criterion).
     pub(crate) cohesive: Option<Cohesive>,
+    /// A smooth law's curve and Newton vectors (`None`: the criterion or the Dugdale law).
+    pub(crate) smooth: Option<SmoothState>,
     /// Windowed solves of [`AdhesiveOptions::local_relaxation`].
     relaxation: Relaxation,
 }
@@ -179,7 +182,7 @@ impl AdhesiveSolver {
     ) -> Result<Self, SolverError> {
         let kappa = match law {
             AdhesionLaw::JkrLimit { kappa } => kappa,
-            AdhesionLaw::Dugdale { .. } => KAPPA,
+            _ => KAPPA,
         };
         validate::adhesion(gamma, kappa, &options)?;
         let mut options = options;
@@ -195,14 +198,16 @@ impl AdhesiveSolver {
         let base = SolverBase::new(op, surface)?;
         let shape = base.grid().shape();
         let (base_dx, e_star) = (base.grid().dx(), base.op.e_star());
-        let (sigma_c, cohesive) = match law {
-            AdhesionLaw::JkrLimit { kappa } => (
-                (base.op.e_star() * gamma / (kappa * base.grid().dx())).sqrt(),
-                None,
-            ),
+        let sigma_c = law.peak_tension(gamma, e_star, base_dx);
+        let (cohesive, smooth) = match law {
+            AdhesionLaw::JkrLimit { .. } => (None, None),
             AdhesionLaw::Dugdale { sigma0 } => {
-                let cohesive = Cohesive::new(gamma, sigma0, surface, shape)?;
-                (sigma0, Some(cohesive))
+                (Some(Cohesive::new(gamma, sigma0, surface, shape)?), None)
+            }
+            AdhesionLaw::Exponential { .. } | AdhesionLaw::LennardJones { .. } => {
+                law.check(gamma, surface)?;
+                let traction = law.traction(gamma).expect("a smooth law");
+                (None, Some(SmoothState::new(traction, shape)))
             }
         };
         Ok(Self {
@@ -218,6 +223,7 @@ impl AdhesiveSolver {
             history: None,
             last_approach: None,
             cohesive,
+            smooth,
             relaxation: Relaxation::new(base_dx, e_star),
         })
     }
@@ -269,6 +275,13 @@ impl AdhesiveSolver {
                 gamma.mapv(|g| (scale * g).sqrt())
             }
             AdhesionLaw::Dugdale { sigma0 } => gamma.mapv(|g| sigma0 * (g / gamma_ref)),
+            AdhesionLaw::Exponential { .. } | AdhesionLaw::LennardJones { .. } => {
+                let share: std::sync::Arc<[f64]> = gamma.iter().map(|g| g / gamma_ref).collect();
+                if let Some(s) = self.smooth.as_mut() {
+                    s.weights = Some(share);
+                }
+                gamma.mapv(|g| self.sigma_c * (g / gamma_ref))
+            }
         };
         self.patterned = true;
         Ok(())
@@ -282,14 +295,25 @@ impl AdhesiveSolver {
             .expect("a 1 × 1 array or the grid's shape")
     }
 
-    /// The adhesion law's range `h0 = γ/σ0` (Dugdale), `None` for the zero-range criterion.
+    /// The adhesion law's range (`h0 = γ/σ0` of the Dugdale law, ρ, ε), `None` for the
+    /// zero-range criterion.
     pub fn range(&self) -> Option<f64> {
-        self.cohesive.as_ref().map(|c| c.range)
+        self.reference.1.range(self.reference.0)
+    }
+
+    /// The adhesion law the solver runs.
+    pub fn law(&self) -> AdhesionLaw {
+        self.reference.1
     }
     /// Dugdale law: the cohesive zone (elements not in contact that carry the tension σ0, their
-    /// gap below the range). `None` for the zero-range criterion.
+    /// gap below the range); smooth laws: the elements out of contact whose tension exceeds 1%
+    /// of the peak. `None` for the zero-range criterion.
     pub fn cohesive_zone(&self) -> Option<&Array2<bool>> {
-        self.cohesive.as_ref().map(|c| &c.zone)
+        match (&self.cohesive, &self.smooth) {
+            (Some(c), _) => Some(&c.zone),
+            (None, Some(s)) => Some(&s.zone),
+            (None, None) => None,
+        }
     }
     /// Current element pressures (the cohesive zone's tension −σ0 included).
     pub fn pressure(&self) -> &Array2<f64> {
@@ -319,6 +343,9 @@ impl AdhesiveSolver {
     /// see [`AdhesionLaw::Dugdale`].
     pub fn step(&mut self, approach: f64) -> Result<StepRecord, SolverError> {
         let d = validate::approach(approach)?;
+        if self.smooth.is_some() {
+            return Ok(self.step_smooth(d));
+        }
         self.predict(d);
         if self.cohesive.is_some() {
             return Ok(self.step_dugdale(d));

@@ -1,5 +1,7 @@
-//! The adhesion laws an [`AdhesiveSolver`](crate::AdhesiveSolver) can run, and the state the
-//! Dugdale law keeps on the solver's grid (its algorithm is in `dugdale.rs`).
+//! The adhesion laws an [`AdhesiveSolver`](crate::AdhesiveSolver) can run, their facts (name,
+//! range, peak tension, Tabor parameter) in one place, the smooth laws' traction–gap curves,
+//! and the state the Dugdale law keeps on the solver's grid (its algorithm is in `dugdale.rs`;
+//! the smooth laws' in `smooth.rs`).
 
 use ndarray::Array2;
 use tack_fields as fields;
@@ -22,13 +24,166 @@ pub enum AdhesionLaw {
         /// The cohesive tension σ0 > 0.
         sigma0: f64,
     },
+    /// The exponential law of the potential `V(g) = −γ e^(−g/ρ)` with a hard wall at `g = 0`:
+    /// out of contact `p(g) = −(γ/ρ) e^(−g/ρ)`, peak tension `γ/ρ` at the wall (the law of
+    /// Tamaas, ContactMechanics and the contact-mechanics challenge). Solved by `smooth.rs`.
+    Exponential {
+        /// The range ρ > 0.
+        range: f64,
+    },
+    /// The Lennard-Jones 9–3 law with a hard wall at its equilibrium separation ε: with
+    /// `h = g + ε`, `p(g) = −(8γ/3ε)[(ε/h)³ − (ε/h)⁹]`, zero at the wall, peak tension
+    /// `16γ/(9√3 ε) ≈ 1.026 γ/ε` at `h = 3^(1/6) ε`, work `γ` (Derjaguin–Muller–Toporov's and
+    /// Greenwood's law of two half-spaces). Solved by `smooth.rs`.
+    LennardJones {
+        /// The equilibrium separation ε > 0.
+        range: f64,
+    },
 }
+
+/// Which smooth traction–gap curve a [`Traction`] follows.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Curve {
+    Exponential,
+    LennardJones,
+}
+
+/// A smooth law's traction–gap curve for work of adhesion `gamma` and `range`, with the hard
+/// wall at `g = 0`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Traction {
+    pub(crate) curve: Curve,
+    pub(crate) gamma: f64,
+    pub(crate) range: f64,
+}
+
+impl Traction {
+    /// The law's pressure at gap `g ≥ 0` (negative: tension).
+    #[inline]
+    pub(crate) fn pressure(&self, g: f64) -> f64 {
+        let (gamma, r) = (self.gamma, self.range);
+        match self.curve {
+            Curve::Exponential => -(gamma / r) * (-g / r).exp(),
+            Curve::LennardJones => {
+                let t = r / (g + r);
+                let t3 = t * t * t;
+                -(8.0 * gamma / (3.0 * r)) * (t3 - t3 * t3 * t3)
+            }
+        }
+    }
+
+    /// `dp/dg` at gap `g ≥ 0`: positive where the law softens (destabilises).
+    #[inline]
+    pub(crate) fn stiffness(&self, g: f64) -> f64 {
+        let (gamma, r) = (self.gamma, self.range);
+        match self.curve {
+            Curve::Exponential => (gamma / (r * r)) * (-g / r).exp(),
+            Curve::LennardJones => {
+                let h = g + r;
+                let t = r / h;
+                let t3 = t * t * t;
+                (8.0 * gamma / (r * h)) * (t3 - 3.0 * t3 * t3 * t3)
+            }
+        }
+    }
+
+    /// The greatest tension of the law.
+    pub(crate) fn peak(&self) -> f64 {
+        match self.curve {
+            Curve::Exponential => self.gamma / self.range,
+            Curve::LennardJones => 16.0 * self.gamma / (9.0 * 3f64.sqrt() * self.range),
+        }
+    }
+}
+
+/// A smooth law's reach ([`AdhesionLaw::reach`]) is where its tension falls to this fraction
+/// of the peak: what a crop leaves out is a tension below it.
+pub const REACH_FRACTION: f64 = 1e-8;
 
 /// The smallest range allowed, relative to the largest height: below it the gap test
 /// `g < h0` is decided by the round-off of `f − d + u`.
 pub const RANGE_ROUND_OFF: f64 = 1e-12;
 
 impl AdhesionLaw {
+    /// The name in scene files and results: `"jkr_limit"`, `"dugdale"`, `"exponential"` or
+    /// `"lennard_jones"`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            AdhesionLaw::JkrLimit { .. } => "jkr_limit",
+            AdhesionLaw::Dugdale { .. } => "dugdale",
+            AdhesionLaw::Exponential { .. } => "exponential",
+            AdhesionLaw::LennardJones { .. } => "lennard_jones",
+        }
+    }
+
+    /// Whether every element carries the traction of its own gap (a smooth law).
+    pub fn is_smooth(&self) -> bool {
+        matches!(
+            self,
+            AdhesionLaw::Exponential { .. } | AdhesionLaw::LennardJones { .. }
+        )
+    }
+
+    /// The law's length for work of adhesion `gamma`: the Dugdale range `γ/σ0`, ρ, ε; `None`
+    /// for the zero-range criterion.
+    pub fn range(&self, gamma: f64) -> Option<f64> {
+        match *self {
+            AdhesionLaw::JkrLimit { .. } => None,
+            AdhesionLaw::Dugdale { sigma0 } => Some(gamma / sigma0),
+            AdhesionLaw::Exponential { range } | AdhesionLaw::LennardJones { range } => Some(range),
+        }
+    }
+
+    /// The gap beyond which the law's tension is negligible, for cropping and for where a path
+    /// starts: the Dugdale range `γ/σ0`; for a smooth law the gap where its tension falls to
+    /// [`REACH_FRACTION`] of the peak (`ρ ln 10⁸ ≈ 18.4ρ`, about `640ε`); `None` for the
+    /// zero-range criterion.
+    pub fn reach(&self, gamma: f64) -> Option<f64> {
+        match *self {
+            AdhesionLaw::JkrLimit { .. } => None,
+            AdhesionLaw::Dugdale { sigma0 } => Some(gamma / sigma0),
+            AdhesionLaw::Exponential { range } => Some(range * (1.0 / REACH_FRACTION).ln()),
+            AdhesionLaw::LennardJones { range } => {
+                // (8/3)(t³ − t⁹)/(16/(9√3)) = fraction with t = ε/h: t³ ≈ fraction·2/(3√3).
+                let t = (REACH_FRACTION * 2.0 / (3.0 * 3f64.sqrt())).cbrt();
+                Some(range / t - range)
+            }
+        }
+    }
+
+    /// The greatest tension an element carries: the criterion's `σ_c = sqrt(E*γ/(κΔx))`, σ0,
+    /// `γ/ρ`, or `16γ/(9√3 ε)`.
+    pub fn peak_tension(&self, gamma: f64, e_star: f64, dx: f64) -> f64 {
+        match *self {
+            AdhesionLaw::JkrLimit { kappa } => (e_star * gamma / (kappa * dx)).sqrt(),
+            AdhesionLaw::Dugdale { sigma0 } => sigma0,
+            AdhesionLaw::Exponential { .. } | AdhesionLaw::LennardJones { .. } => {
+                self.traction(gamma).map_or(0.0, |t| t.peak())
+            }
+        }
+    }
+
+    /// Tabor's parameter `μ = (Rγ²/(E*²ℓ³))^(1/3)` of a sphere of `radius` with the law's
+    /// length ℓ ([`AdhesionLaw::range`]); `None` for the zero-range criterion (μ = ∞).
+    pub fn tabor(&self, e_star: f64, gamma: f64, radius: f64) -> Option<f64> {
+        let l = self.range(gamma)?;
+        Some((radius * gamma * gamma / (e_star * e_star * l * l * l)).cbrt())
+    }
+
+    /// The smooth law's curve (`None` for the criterion and the Dugdale law).
+    pub(crate) fn traction(&self, gamma: f64) -> Option<Traction> {
+        let (curve, range) = match *self {
+            AdhesionLaw::Exponential { range } => (Curve::Exponential, range),
+            AdhesionLaw::LennardJones { range } => (Curve::LennardJones, range),
+            _ => return None,
+        };
+        Some(Traction {
+            curve,
+            gamma,
+            range,
+        })
+    }
+
     /// Checks the law's own inputs for work of adhesion `gamma` on `surface`: κ > 0 for the
     /// criterion; for the Dugdale law σ0 > 0, γ > 0 and a range γ/σ0 above the round-off of
     /// the heights ([`RANGE_ROUND_OFF`]). Errors name the field.
@@ -38,6 +193,9 @@ impl AdhesionLaw {
                 return crate::validate::positive(fields::SOLVER_KAPPA, kappa).map(|_| ());
             }
             AdhesionLaw::Dugdale { sigma0 } => sigma0,
+            AdhesionLaw::Exponential { range } | AdhesionLaw::LennardJones { range } => {
+                return check_smooth(range, gamma, surface);
+            }
         };
         crate::validate::positive(fields::ADHESION_SIGMA0, sigma0)?;
         if gamma <= 0.0 {
@@ -62,6 +220,30 @@ impl AdhesionLaw {
         }
         Ok(())
     }
+}
+
+/// A smooth law's inputs: γ > 0 and a range ρ (ε) > 0 above the round-off of the heights.
+fn check_smooth(range: f64, gamma: f64, surface: &Surface) -> Result<(), SolverError> {
+    crate::validate::positive(fields::ADHESION_RANGE, range)?;
+    if gamma <= 0.0 || !gamma.is_finite() {
+        return Err(SolverError::OutOfRange {
+            field: fields::MATERIAL_GAMMA,
+            value: gamma,
+            allowed: "a finite number > 0 under a smooth law (exponential, lennard_jones)",
+        });
+    }
+    let top = surface
+        .heights()
+        .iter()
+        .fold(0.0f64, |m, &f| m.max(f.abs()));
+    if range <= RANGE_ROUND_OFF * top {
+        return Err(SolverError::OutOfRange {
+            field: fields::ADHESION_RANGE,
+            value: range,
+            allowed: "above 1e-12 of the largest height (below it the law acts on round-off)",
+        });
+    }
+    Ok(())
 }
 
 /// The Dugdale law's state on the solver's grid: σ0, the range and the cohesive zone.

@@ -99,6 +99,7 @@ mod options;
 mod path;
 mod relax;
 mod rounds;
+mod smooth;
 mod state;
 mod subgrid;
 mod validate;
@@ -114,7 +115,7 @@ pub use cycle::{Cycle, CycleStep, cycle};
 pub use extrapolate::{
     CRITERION_ERROR_COEFFICIENT, observed_order, pull_off_error_estimate, richardson_first_order,
 };
-pub use law::{AdhesionLaw, RANGE_ROUND_OFF};
+pub use law::{AdhesionLaw, RANGE_ROUND_OFF, REACH_FRACTION};
 pub use options::{SolverError, SolverOptions};
 pub use path::{
     ApproachPath, Observer, PathResult, Phase, SnapshotRequest, StepFields, pull_off_step,

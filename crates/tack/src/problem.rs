@@ -266,6 +266,9 @@ impl Problem {
         if let AdhesionLaw::Dugdale { sigma0 } = law {
             dugdale_references(&mut references, &mut warnings, e_star, gamma, sigma0, &grid);
         }
+        if law.is_smooth() {
+            smooth_references(&mut references, &mut warnings, law, e_star, gamma, &grid);
+        }
         if let Some(layer) = &layer {
             crate::layer::film_warnings(layer, &references, law, gamma, grid.dx(), &mut warnings);
         }
@@ -531,10 +534,7 @@ fn crop_window(
 /// The range of an adhesion law: γ/σ0 for the Dugdale law, `None` for the zero-range
 /// criterion.
 pub fn law_range(law: AdhesionLaw, gamma: f64) -> Option<f64> {
-    match law {
-        AdhesionLaw::JkrLimit { .. } => None,
-        AdhesionLaw::Dugdale { sigma0 } => Some(gamma / sigma0),
-    }
+    law.reach(gamma)
 }
 
 /// Least length of a Dugdale cohesive zone, in elements, below which a result is flagged: the
@@ -581,46 +581,123 @@ fn dugdale_references(
     }
 }
 
-/// The adhesion law of `[adhesion]`, checked: `sigma0` only with, and always with, the Dugdale
-/// model; `solver.kappa` only with the zero-range criterion; a Dugdale range `γ/σ0` above the
-/// round-off of the heights.
-fn adhesion_law(f: &SceneSchema, kappa: f64, surface: &Surface) -> Result<AdhesionLaw, SceneError> {
-    let model = fields::ADHESION_MODEL;
-    match (f.adhesion.model, f.adhesion.sigma0) {
-        (AdhesionModel::JkrLimit, None) => Ok(AdhesionLaw::JkrLimit { kappa }),
-        (AdhesionModel::JkrLimit, Some(s)) => Err(SceneError::Inconsistent(format!(
-            "{sigma0} = {} is read by the Dugdale law only: set {model} = \"dugdale\" or leave \
-             {sigma0} out (the default {model} = \"jkr_limit\" has zero range)",
-            num(s),
-            sigma0 = fields::ADHESION_SIGMA0,
-        ))),
-        (AdhesionModel::Dugdale, None) => Err(SceneError::Inconsistent(format!(
-            "{sigma0} is required with {model} = \"dugdale\": the cohesive tension σ0 > 0 (the \
-             range is {gamma}/σ0)",
-            sigma0 = fields::ADHESION_SIGMA0,
-            gamma = fields::MATERIAL_GAMMA,
-        ))),
-        (AdhesionModel::Dugdale, Some(sigma0)) => {
-            if f.solver.kappa.is_some() {
-                return Err(SceneError::Inconsistent(format!(
-                    "{kappa} is the zero-range criterion's constant; {model} = \"dugdale\" does \
-                     not read it: leave it out",
-                    kappa = fields::SOLVER_KAPPA,
-                )));
-            }
-            let gamma = f.material.gamma;
-            if gamma <= 0.0 {
-                return Err(SceneError::Inconsistent(format!(
-                    "{model} = \"dugdale\" needs {gamma_field} > 0 (the range is γ/σ0); got {}",
-                    num(gamma),
-                    gamma_field = fields::MATERIAL_GAMMA,
-                )));
-            }
-            // σ0 > 0 and a range above the round-off of the heights: the solver's own check.
-            AdhesionLaw::Dugdale { sigma0 }.check(gamma, surface)?;
-            Ok(AdhesionLaw::Dugdale { sigma0 })
-        }
+/// Least width of a smooth law's process zone, in elements, below which a result is flagged:
+/// an element's own stiffness `E*/(κ₀Δx)` then no longer holds the law's steepest softening,
+/// the front advances element by element and the forces depend on the mesh.
+pub const MIN_PROCESS_ZONE_ELEMENTS: f64 = 1.0;
+
+/// The width `(8/3π)E*ℓ²/γ` of a smooth law's process zone (ℓ its range ρ or ε): the length
+/// over which the law's tension acts ahead of a crack (for the exponential law; the
+/// Lennard-Jones law's is of the same order). What the mesh must resolve.
+pub fn process_zone_length(e_star: f64, gamma: f64, range: f64) -> f64 {
+    8.0 / (3.0 * std::f64::consts::PI) * e_star * range * range / gamma
+}
+
+/// A smooth law's references and warnings: Tabor's μ of the sphere (its radius read back from
+/// F_JKR) and a process zone narrower than [`MIN_PROCESS_ZONE_ELEMENTS`].
+fn smooth_references(
+    references: &mut References,
+    warnings: &mut Vec<String>,
+    law: AdhesionLaw,
+    e_star: f64,
+    gamma: f64,
+    grid: &Grid,
+) {
+    let range = law.range(gamma).expect("a smooth law has a range");
+    if let Some(f_jkr) = references.f_jkr {
+        let radius = -f_jkr / (1.5 * std::f64::consts::PI * gamma);
+        references.tabor_mu = law.tabor(e_star, gamma, radius);
     }
+    let zone = process_zone_length(e_star, gamma, range);
+    let elements = zone / grid.dx();
+    if elements < MIN_PROCESS_ZONE_ELEMENTS {
+        warnings.push(format!(
+            "under-resolved process zone: its width (8/3π)E*ρ²/γ = {} spans {} elements (at \
+             least {MIN_PROCESS_ZONE_ELEMENTS} needed); the front then moves element by element \
+             and the forces depend on the mesh (refine {dx} or raise {range_field})",
+            tack_fields::rounded(zone),
+            num((elements * 100.0).round() / 100.0),
+            dx = fields::GRID_DX,
+            range_field = fields::ADHESION_RANGE,
+        ));
+    }
+}
+
+/// The adhesion law of `[adhesion]`, checked: each law's parameter only with, and always with,
+/// its model (`sigma0` with `"dugdale"`, `range` with the smooth laws); `solver.kappa` only with
+/// the zero-range criterion; γ > 0 and a range above the round-off of the heights for the
+/// finite-range laws (the solver's own check).
+fn adhesion_law(f: &SceneSchema, kappa: f64, surface: &Surface) -> Result<AdhesionLaw, SceneError> {
+    let model_field = fields::ADHESION_MODEL;
+    let model = f.adhesion.model;
+    let name = model.name();
+    let misplaced = |field: &str, value: f64, reader: &str| {
+        SceneError::Inconsistent(format!(
+            "{field} = {} is read by {reader}: {model_field} = \"{name}\" does not read it; \
+             leave it out or set {model_field}",
+            num(value),
+        ))
+    };
+    if let (Some(s), false) = (f.adhesion.sigma0, model == AdhesionModel::Dugdale) {
+        return Err(misplaced(
+            fields::ADHESION_SIGMA0,
+            s,
+            "the Dugdale law only (model = \"dugdale\")",
+        ));
+    }
+    if let (Some(r), false) = (f.adhesion.range, model.is_smooth()) {
+        return Err(misplaced(
+            fields::ADHESION_RANGE,
+            r,
+            "the smooth laws only (model = \"exponential\" or \"lennard_jones\")",
+        ));
+    }
+    let law = match model {
+        AdhesionModel::JkrLimit => return Ok(AdhesionLaw::JkrLimit { kappa }),
+        AdhesionModel::Dugdale => AdhesionLaw::Dugdale {
+            sigma0: f.adhesion.sigma0.ok_or_else(|| {
+                SceneError::Inconsistent(format!(
+                    "{sigma0} is required with {model_field} = \"dugdale\": the cohesive \
+                     tension σ0 > 0 (the range is {gamma}/σ0)",
+                    sigma0 = fields::ADHESION_SIGMA0,
+                    gamma = fields::MATERIAL_GAMMA,
+                ))
+            })?,
+        },
+        AdhesionModel::Exponential | AdhesionModel::LennardJones => {
+            let range = f.adhesion.range.ok_or_else(|| {
+                SceneError::Inconsistent(format!(
+                    "{range} is required with {model_field} = \"{name}\": the law's length \
+                     (ρ of the exponential law, ε of the Lennard-Jones law) > 0",
+                    range = fields::ADHESION_RANGE,
+                ))
+            })?;
+            if model == AdhesionModel::Exponential {
+                AdhesionLaw::Exponential { range }
+            } else {
+                AdhesionLaw::LennardJones { range }
+            }
+        }
+    };
+    if f.solver.kappa.is_some() {
+        return Err(SceneError::Inconsistent(format!(
+            "{kappa_field} is the zero-range criterion's constant; {model_field} = \"{name}\" \
+             does not read it: leave it out",
+            kappa_field = fields::SOLVER_KAPPA,
+        )));
+    }
+    let gamma = f.material.gamma;
+    if gamma <= 0.0 {
+        return Err(SceneError::Inconsistent(format!(
+            "{model_field} = \"{name}\" needs {gamma_field} > 0 (a finite-range law spreads γ \
+             over its range); got {}",
+            num(gamma),
+            gamma_field = fields::MATERIAL_GAMMA,
+        )));
+    }
+    // Positive, finite parameters and a range above the round-off of the heights.
+    law.check(gamma, surface)?;
+    Ok(law)
 }
 
 /// A rigid body given as heights in memory, added to a scene's body (`crate::heights::problem`,

@@ -16,6 +16,9 @@ pub struct References {
     pub maugis_lambda: Option<f64>,
     /// Dugdale law on a sphere: the Maugis–Dugdale pull-off force under approach control.
     pub f_maugis: Option<f64>,
+    /// Smooth law on a sphere: Tabor's parameter μ = (Rγ²/(E*²ℓ³))^(1/3) with the law's range ℓ
+    /// (ρ or ε).
+    pub tabor_mu: Option<f64>,
     /// Kendall's pull-off force −sqrt(8πa³E*γ) (signed: tensile) of a circular punch.
     pub f_kendall: Option<f64>,
     /// The exact JKR-limit pull-off force of a power-law body c·r^m on a free grid (method of

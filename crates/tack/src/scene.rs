@@ -65,9 +65,13 @@ pub struct Material {
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct AdhesionSpec {
-    /// `"jkr_limit"` (default) or `"dugdale"`.
+    /// `"jkr_limit"` (default), `"dugdale"`, `"exponential"` or `"lennard_jones"`.
     #[serde(default)]
     pub model: AdhesionModel,
+    /// Smooth laws: the range ρ of `"exponential"` (`p = −(γ/ρ) e^(−g/ρ)`) or the equilibrium
+    /// separation ε of `"lennard_jones"` (> 0). Only with those models.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub range: Option<f64>,
     /// Dugdale: the cohesive tension σ0 (> 0); the range is `h0 = γ/σ0`. Only with
     /// `model = "dugdale"`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -196,15 +200,28 @@ pub enum AdhesionModel {
     JkrLimit,
     /// A Dugdale cohesive zone of tension σ0 and range γ/σ0 (Maugis 1992).
     Dugdale,
+    /// The exponential law `p = −(γ/ρ) e^(−g/ρ)` with a hard wall (range `adhesion.range`).
+    Exponential,
+    /// The Lennard-Jones 9–3 law with a hard wall at its equilibrium separation
+    /// (`adhesion.range`).
+    LennardJones,
 }
 
 impl AdhesionModel {
-    /// The name in scene files and results: `"jkr_limit"` or `"dugdale"`.
+    /// The name in scene files and results: `"jkr_limit"`, `"dugdale"`, `"exponential"` or
+    /// `"lennard_jones"`.
     pub fn name(self) -> &'static str {
         match self {
             Self::JkrLimit => "jkr_limit",
             Self::Dugdale => "dugdale",
+            Self::Exponential => "exponential",
+            Self::LennardJones => "lennard_jones",
         }
+    }
+
+    /// Whether the model is a smooth law that reads `adhesion.range`.
+    pub fn is_smooth(self) -> bool {
+        matches!(self, Self::Exponential | Self::LennardJones)
     }
 }
 

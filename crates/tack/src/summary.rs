@@ -79,6 +79,18 @@ pub fn summary(problem: &Problem, path: &PathResult) -> tack_io::Summary {
                 zone / problem.grid.dx(),
             );
         }
+        AdhesionLaw::Exponential { range } | AdhesionLaw::LennardJones { range } => {
+            extra.insert("range".to_owned(), range);
+            let peak = problem
+                .law
+                .peak_tension(problem.gamma, problem.e_star, problem.grid.dx());
+            extra.insert("peak_tension".to_owned(), peak);
+            let zone = crate::problem::process_zone_length(problem.e_star, problem.gamma, range);
+            extra.insert("process_zone_elements".to_owned(), zone / problem.grid.dx());
+        }
+    }
+    if let Some(mu) = r.tabor_mu {
+        extra.insert("tabor_mu".to_owned(), mu);
     }
     if let Some(l) = r.maugis_lambda {
         extra.insert("maugis_lambda".to_owned(), l);
@@ -159,10 +171,7 @@ pub fn summary(problem: &Problem, path: &PathResult) -> tack_io::Summary {
 /// The name of an adhesion law in scene files and results (`/summary` attribute
 /// `adhesion_model`).
 pub fn model_name(law: AdhesionLaw) -> &'static str {
-    match law {
-        AdhesionLaw::JkrLimit { .. } => crate::scene::AdhesionModel::JkrLimit.name(),
-        AdhesionLaw::Dugdale { .. } => crate::scene::AdhesionModel::Dugdale.name(),
-    }
+    law.name()
 }
 
 /// Least number of bonded elements at the pull-off step below which the pull-off is flagged

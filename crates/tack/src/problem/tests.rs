@@ -617,6 +617,52 @@ mod adhesion_tests {
     }
 
     #[test]
+    fn the_smooth_laws_are_read_and_their_inputs_are_checked() {
+        let exp = ["adhesion.model=\"exponential\"", "adhesion.range=0.05"];
+        let p = build(&exp).unwrap();
+        assert_eq!(p.law, AdhesionLaw::Exponential { range: 0.05 });
+        // Tabor's μ of the sphere R = 1 (E* = 1, γ = 0.1): (Rγ²/(E*²ρ³))^(1/3) = 0.1^(2/3)/0.05.
+        let mu = p.references.tabor_mu.unwrap();
+        assert!((mu - 0.1f64.powf(2.0 / 3.0) / 0.05).abs() < 1e-12, "{mu}");
+        // The default path starts out of reach (18.4 ρ before the first touch).
+        assert!(p.path.start < -18.0 * 0.05, "{}", p.path.start);
+        let lj = build(&["adhesion.model=\"lennard_jones\"", "adhesion.range=0.05"]).unwrap();
+        assert_eq!(lj.law, AdhesionLaw::LennardJones { range: 0.05 });
+        assert!(err(&["adhesion.model=\"exponential\""]).contains("adhesion.range is required"));
+        for bad in ["0.0", "-1.0", "nan", "inf"] {
+            let message = err(&[
+                "adhesion.model=\"exponential\"",
+                &format!("adhesion.range={bad}"),
+            ]);
+            assert!(message.starts_with("adhesion.range = "), "{message}");
+            assert!(message.contains("a finite number > 0"), "{message}");
+        }
+        // A range below the round-off of the heights, another law's parameter, κ, no γ.
+        assert!(
+            err(&["adhesion.model=\"exponential\"", "adhesion.range=1e-20"])
+                .contains("above 1e-12 of the largest height")
+        );
+        assert!(
+            err(&[exp[0], exp[1], "adhesion.sigma0=1"])
+                .contains("adhesion.sigma0 = 1 is read by the Dugdale law only")
+        );
+        assert!(
+            err(&[
+                "adhesion.model=\"dugdale\"",
+                "adhesion.sigma0=1",
+                "adhesion.range=0.1"
+            ])
+            .contains("adhesion.range = 0.1 is read by the smooth laws only")
+        );
+        assert!(err(&["adhesion.range=0.1"]).contains("is read by the smooth laws only"));
+        assert!(
+            err(&[exp[0], exp[1], "solver.kappa=0.5"])
+                .contains("solver.kappa is the zero-range criterion's constant")
+        );
+        assert!(err(&[exp[0], exp[1], "material.gamma=0"]).contains("needs material.gamma > 0"));
+    }
+
+    #[test]
     fn the_dugdale_law_is_read_and_its_inputs_are_checked() {
         let p = build(&["adhesion.model=\"dugdale\"", "adhesion.sigma0=1.0"]).unwrap();
         assert_eq!(p.law, AdhesionLaw::Dugdale { sigma0: 1.0 });

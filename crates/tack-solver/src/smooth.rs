@@ -1,0 +1,637 @@
+//! Smooth adhesion laws (exponential, Lennard-Jones 9–3) with a hard wall, solved by a
+//! semi-smooth Newton method that follows the stable branch, with a relaxation that lands on
+//! the new branch after a jump.
+//!
+//! Every element carries the pressure of its own gap, `p = w·P(g)` (`w = γ_ij/γ` on a γ map, 1
+//! otherwise), unless it touches the wall: `g = 0` with `p ≥ w·P(0)`. Both cases are the
+//! complementarity `min(g/k, q) = 0` with the excess pressure `q = p − w·P(max(g, 0))` and the
+//! self-compliance `k` as scale (`g ≥ 0`, `q ≥ 0`, `g·q = 0`). A Newton iteration takes the
+//! contact set `C = {g/k ≤ q}` from the current state (a primal–dual active set) and solves the
+//! linearised system
+//!
+//! ```text
+//! (K δ)_i = −g_i                  on C     (the gap closes)
+//! (K δ)_i − δ_i/s_i = q_i/s_i      off C    (δq = δp − s·δg = −q,  s = w·P'(g))
+//! ```
+//!
+//! a symmetric, indefinite matrix `K − diag(c)` (`c = 0` on `C`, `1/s` off it), by MINRES with a
+//! Jacobi preconditioner; each MINRES iteration is one product `K v` (one FFT pair). A
+//! backtracking line search on `Σ min(g/k, q)²` keeps the iteration from running off.
+//!
+//! On a stable equilibrium the matrix has exactly `|C|` positive eigenvalues: the law's softening
+//! `s > 0` is weaker than the body's stiffness. Past a fold (the jump-out on retraction, the
+//! jump-in on approach) no equilibrium continues the previous one; Newton then fails (its line
+//! search finds no decrease, or its iteration cap) and the step relaxes instead: the fixed-point
+//! map `p ← w·P(g(p))` off the contact set, with the contact set solved exactly by the bonded-set
+//! CG each time. Its Jacobian is `D·T` (`D = diag(s)`, `T` the compliance with the contact held),
+//! whose eigenvalues lie below 1 exactly where the equilibrium is stable: it flows away from
+//! unstable states and converges to a stable one, the new branch. Newton then finishes from
+//! there. Every loop is capped; a step that meets a cap reports `converged = false`.
+
+use ndarray::{Array2, Zip};
+
+use crate::law::Traction;
+use crate::rounds::Tally;
+use crate::{AdhesiveSolver, SolverOptions, StepRecord};
+
+/// Newton's stopping rule: every `|min(g/k, q)|` below this fraction of the peak tension.
+const NEWTON_TOLERANCE: f64 = 1e-9;
+/// Newton iterations per attempt before the step falls back to relaxation.
+const NEWTON_CAP: usize = 40;
+/// Relaxation iterations per landing.
+const RELAX_CAP: usize = 3_000;
+/// A landing hands back to Newton once its residual is below this fraction of the peak tension.
+const LANDED: f64 = 1e-4;
+/// Landings per step before the step gives up (reported as not converged).
+const LANDINGS: usize = 4;
+/// MINRES iterations per Newton solve.
+const MINRES_CAP: usize = 2_000;
+/// Elements out of contact count as the cohesive zone (`n_cohesive`) when their tension exceeds
+/// this fraction of the peak tension.
+pub(crate) const ZONE_FRACTION: f64 = 0.01;
+
+/// The smooth law's state on the solver's grid: the traction law, the zone mask and the Newton
+/// and MINRES vectors (allocated once).
+pub(crate) struct SmoothState {
+    pub(crate) traction: Traction,
+    /// Out of contact with tension beyond [`ZONE_FRACTION`] of the peak.
+    pub(crate) zone: Array2<bool>,
+    /// Whether the last step had to land on a new branch (the secant predictor restarts).
+    landed: bool,
+    /// Each element's share `γ_ij/γ` of the law on a γ map (`None`: 1 everywhere).
+    pub(crate) weights: Option<std::sync::Arc<[f64]>>,
+    v: Vec<f64>,
+    c: Vec<f64>,
+    b: Vec<f64>,
+    x: Vec<f64>,
+    scratch: Minres,
+    trial: Array2<f64>,
+    trial_disp: Array2<f64>,
+    grid_in: Array2<f64>,
+    grid_out: Array2<f64>,
+}
+
+impl SmoothState {
+    pub(crate) fn new(traction: Traction, shape: (usize, usize)) -> Self {
+        let n = shape.0 * shape.1;
+        Self {
+            traction,
+            zone: Array2::from_elem(shape, false),
+            landed: false,
+            weights: None,
+            v: vec![0.0; n],
+            c: vec![0.0; n],
+            b: vec![0.0; n],
+            x: vec![0.0; n],
+            scratch: Minres::new(n),
+            trial: Array2::zeros(shape),
+            trial_disp: Array2::zeros(shape),
+            grid_in: Array2::zeros(shape),
+            grid_out: Array2::zeros(shape),
+        }
+    }
+}
+
+/// The complementarity residual of one element: `min(g/k, q)` with `q = p − w·P(max(g, 0))`,
+/// and whether the element is in the contact set (the first term is the smaller).
+#[inline]
+fn ncp(t: &Traction, w: f64, p: f64, g: f64, k: f64) -> (f64, bool) {
+    let q = p - w * t.pressure(g.max(0.0));
+    let a = g / k;
+    if a <= q { (a, true) } else { (q, false) }
+}
+
+impl AdhesiveSolver {
+    /// One approach step under a smooth law (module docs); `d` is validated.
+    pub(crate) fn step_smooth(&mut self, d: f64) -> StepRecord {
+        let mut tally = Tally::new();
+        self.predict_smooth(d);
+        let k = self.base.op.self_compliance();
+        let peak = self.sigma_c;
+        let mut landings = 0;
+        let mut landed = false;
+        let mut merit = self.smooth_refresh(d, k);
+        loop {
+            match self.newton(d, k, peak, &mut merit, &mut tally) {
+                Ok(()) => break,
+                Err(()) if landings < LANDINGS => {
+                    landings += 1;
+                    landed = true;
+                    self.relax_smooth(d, k, peak, &mut tally);
+                    merit = self.smooth_refresh(d, k);
+                }
+                Err(()) => {
+                    tally.converged = false;
+                    break;
+                }
+            }
+        }
+        let s = self.smooth.as_mut().expect("a smooth law");
+        s.landed = landed;
+        self.mark_zone();
+        self.record(d, &tally)
+    }
+
+    /// Newton iterations from the current state until the residual meets
+    /// [`NEWTON_TOLERANCE`] (`Ok`) or the line search or the cap fails (`Err`).
+    fn newton(
+        &mut self,
+        d: f64,
+        k: f64,
+        peak: f64,
+        merit: &mut Merit,
+        tally: &mut Tally,
+    ) -> Result<(), ()> {
+        for _ in 0..NEWTON_CAP {
+            if merit.worst <= NEWTON_TOLERANCE * peak {
+                tally.worst = tally.worst.max(merit.worst / peak);
+                return Ok(());
+            }
+            tally.rounds += 1;
+            // Inexact Newton: the linear solve is as accurate as the residual asks for.
+            let eta = (merit.worst / peak).clamp(1e-10, 1e-2);
+            let it = self.newton_direction(k, eta);
+            tally.cg += it;
+            let mut alpha = 1.0;
+            let mut accepted = false;
+            for _ in 0..8 {
+                let trial = self.smooth_trial(d, k, alpha);
+                tally.cg += 1;
+                if trial.sum < (1.0 - 1e-4 * alpha) * merit.sum || trial.worst <= merit.worst * 0.5
+                {
+                    self.adopt_trial();
+                    *merit = trial;
+                    accepted = true;
+                    break;
+                }
+                alpha *= 0.5;
+            }
+            if !accepted {
+                return Err(());
+            }
+        }
+        if merit.worst <= NEWTON_TOLERANCE * peak {
+            return Ok(());
+        }
+        Err(())
+    }
+
+    /// `K p`, the gap and the residual of the current pressure.
+    fn smooth_refresh(&mut self, d: f64, k: f64) -> Merit {
+        let b = &mut self.base;
+        b.op.apply(b.pressure.view(), b.work.disp.view_mut());
+        b.update_gap(d);
+        let t = self.smooth.as_ref().expect("a smooth law").traction;
+        let m = merit_of(
+            &t,
+            &self.weights(),
+            self.base.pressure.as_slice().expect("contiguous"),
+            self.base.gap.as_slice().expect("contiguous"),
+            k,
+        );
+        self.contact_from_ncp(k);
+        m
+    }
+
+    /// The bonded (contact) set from the complementarity rule at the current state.
+    fn contact_from_ncp(&mut self, k: f64) {
+        let t = self.smooth.as_ref().expect("a smooth law").traction;
+        let w = self.weights();
+        let p = self.base.pressure.as_slice().expect("contiguous");
+        let g = self.base.gap.as_slice().expect("contiguous");
+        let bonded = self.bonded.as_slice_mut().expect("contiguous");
+        for i in 0..p.len() {
+            bonded[i] = ncp(&t, w.at(i), p[i], g[i], k).1;
+        }
+    }
+
+    /// The Newton direction into `smooth.x` (module docs), solved by MINRES to the relative
+    /// tolerance `eta`; returns its iterations.
+    fn newton_direction(&mut self, k: f64, eta: f64) -> usize {
+        let weights = self.weights();
+        let s = self.smooth.as_mut().expect("a smooth law");
+        let t = s.traction;
+        let p = self.base.pressure.as_slice().expect("contiguous");
+        let g = self.base.gap.as_slice().expect("contiguous");
+        // |c| is capped at 1e8·k: an element whose law has no stiffness (its tail, or a peak)
+        // gets δ = −q to 1e-8.
+        let s_floor = 1e-8 / k;
+        for i in 0..p.len() {
+            let w = weights.at(i);
+            let (phi, contact) = ncp(&t, w, p[i], g[i], k);
+            if contact {
+                s.c[i] = 0.0;
+                s.b[i] = -phi * k;
+            } else {
+                let mut st = w * t.stiffness(g[i].max(0.0));
+                if st.abs() < s_floor {
+                    st = if st < 0.0 { -s_floor } else { s_floor };
+                }
+                s.c[i] = 1.0 / st;
+                s.b[i] = phi / st;
+            }
+        }
+        let shape = self.bonded.dim();
+        let mut system = NewtonSystem {
+            op: self.base.op.as_mut(),
+            shape,
+            c: &s.c,
+            k,
+            spectral: self.options.preconditioned,
+            grid_in: &mut s.grid_in,
+            grid_out: &mut s.grid_out,
+        };
+        s.scratch
+            .solve(&mut system, &s.b, &mut s.x, eta, MINRES_CAP)
+    }
+
+    /// Evaluates `p + α·x`: its `K p`, gap and residual, kept in the trial arrays.
+    fn smooth_trial(&mut self, d: f64, k: f64, alpha: f64) -> Merit {
+        let weights = self.weights();
+        let s = self.smooth.as_mut().expect("a smooth law");
+        Zip::from(&mut s.trial)
+            .and(&self.base.pressure)
+            .and(ndarray::ArrayView2::from_shape(self.bonded.dim(), &s.x).expect("grid shape"))
+            .for_each(|t, &p, &x| *t = p + alpha * x);
+        self.base.op.apply(s.trial.view(), s.trial_disp.view_mut());
+        // The trial gap, kept in `v`.
+        let f = self.base.surface.heights().as_slice().expect("contiguous");
+        let u = s.trial_disp.as_slice().expect("contiguous");
+        for ((v, &f), &u) in s.v.iter_mut().zip(f).zip(u) {
+            *v = f - d + u;
+        }
+        merit_of(
+            &s.traction,
+            &weights,
+            s.trial.as_slice().expect("contiguous"),
+            &s.v,
+            k,
+        )
+    }
+
+    /// The trial state becomes the current one (pressure, `K p`, gap and contact set).
+    fn adopt_trial(&mut self) {
+        let s = self.smooth.as_mut().expect("a smooth law");
+        std::mem::swap(&mut self.base.pressure, &mut s.trial);
+        std::mem::swap(&mut self.base.work.disp, &mut s.trial_disp);
+        self.base
+            .gap
+            .as_slice_mut()
+            .expect("contiguous")
+            .copy_from_slice(&s.v);
+        let k = self.base.op.self_compliance();
+        self.contact_from_ncp(k);
+    }
+
+    /// The landing after a jump (module docs): `p ← w·P(g)` off the contact set, the contact
+    /// set solved exactly, its membership updated (`p < w·P(0)` leaves, `g < 0` joins), until the
+    /// residual is below [`LANDED`] of the peak or [`RELAX_CAP`].
+    fn relax_smooth(&mut self, d: f64, k: f64, peak: f64, tally: &mut Tally) {
+        let weights = self.weights();
+        let cg = SolverOptions {
+            tolerance: 1e-10,
+            ..self.options.cg
+        };
+        let pre = self.options.preconditioned;
+        let mut held = Array2::from_elem(self.bonded.dim(), false);
+        for _ in 0..RELAX_CAP {
+            tally.rounds += 1;
+            let t = self.smooth.as_ref().expect("a smooth law").traction;
+            // Off the contact set every element takes its law's pressure.
+            Zip::indexed(&mut self.base.pressure)
+                .and(&self.base.gap)
+                .and(&self.bonded)
+                .and(&mut held)
+                .for_each(|(i, j), p, &g, &b, h| {
+                    *h = !b;
+                    if !b {
+                        *p = weights.at2(i, j) * t.pressure(g.max(0.0));
+                    }
+                });
+            let base = &mut self.base;
+            if self.bonded.iter().any(|&b| b) {
+                let c = crate::cg::pcg_holding(
+                    base.op.as_mut(),
+                    base.surface.heights().view(),
+                    self.bonded.view(),
+                    Some(held.view()),
+                    d,
+                    base.pressure.view_mut(),
+                    &mut base.work,
+                    &mut self.pcg,
+                    &cg,
+                    pre,
+                );
+                tally.cg += c.iterations;
+            } else {
+                base.op
+                    .apply(base.pressure.view(), base.work.disp.view_mut());
+                tally.cg += 1;
+            }
+            base.update_gap(d);
+            // Contact membership: leave under tension beyond the law's, join on penetration.
+            let mut changed = false;
+            Zip::indexed(&mut self.bonded)
+                .and(&self.base.pressure)
+                .and(&self.base.gap)
+                .for_each(|(i, j), b, &p, &g| {
+                    let wall = weights.at2(i, j) * t.pressure(0.0);
+                    if *b && p < wall {
+                        *b = false;
+                        changed = true;
+                    } else if !*b && g < 0.0 {
+                        *b = true;
+                        changed = true;
+                    }
+                });
+            if changed {
+                continue;
+            }
+            let m = merit_of(
+                &t,
+                &weights,
+                self.base.pressure.as_slice().expect("contiguous"),
+                self.base.gap.as_slice().expect("contiguous"),
+                k,
+            );
+            if m.worst <= LANDED * peak {
+                return;
+            }
+        }
+    }
+
+    /// Secant predictor over every element (the smooth laws load all of them); restarts after a
+    /// landing, whose jump a secant would extrapolate.
+    fn predict_smooth(&mut self, d: f64) {
+        let landed = self.smooth.as_ref().is_some_and(|s| s.landed);
+        if landed {
+            self.history = None;
+        }
+        if let Some(d1) = self.last_approach {
+            match &mut self.history {
+                Some((p0, d0)) if *d0 != d1 => {
+                    let t = (d - d1) / (d1 - *d0);
+                    Zip::from(&mut self.base.pressure).and(p0).for_each(|p, q| {
+                        let p1 = *p;
+                        *p += (p1 - *q) * t;
+                        *q = p1;
+                    });
+                    *d0 = d1;
+                }
+                _ => self.history = Some((self.base.pressure.clone(), d1)),
+            }
+        }
+        self.last_approach = Some(d);
+    }
+
+    /// The zone mask: out of contact with tension beyond [`ZONE_FRACTION`] of the element's peak.
+    fn mark_zone(&mut self) {
+        let peak = self.sigma_c;
+        let weights = self.weights();
+        let s = self.smooth.as_mut().expect("a smooth law");
+        Zip::indexed(&mut s.zone)
+            .and(&self.bonded)
+            .and(&self.base.pressure)
+            .for_each(|(i, j), z, &b, &p| {
+                *z = !b && p < -ZONE_FRACTION * peak * weights.at2(i, j);
+            });
+    }
+
+    /// Each element's share `w = γ_ij/γ` of the law (1 without a γ map).
+    fn weights(&self) -> Weights {
+        Weights(
+            self.smooth.as_ref().and_then(|s| s.weights.clone()),
+            self.bonded.ncols(),
+        )
+    }
+}
+
+/// Each element's share `w = γ_ij/γ` of the law, in row-major order (`None`: 1 everywhere),
+/// and the grid's row length.
+#[derive(Clone)]
+struct Weights(Option<std::sync::Arc<[f64]>>, usize);
+
+impl Weights {
+    #[inline]
+    fn at(&self, i: usize) -> f64 {
+        self.0.as_ref().map_or(1.0, |w| w[i])
+    }
+    #[inline]
+    fn at2(&self, i: usize, j: usize) -> f64 {
+        self.at(i * self.1 + j)
+    }
+}
+
+/// The residual of a state: `Σ min(g/k, q)²` and its largest term's magnitude (pressure units).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Merit {
+    sum: f64,
+    worst: f64,
+}
+
+fn merit_of(t: &Traction, w: &Weights, p: &[f64], g: &[f64], k: f64) -> Merit {
+    let (mut sum, mut worst) = (0.0, 0.0f64);
+    for i in 0..p.len() {
+        let (phi, _) = ncp(t, w.at(i), p[i], g[i], k);
+        sum += phi * phi;
+        worst = worst.max(phi.abs());
+    }
+    Merit { sum, worst }
+}
+
+/// A symmetric operator with a symmetric positive definite preconditioner, for [`Minres`].
+trait Symmetric {
+    /// `out = A v`.
+    fn apply(&mut self, v: &[f64], out: &mut [f64]);
+    /// `out = P r`, `P ≈ |A|⁻¹` symmetric positive definite.
+    fn precondition(&mut self, r: &[f64], out: &mut [f64]);
+}
+
+/// The Newton matrix `K − diag(c)` (module docs) and its preconditioner: on the elements whose
+/// `|c|` is below the self-compliance `k` (the contact and the stiff part of the law) the
+/// spectral stiffness restricted to them (`E*|q|/2`, an approximate `K⁻¹`), elsewhere the
+/// diagonal `1/(k + |c|)`.
+struct NewtonSystem<'a> {
+    op: &'a mut dyn tack_kernels::ElasticOperator,
+    shape: (usize, usize),
+    c: &'a [f64],
+    k: f64,
+    spectral: bool,
+    grid_in: &'a mut Array2<f64>,
+    grid_out: &'a mut Array2<f64>,
+}
+
+impl NewtonSystem<'_> {
+    #[inline]
+    fn stiff(&self, i: usize) -> bool {
+        self.spectral && self.c[i].abs() <= self.k
+    }
+}
+
+impl Symmetric for NewtonSystem<'_> {
+    fn apply(&mut self, v: &[f64], out: &mut [f64]) {
+        let vv = ndarray::ArrayView2::from_shape(self.shape, v).expect("grid shape");
+        let o = ndarray::ArrayViewMut2::from_shape(self.shape, out).expect("grid shape");
+        self.op.apply(vv, o);
+        for ((o, &vi), &ci) in out.iter_mut().zip(v).zip(self.c) {
+            *o -= ci * vi;
+        }
+    }
+
+    fn precondition(&mut self, r: &[f64], out: &mut [f64]) {
+        if self.spectral {
+            let input = self.grid_in.as_slice_mut().expect("contiguous");
+            for (i, (x, &ri)) in input.iter_mut().zip(r).enumerate() {
+                *x = if self.c[i].abs() <= self.k { ri } else { 0.0 };
+            }
+            self.op
+                .precondition(self.grid_in.view(), self.grid_out.view_mut());
+        }
+        let spectral = self.grid_out.as_slice().expect("contiguous");
+        for (i, (o, &ri)) in out.iter_mut().zip(r).enumerate() {
+            *o = if self.stiff(i) {
+                spectral[i]
+            } else {
+                ri / (self.k + self.c[i].abs())
+            };
+        }
+    }
+}
+
+/// The vectors of preconditioned MINRES (Paige & Saunders 1975), allocated once.
+struct Minres {
+    r1: Vec<f64>,
+    r2: Vec<f64>,
+    y: Vec<f64>,
+    v: Vec<f64>,
+    w: Vec<f64>,
+    w1: Vec<f64>,
+    w2: Vec<f64>,
+}
+
+impl Minres {
+    fn new(n: usize) -> Self {
+        let z = vec![0.0; n];
+        Self {
+            r1: z.clone(),
+            r2: z.clone(),
+            y: z.clone(),
+            v: z.clone(),
+            w: z.clone(),
+            w1: z.clone(),
+            w2: z,
+        }
+    }
+
+    /// Solves the symmetric system `A x = b` (`apply(v, A v)`) with the diagonal SPD
+    /// preconditioner `pre ≈ |A|⁻¹`, from `x = 0`, until the preconditioned residual norm falls
+    /// below `tolerance` of its start or `cap` iterations; returns the iterations.
+    fn solve(
+        &mut self,
+        system: &mut impl Symmetric,
+        b: &[f64],
+        x: &mut [f64],
+        tolerance: f64,
+        cap: usize,
+    ) -> usize {
+        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+        x.fill(0.0);
+        self.r1.copy_from_slice(b);
+        self.r2.copy_from_slice(b);
+        system.precondition(b, &mut self.y);
+        let beta1 = dot(b, &self.y).sqrt();
+        if beta1 == 0.0 || !beta1.is_finite() {
+            return 0;
+        }
+        let (mut oldb, mut beta, mut dbar, mut epsln) = (0.0, beta1, 0.0, 0.0);
+        let mut phibar = beta1;
+        let (mut cs, mut sn) = (-1.0f64, 0.0f64);
+        self.w.fill(0.0);
+        self.w2.fill(0.0);
+        let mut it = 0;
+        while it < cap {
+            it += 1;
+            let s = 1.0 / beta;
+            for (v, &y) in self.v.iter_mut().zip(&self.y) {
+                *v = s * y;
+            }
+            system.apply(&self.v, &mut self.y);
+            if it >= 2 {
+                let f = beta / oldb;
+                for (y, &r) in self.y.iter_mut().zip(&self.r1) {
+                    *y -= f * r;
+                }
+            }
+            let alfa = dot(&self.v, &self.y);
+            let f = alfa / beta;
+            for (y, &r) in self.y.iter_mut().zip(&self.r2) {
+                *y -= f * r;
+            }
+            std::mem::swap(&mut self.r1, &mut self.r2);
+            self.r2.copy_from_slice(&self.y);
+            system.precondition(&self.r2, &mut self.y);
+            oldb = beta;
+            beta = dot(&self.r2, &self.y).max(0.0).sqrt();
+            let oldeps = epsln;
+            let delta = cs * dbar + sn * alfa;
+            let gbar = sn * dbar - cs * alfa;
+            epsln = sn * beta;
+            dbar = -cs * beta;
+            let gamma = gbar.hypot(beta).max(f64::EPSILON);
+            cs = gbar / gamma;
+            sn = beta / gamma;
+            let phi = cs * phibar;
+            phibar *= sn;
+            let denom = 1.0 / gamma;
+            std::mem::swap(&mut self.w1, &mut self.w2);
+            std::mem::swap(&mut self.w2, &mut self.w);
+            for (((w, &v), &w1), &w2) in self.w.iter_mut().zip(&self.v).zip(&self.w1).zip(&self.w2)
+            {
+                *w = (v - oldeps * w1 - delta * w2) * denom;
+            }
+            for (x, &w) in x.iter_mut().zip(&self.w) {
+                *x += phi * w;
+            }
+            if phibar <= tolerance * beta1 || beta == 0.0 {
+                break;
+            }
+        }
+        it
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// MINRES on a small symmetric indefinite system against its exact solution.
+    #[test]
+    fn minres_solves_an_indefinite_system() {
+        // A = [[4, 1, 0], [1, -3, 1], [0, 1, 2]]: eigenvalues of both signs.
+        let a = [[4.0, 1.0, 0.0], [1.0, -3.0, 1.0], [0.0, 1.0, 2.0]];
+        let x_true = [1.0, -2.0, 0.5];
+        let b: Vec<f64> = (0..3)
+            .map(|i| (0..3).map(|j| a[i][j] * x_true[j]).sum())
+            .collect();
+        let mut m = Minres::new(3);
+        let mut x = vec![0.0; 3];
+        struct Dense([[f64; 3]; 3]);
+        impl Symmetric for Dense {
+            fn apply(&mut self, v: &[f64], out: &mut [f64]) {
+                for (o, row) in out.iter_mut().zip(&self.0) {
+                    *o = row.iter().zip(v).map(|(a, x)| a * x).sum();
+                }
+            }
+            fn precondition(&mut self, r: &[f64], out: &mut [f64]) {
+                for (i, (o, ri)) in out.iter_mut().zip(r).enumerate() {
+                    *o = ri / self.0[i][i].abs();
+                }
+            }
+        }
+        let it = m.solve(&mut Dense(a), &b, &mut x, 1e-12, 50);
+        assert!(it <= 4, "{it} iterations for a 3 × 3 system");
+        for (x, t) in x.iter().zip(x_true) {
+            assert!((x - t).abs() < 1e-10, "{x} vs {t}");
+        }
+    }
+}
