@@ -38,6 +38,7 @@ const PULL_OFF_NAMES: Names = &[
     (fields::PROTOCOL_UNLOAD_STEP, "unload_step"),
     (fields::SOLVER_KAPPA, "law.kappa"),
     (fields::ADHESION_SIGMA0, "law.sigma0"),
+    (fields::ADHESION_RANGE, "law.range"),
     (
         concat!(field_name!(adhesion.model), " = \"dugdale\""),
         "law=tack.Dugdale(sigma0=...)",
@@ -221,7 +222,7 @@ fn command_line(py: Python<'_>) -> String {
 
 /// The pull-off of a body given as heights (`tack::heights::pull_off`).
 #[pyfunction]
-#[pyo3(signature = (heights, *, dx, e_star, gamma, gamma_map=None, periodic=false, radius=None, max_approach=None, unload_step=None, coarse_unload_step=None, refine_pull_off=false, kappa=None, model="jkr_limit", sigma0=None, snapshots=None, threads=None, progress=None, thickness=None, poisson=None, interface=None, richardson=false))]
+#[pyo3(signature = (heights, *, dx, e_star, gamma, gamma_map=None, periodic=false, radius=None, max_approach=None, unload_step=None, coarse_unload_step=None, refine_pull_off=false, kappa=None, model="jkr_limit", sigma0=None, range=None, snapshots=None, threads=None, progress=None, thickness=None, poisson=None, interface=None, richardson=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn pull_off(
     py: Python<'_>,
@@ -239,6 +240,7 @@ pub fn pull_off(
     kappa: Option<f64>,
     model: &str,
     sigma0: Option<f64>,
+    range: Option<f64>,
     snapshots: Option<Bound<'_, PyAny>>,
     threads: Option<i64>,
     progress: Option<Py<PyAny>>,
@@ -271,9 +273,12 @@ pub fn pull_off(
     let model = match model {
         "jkr_limit" => tack::AdhesionModel::JkrLimit,
         "dugdale" => tack::AdhesionModel::Dugdale,
+        "exponential" => tack::AdhesionModel::Exponential,
+        "lennard_jones" => tack::AdhesionModel::LennardJones,
         other => {
             return Err(value_error(format!(
-                "model = {other:?} is invalid: must be \"jkr_limit\" or \"dugdale\""
+                "model = {other:?} is invalid: must be \"jkr_limit\", \"dugdale\", \
+                 \"exponential\" or \"lennard_jones\""
             )));
         }
     };
@@ -295,6 +300,7 @@ pub fn pull_off(
         adhesion: tack::AdhesionSpec {
             model,
             sigma0,
+            range,
             ..tack::AdhesionSpec::default()
         },
         snapshots,

@@ -356,3 +356,41 @@ def test_dugdale_arguments_are_checked():
     with pytest.raises(TypeError, match="model"):
         tack.pull_off(heights, dx=0.1, e_star=1.0, gamma=1.0, max_approach=0.1,
                       unload_step=0.01, model="dugdale")
+
+
+def test_exponential_pull_off_lies_between_jkr_and_dmt():
+    # Sphere R = 1, E* = 1, gamma = 1 at Tabor mu = 1 (range rho = 1): the pull-off lies between
+    # JKR (1.5 pi gamma R) and DMT (2 pi gamma R); at mu = 1 the axisymmetric reference of
+    # crates/tack-solver/tests gives about 1.7 pi gamma R. The process zone (8/3 pi) rho^2 = 0.85
+    # spans 3.4 elements at dx = 0.25.
+    law = tack.Exponential.from_tabor(1.0, radius=1.0, e_star=1.0, gamma=1.0)
+    assert abs(law.range - 1.0) < 1e-12 and repr(law) == "tack.Exponential(range=1.0)"
+    assert abs(law.tabor(radius=1.0, e_star=1.0, gamma=1.0) - 1.0) < 1e-12
+    dx = 0.25
+    x = (np.arange(48) - 23.5) * dx
+    heights = (x[:, None] ** 2 + x[None, :] ** 2) / 2.0
+    r = tack.pull_off(heights, dx=dx, e_star=1.0, gamma=1.0, radius=1.0, law=law)
+    s = r.summary
+    assert s["adhesion_model"] == "exponential"
+    assert abs(s["tabor_mu"] - 1.0) < 1e-9 and s["range"] == 1.0
+    assert abs(s["peak_tension"] - 1.0) < 1e-12
+    hat = r.pull_off_force / (-np.pi)
+    assert 1.5 < hat < 2.0, hat
+    assert all(r.curve["converged"])
+
+
+def test_smooth_law_arguments_are_checked():
+    with pytest.raises(ValueError, match="^range = -1 is invalid"):
+        tack.Exponential(range=-1.0)
+    with pytest.raises(ValueError, match="^range = NaN is invalid"):
+        tack.LennardJones(range=float("nan"))
+    with pytest.raises(TypeError, match="range"):
+        tack.Exponential()
+    with pytest.raises(ValueError, match="^mu = 0 is invalid"):
+        tack.LennardJones.from_tabor(0.0, radius=1.0, e_star=1.0, gamma=1.0)
+    assert tack.LennardJones(range=0.5) != tack.Exponential(range=0.5)
+    heights = np.zeros((8, 8))
+    # A smooth law needs gamma > 0: the error names the argument.
+    with pytest.raises(ValueError, match="gamma"):
+        tack.pull_off(heights, dx=0.1, e_star=1.0, gamma=0.0, max_approach=0.1,
+                      unload_step=0.01, law=tack.Exponential(range=0.1))

@@ -117,8 +117,20 @@ impl AdhesiveSolver {
                 Err(()) if landings < LANDINGS => {
                     landings += 1;
                     landed = true;
-                    self.relax_smooth(d, k, peak, &mut tally);
+                    // A second failure from a landed state: Newton cannot finish here (an
+                    // element that keeps switching between wall and law), so the relaxation
+                    // goes on to the full tolerance itself.
+                    let target = if landings == 1 {
+                        LANDED
+                    } else {
+                        NEWTON_TOLERANCE
+                    };
+                    let done = self.relax_smooth(d, k, peak, target, &mut tally);
                     merit = self.smooth_refresh(d, k);
+                    if done && landings > 1 && merit.worst <= NEWTON_TOLERANCE * peak {
+                        tally.worst = tally.worst.max(merit.worst / peak);
+                        break;
+                    }
                 }
                 Err(()) => {
                     tally.converged = false;
@@ -285,8 +297,8 @@ impl AdhesiveSolver {
 
     /// The landing after a jump (module docs): `p ← w·P(g)` off the contact set, the contact
     /// set solved exactly, its membership updated (`p < w·P(0)` leaves, `g < 0` joins), until the
-    /// residual is below [`LANDED`] of the peak or [`RELAX_CAP`].
-    fn relax_smooth(&mut self, d: f64, k: f64, peak: f64, tally: &mut Tally) {
+    /// residual is below `target` of the peak (returns true) or [`RELAX_CAP`] (false).
+    fn relax_smooth(&mut self, d: f64, k: f64, peak: f64, target: f64, tally: &mut Tally) -> bool {
         let weights = self.weights();
         let cg = SolverOptions {
             tolerance: 1e-10,
@@ -354,10 +366,11 @@ impl AdhesiveSolver {
                 self.base.gap.as_slice().expect("contiguous"),
                 k,
             );
-            if m.worst <= LANDED * peak {
-                return;
+            if m.worst <= target * peak {
+                return true;
             }
         }
+        false
     }
 
     /// Secant predictor over every element (the smooth laws load all of them); restarts after a

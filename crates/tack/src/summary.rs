@@ -64,40 +64,7 @@ pub fn summary(problem: &Problem, path: &PathResult) -> tack_io::Summary {
     if min_mean_pressure.is_finite() {
         extra.insert("min_mean_pressure".to_owned(), min_mean_pressure);
     }
-    match problem.law {
-        AdhesionLaw::JkrLimit { kappa } => {
-            let sigma_c = (problem.e_star * problem.gamma / (kappa * problem.grid.dx())).sqrt();
-            extra.insert("sigma_c".to_owned(), sigma_c);
-            extra.insert("kappa".to_owned(), kappa);
-        }
-        AdhesionLaw::Dugdale { sigma0 } => {
-            extra.insert("sigma0".to_owned(), sigma0);
-            extra.insert("range".to_owned(), problem.gamma / sigma0);
-            let zone = crate::problem::cohesive_zone_length(problem.e_star, problem.gamma, sigma0);
-            extra.insert(
-                "cohesive_zone_elements".to_owned(),
-                zone / problem.grid.dx(),
-            );
-        }
-        AdhesionLaw::Exponential { range } | AdhesionLaw::LennardJones { range } => {
-            extra.insert("range".to_owned(), range);
-            let peak = problem
-                .law
-                .peak_tension(problem.gamma, problem.e_star, problem.grid.dx());
-            extra.insert("peak_tension".to_owned(), peak);
-            let zone = crate::problem::process_zone_length(problem.e_star, problem.gamma, range);
-            extra.insert("process_zone_elements".to_owned(), zone / problem.grid.dx());
-        }
-    }
-    if let Some(mu) = r.tabor_mu {
-        extra.insert("tabor_mu".to_owned(), mu);
-    }
-    if let Some(l) = r.maugis_lambda {
-        extra.insert("maugis_lambda".to_owned(), l);
-    }
-    if let Some(f) = r.f_maugis {
-        extra.insert("f_maugis".to_owned(), f);
-    }
+    law_extras(problem, r, &mut extra);
     let cycle = path.cycle();
     // The refined retraction samples the retraction only every coarse step away from the
     // pull-off's brackets: the loop integral and the jump-out are not measured by it (the
@@ -165,6 +132,50 @@ pub fn summary(problem: &Problem, path: &PathResult) -> tack_io::Summary {
         status: Some(status.to_owned()),
         adhesion_model: Some(model_name(problem.law).to_owned()),
         warnings: warnings(problem, path),
+    }
+}
+
+/// The law's own summary entries: `sigma_c` and `kappa` (zero-range), `sigma0`, `range`,
+/// `cohesive_zone_elements` (Dugdale), `range`, `peak_tension`, `process_zone_elements` (smooth
+/// laws), and the references that go with them (`tabor_mu`, `maugis_lambda`, `f_maugis`).
+fn law_extras(
+    problem: &Problem,
+    r: &crate::references::References,
+    extra: &mut std::collections::BTreeMap<String, f64>,
+) {
+    match problem.law {
+        AdhesionLaw::JkrLimit { kappa } => {
+            let sigma_c = (problem.e_star * problem.gamma / (kappa * problem.grid.dx())).sqrt();
+            extra.insert("sigma_c".to_owned(), sigma_c);
+            extra.insert("kappa".to_owned(), kappa);
+        }
+        AdhesionLaw::Dugdale { sigma0 } => {
+            extra.insert("sigma0".to_owned(), sigma0);
+            extra.insert("range".to_owned(), problem.gamma / sigma0);
+            let zone = crate::problem::cohesive_zone_length(problem.e_star, problem.gamma, sigma0);
+            extra.insert(
+                "cohesive_zone_elements".to_owned(),
+                zone / problem.grid.dx(),
+            );
+        }
+        AdhesionLaw::Exponential { range } | AdhesionLaw::LennardJones { range } => {
+            extra.insert("range".to_owned(), range);
+            let peak = problem
+                .law
+                .peak_tension(problem.gamma, problem.e_star, problem.grid.dx());
+            extra.insert("peak_tension".to_owned(), peak);
+            let zone = crate::problem::process_zone_length(problem.e_star, problem.gamma, range);
+            extra.insert("process_zone_elements".to_owned(), zone / problem.grid.dx());
+        }
+    }
+    if let Some(mu) = r.tabor_mu {
+        extra.insert("tabor_mu".to_owned(), mu);
+    }
+    if let Some(l) = r.maugis_lambda {
+        extra.insert("maugis_lambda".to_owned(), l);
+    }
+    if let Some(f) = r.f_maugis {
+        extra.insert("f_maugis".to_owned(), f);
     }
 }
 

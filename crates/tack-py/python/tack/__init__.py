@@ -12,7 +12,8 @@ in and come out as numpy arrays.
 - :func:`contact` solves non-adhesive contact of a height array at one approach,
   :func:`contact_sweep` at several in turn.
 - The adhesion law and the elastic body are objects (:mod:`tack.models`): ``law=``
-  :class:`JkrLimit` or :class:`Dugdale`, ``body=`` :class:`HalfSpace` or :class:`Layer`.
+  :class:`JkrLimit`, :class:`Dugdale`, :class:`Exponential` or :class:`LennardJones`,
+  ``body=`` :class:`HalfSpace` or :class:`Layer`.
 - A result that may not be trusted issues a :class:`TackWarning` of its kind
   (:class:`UnderResolvedWarning`, :class:`ReferenceWarning`, ...) when the run returns.
 - :mod:`tack.surface` makes height arrays (seeded random roughness, spheres);
@@ -62,7 +63,16 @@ from ._warnings import (
     TackWarning,
     UnderResolvedWarning,
 )
-from .models import Dugdale, HalfSpace, JkrLimit, Layer, body_arguments, law_arguments
+from .models import (
+    Dugdale,
+    Exponential,
+    HalfSpace,
+    JkrLimit,
+    Layer,
+    LennardJones,
+    body_arguments,
+    law_arguments,
+)
 
 __version__: str = _tack.__version__
 
@@ -74,11 +84,13 @@ __all__ = [
     "ConvergenceWarning",
     "Dugdale",
     "EdgeContactWarning",
+    "Exponential",
     "FullContactWarning",
     "HalfSpace",
     "InternalError",
     "JkrLimit",
     "Layer",
+    "LennardJones",
     "LoadingHistoryWarning",
     "MAX_THREADS",
     "ReferenceWarning",
@@ -297,7 +309,7 @@ def pull_off(
     dx: float,
     e_star: float,
     gamma: Any,
-    law: Union[JkrLimit, Dugdale] = JkrLimit(),
+    law: Union[JkrLimit, Dugdale, Exponential, LennardJones] = JkrLimit(),
     body: Union[HalfSpace, Layer] = HalfSpace(),
     gamma_reference: Optional[float] = None,
     periodic: bool = False,
@@ -331,7 +343,10 @@ def pull_off(
             tension ``sigma0``; the path approaches from out of range, so the curve has both
             branches, and the summary holds ``maugis_lambda`` and ``f_maugis`` (spheres),
             ``dissipated_energy``, the jumps in and out and the apparent work of adhesion of
-            each branch).
+            each branch), or a smooth law, :class:`tack.Exponential` or
+            :class:`tack.LennardJones` (every element carries the traction of its gap; the
+            summary holds ``tabor_mu`` (spheres), ``range``, ``peak_tension`` and
+            ``process_zone_elements``).
         body: :class:`tack.HalfSpace` (default) or :class:`tack.Layer` (a film on a rigid
             base; the closed-form references such as ``f_jkr`` stay the half-space's, and a
             :class:`tack.ReferenceWarning` says so).

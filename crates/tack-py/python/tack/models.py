@@ -18,7 +18,7 @@ from typing import Any, Optional, Tuple
 
 from . import _check
 
-__all__ = ["Dugdale", "HalfSpace", "JkrLimit", "Layer"]
+__all__ = ["Dugdale", "Exponential", "HalfSpace", "JkrLimit", "Layer", "LennardJones"]
 
 
 class _Value:
@@ -63,7 +63,7 @@ class JkrLimit(_Value):
         self._set("kappa", _check.optional(_check.positive, "kappa", kappa))
 
     def _arguments(self) -> dict:
-        return {"model": self.model, "kappa": self.kappa, "sigma0": None}
+        return {"model": self.model, "kappa": self.kappa, "sigma0": None, "range": None}
 
 
 class Dugdale(_Value):
@@ -103,7 +103,65 @@ class Dugdale(_Value):
         )
 
     def _arguments(self) -> dict:
-        return {"model": self.model, "kappa": None, "sigma0": self.sigma0}
+        return {"model": self.model, "kappa": None, "sigma0": self.sigma0, "range": None}
+
+
+class _Smooth(_Value):
+    _fields = ("range",)
+
+    def __init__(self, range: float) -> None:  # noqa: A002 (the scene field's name)
+        self._set("range", _check.positive("range", range))
+
+    def tabor(self, *, radius: float, e_star: float, gamma: float) -> float:
+        """Tabor's parameter mu = (R gamma^2 / (E*^2 range^3))^(1/3) of this law for a sphere of
+        ``radius`` (all finite, > 0)."""
+        radius = _check.positive("radius", radius)
+        e_star = _check.positive("e_star", e_star)
+        gamma = _check.positive("gamma", gamma)
+        return (radius * gamma**2 / (e_star**2 * self.range**3)) ** (1.0 / 3.0)
+
+    @classmethod
+    def from_tabor(
+        cls, mu: float, *, radius: float, e_star: float, gamma: float
+    ) -> "_Smooth":
+        """The law whose Tabor parameter is ``mu`` for a sphere of ``radius`` (all finite, >
+        0): range = (R gamma^2 / (E*^2 mu^3))^(1/3)."""
+        mu = _check.positive("mu", mu)
+        radius = _check.positive("radius", radius)
+        e_star = _check.positive("e_star", e_star)
+        gamma = _check.positive("gamma", gamma)
+        return cls((radius * gamma**2 / (e_star**2 * mu**3)) ** (1.0 / 3.0))
+
+    def _arguments(self) -> dict:
+        return {"model": self.model, "kappa": None, "sigma0": None, "range": self.range}
+
+
+class Exponential(_Smooth):
+    """The exponential adhesion law of the potential V(g) = -gamma exp(-g/range) with a hard
+    wall (a scene's ``[adhesion] model = "exponential"``): out of contact the pressure is
+    -(gamma/range) exp(-g/range), peak tension gamma/range at the wall. The law of Tamaas,
+    ContactMechanics and the contact-mechanics challenge. Every element carries the traction of
+    its own gap, so the pull-off converges on meshes whose process zone (8/3 pi) E* range^2 /
+    gamma spans about one element (docs/theory.md section 3.9).
+
+    Args:
+        range: the range rho (finite, > 0).
+    """
+
+    model = "exponential"
+
+
+class LennardJones(_Smooth):
+    """The Lennard-Jones 9-3 law with a hard wall at its equilibrium separation ``range`` = eps
+    (a scene's ``[adhesion] model = "lennard_jones"``): with h = g + eps the pressure is
+    -(8 gamma / 3 eps) [(eps/h)^3 - (eps/h)^9], zero at the wall, peak tension
+    16 gamma / (9 sqrt(3) eps) at h = 3^(1/6) eps, work gamma.
+
+    Args:
+        range: the equilibrium separation eps (finite, > 0).
+    """
+
+    model = "lennard_jones"
 
 
 class HalfSpace(_Value):
@@ -153,12 +211,14 @@ class Layer(_Value):
 
 
 def law_arguments(law: Any) -> dict:
-    """``law=`` of :func:`tack.pull_off`: a :class:`JkrLimit` or :class:`Dugdale`."""
+    """``law=`` of :func:`tack.pull_off`: a :class:`JkrLimit`, :class:`Dugdale`,
+    :class:`Exponential` or :class:`LennardJones`."""
     if law is None:
         law = JkrLimit()
-    if not isinstance(law, (JkrLimit, Dugdale)):
+    if not isinstance(law, (JkrLimit, Dugdale, Exponential, LennardJones)):
         raise TypeError(
-            "law: expected tack.JkrLimit(...) or tack.Dugdale(sigma0=...), got "
+            "law: expected tack.JkrLimit(...), tack.Dugdale(sigma0=...), "
+            "tack.Exponential(range=...) or tack.LennardJones(range=...), got "
             f"{_check.describe(law)}"
         )
     return law._arguments()
