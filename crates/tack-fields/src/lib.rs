@@ -540,7 +540,7 @@ mod tests {
             );
             assert!(!f.meaning.is_empty(), "{}", f.name);
         }
-        assert_eq!(FIELDS.len(), 58);
+        assert_eq!(FIELDS.len(), 59);
     }
 
     #[test]
