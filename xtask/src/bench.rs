@@ -35,7 +35,7 @@ fn with_peak<T>(f: impl FnOnce() -> Result<T>) -> Result<(T, f64)> {
 
 /// Forward + inverse real 2D FFT of an `mx × my` array with the operators' own engine and
 /// nothing skipped: the floor any FFT operator pays.
-fn bare_fft_pair(mx: usize, my: usize) -> impl FnMut() {
+pub fn bare_fft_pair(mx: usize, my: usize) -> impl FnMut() {
     let mut fft = tack_kernels::Fft2::new(mx, my);
     move || fft.round_trip()
 }
@@ -247,7 +247,18 @@ pub struct Row {
     label: String,
 }
 
-fn json(rows: &[Row]) -> String {
+impl Row {
+    /// A row of `table` labelled `label`.
+    pub fn new(table: &'static str, label: String, fields: Vec<(&'static str, f64)>) -> Self {
+        Self {
+            table,
+            fields,
+            label,
+        }
+    }
+}
+
+pub fn json(rows: &[Row]) -> String {
     let items: Vec<String> = rows
         .iter()
         .map(|r| {
@@ -349,6 +360,9 @@ pub fn all(args: &[String]) -> Result<()> {
 
     println!("9. the Dugdale law (bench-dugdale's tables)");
     dugdale_tables(&[], &mut rows)?;
+
+    println!("10. every adhesion law on the peers' case (bench-laws' table)");
+    crate::bench_laws::table(full, &mut rows)?;
 
     std::fs::create_dir_all("results")?;
     tack_io::write_text_atomically("results/bench.json".as_ref(), &json(&rows))?;

@@ -2,6 +2,7 @@
 //! sources.
 
 mod bench;
+mod bench_laws;
 mod convergence;
 mod engine;
 mod figures;
@@ -40,6 +41,11 @@ commands:
   bench-dugdale [N...]     Dugdale smooth sphere at Tabor mu = 3 on N² (default 128 256 512),
                            cycle, pull-off protocol and refined, against the FFT floor; Dugdale vs
                            zero-range rough sphere at 256²
+  bench-laws [--full]      every adhesion law (exponential, Dugdale, zero-range)
+                          on the peers' case (R = 1, E* = 1, gamma = 1e-3, L = 1, mu = 3) at
+                          64² and 128² (--full: 256²): time, FFT pairs, products and error
+                          against the same law's converged pull-off, beside the peers' figures;
+                          writes results/bench_laws.json
   bench-rough [N]          sphere + H = 0.5 roughness pull-off on an N² L = R grid (default
                           512): plain, cropped, sub-grid CG, both
   bench [--full] [--4096] every speed table (operator, CG iteration, JKR path, rough-sphere
@@ -86,6 +92,7 @@ fn main() -> Result<()> {
         Some("bench-contact") => pool()?.install(|| bench::contact(&args[1..]).map(|_| ())),
         Some("bench-rough") => pool()?.install(|| bench::rough(&args[1..])),
         Some("bench-dugdale") => pool()?.install(|| bench::dugdale(&args[1..])),
+        Some("bench-laws") => pool()?.install(|| bench_laws::run_table(&args[1..])),
         Some("bench") => pool()?.install(|| bench::all(&args[1..])),
         Some("convergence") => pool()?.install(|| convergence::run(&args[1..])),
         Some("study") => pool()?.install(|| study::run(&args[1..])),

@@ -1,7 +1,7 @@
 //! The peers' adhesion case under the exponential law: a sphere R = 1 on E* = 1, γ = 1e-3,
 //! a free 1 × 1 domain, Tabor μ = 3 (ρ = 3.33e-3); prints the pull-off against JKR and DMT.
 //!
-//! `cargo run --release -p tack-solver --example smooth_pull_off -- 128 3`
+//! `cargo run --release -p tack-solver --example smooth_pull_off -- 128 3 [exp|lj] [fine]`
 
 use std::f64::consts::PI;
 use std::time::Instant;
@@ -14,6 +14,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let n: usize = args.get(1).map_or(Ok(64), |s| s.parse())?;
     let mu: f64 = args.get(2).map_or(Ok(3.0), |s| s.parse())?;
     let law_name = args.get(3).map_or("exponential", |s| s.as_str());
+    // Retraction steps per d_c near the pull-off (coarse steps are d_c/4).
+    let fine: f64 = args.get(4).map_or(Ok(100.0), |s| s.parse())?;
     let (radius, e_star, gamma, side) = (1.0, 1.0, 1e-3, 1.0);
     let range = (radius * gamma * gamma / (e_star * e_star * mu * mu * mu)).cbrt();
     let law = match law_name {
@@ -31,9 +33,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let path = ApproachPath {
         start: -3.0 * d_c,
         max_approach: 2.0 * d_c,
-        load_step: d_c / 5.0,
-        unload_step: d_c / 100.0,
-        coarse_unload_step: Some(d_c / 5.0),
+        load_step: d_c / 2.0,
+        unload_step: d_c / fine,
+        coarse_unload_step: Some(d_c / 4.0),
         refine_pull_off: true,
         retract_to: Some(-4.0 * d_c),
         max_steps: 10_000,
@@ -51,7 +53,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         -f / (PI * gamma * radius),
         steps.len()
     );
-    if args.get(4).is_some() {
+    if args.get(5).is_some() {
         for s in steps {
             println!(
                 "{:.6e} {:.6e} {} {} {} {}",

@@ -1,0 +1,177 @@
+//! `cargo xtask bench-laws`: speed against error of every adhesion law on the peers' case.
+//!
+//! The case of Tamaas and ContactMechanics: a rigid sphere R = 1 on E* = 1 with γ = 1e-3 on a
+//! free 1 × 1 domain, Tabor μ = 3 (the exponential law's ρ = 3.333e-3, the Lennard-Jones law's
+//! ε the same, the Dugdale law at λ = 1.16 μ = 3.48, the zero-range criterion μ = ∞). Each law
+//! runs one pull-off path: loaded from out of reach in steps of d_c/2 to 2 d_c (the criterion
+//! one step), retracted by d_c/4 with the brackets of the pull-off retraced by d_c/40, where
+//! d_c = (3/4)(π²γ²R/E*²)^(1/3) is JKR's pull-off approach scale. Each row gives the wall time,
+//! the time in bare FFT pairs of the padded size timed in the same run, the operator products,
+//! and the error against the same law's converged pull-off: the exponential law's from the
+//! axisymmetric ring solution (`crates/tack-solver/tests/axisym_reference.rs`, three meshes
+//! within ±0.001), the Dugdale law's Maugis–Dugdale closed form, the criterion's JKR 1.5πγR;
+//! the Lennard-Jones law has no reference yet (its error column is empty). The peers' rows are
+//! the measurements quoted in the issue (Tamaas 2.9 and ContactMechanics + Adhesion on this
+//! machine kind).
+
+use anyhow::Result;
+use std::f64::consts::PI;
+use std::time::Instant;
+use tack_geometry::{Boundary, Grid, Sphere, Surface};
+use tack_kernels::operator_for;
+use tack_solver::{
+    AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, KAPPA, SnapshotRequest,
+};
+
+use crate::bench::{Row, median_time};
+
+const RADIUS: f64 = 1.0;
+const E_STAR: f64 = 1.0;
+const GAMMA: f64 = 1e-3;
+const TABOR: f64 = 3.0;
+
+/// The exponential law's converged pull-off `F/(πγR)` at μ = 3 from the ring solution (meshes
+/// of 170, 255 and 380 rings: 1.5422, 1.5414, 1.5417).
+const EXPONENTIAL_REFERENCE: f64 = 1.5417;
+
+/// The peers' measurements of the issue: (who, n, seconds, error against their own converged
+/// pull-off or a note).
+const PEERS: [(&str, usize, f64, &str); 6] = [
+    ("Tamaas 2.9, exponential, periodic", 64, 8.0, "+6.4%"),
+    ("Tamaas 2.9, exponential, periodic", 128, 9.0, "within 0.1%"),
+    ("Tamaas 2.9, exponential, periodic", 256, 80.0, "converged"),
+    ("Tamaas 2.9, exponential, periodic", 512, 467.0, "converged"),
+    (
+        "ContactMechanics + Adhesion, free",
+        128,
+        49.0,
+        "+2.8–3.2% vs 1.5πγR",
+    ),
+    (
+        "ContactMechanics + Adhesion, free",
+        256,
+        308.0,
+        "+2.8–3.2% vs 1.5πγR",
+    ),
+];
+
+/// One law of the table: its label, the law, and its converged `F/(πγR)` when known.
+fn laws() -> Vec<(&'static str, AdhesionLaw, Option<f64>)> {
+    let range = (RADIUS * GAMMA * GAMMA / (E_STAR * E_STAR * TABOR.powi(3))).cbrt();
+    // The Lennard-Jones law with ε = ρ would join here once it settles at μ = 3.
+    let lambda = 1.16 * TABOR;
+    let sigma0 = lambda / tack_analytics::maugis_lambda(E_STAR, GAMMA, RADIUS, 1.0);
+    let maugis = -tack_analytics::maugis_pull_off(E_STAR, GAMMA, RADIUS, sigma0) / (PI * GAMMA);
+    vec![
+        (
+            "exponential",
+            AdhesionLaw::Exponential { range },
+            Some(EXPONENTIAL_REFERENCE),
+        ),
+        ("dugdale", AdhesionLaw::Dugdale { sigma0 }, Some(maugis)),
+        (
+            "jkr_limit",
+            AdhesionLaw::JkrLimit { kappa: KAPPA },
+            Some(1.5),
+        ),
+    ]
+}
+
+/// One pull-off of the peers' case on `n²` under `law`: (seconds, steps, products, F/(πγR),
+/// steps that did not converge).
+fn run(law: AdhesionLaw, n: usize) -> Result<(f64, usize, usize, f64, usize)> {
+    let grid = Grid::square(n, 1.0 / n as f64, Boundary::Free)?;
+    let surface = Surface::from_shape(grid, &Sphere::new(RADIUS)?);
+    let d_c = 0.75 * (PI * PI * GAMMA * GAMMA * RADIUS / (E_STAR * E_STAR)).cbrt();
+    let reach = law.reach(GAMMA);
+    let path = ApproachPath {
+        start: reach.map_or(2.0 * d_c, |r| -r - d_c / 2.0),
+        max_approach: 2.0 * d_c,
+        load_step: d_c / 2.0,
+        unload_step: d_c / 40.0,
+        coarse_unload_step: Some(d_c / 4.0),
+        refine_pull_off: true,
+        retract_to: Some(-4.0 * d_c),
+        max_steps: 100_000,
+    };
+    let t = Instant::now();
+    let op = operator_for(grid, E_STAR)?;
+    let mut solver =
+        AdhesiveSolver::with_law(op, &surface, GAMMA, law, AdhesiveOptions::default())?;
+    let r = solver.run_path(&path, &SnapshotRequest::None, &mut ())?;
+    let seconds = t.elapsed().as_secs_f64();
+    let failed = r.records.iter().filter(|s| !s.converged).count();
+    Ok((
+        seconds,
+        r.records.len(),
+        r.cg_iterations(),
+        -r.pull_off_force() / (PI * GAMMA * RADIUS),
+        failed,
+    ))
+}
+
+/// `cargo xtask bench-laws [--full]`: the table (64² and 128²; `--full` adds 256²), printed and
+/// written to `results/bench_laws.json`; `cargo xtask bench` includes it.
+pub fn run_table(args: &[String]) -> Result<()> {
+    let mut rows = Vec::new();
+    table(args.iter().any(|a| a == "--full"), &mut rows)?;
+    std::fs::create_dir_all("results")?;
+    tack_io::write_text_atomically(
+        "results/bench_laws.json".as_ref(),
+        &crate::bench::json(&rows),
+    )?;
+    println!("wrote results/bench_laws.json");
+    Ok(())
+}
+
+/// The table's rows into `rows`.
+pub fn table(full: bool, rows: &mut Vec<Row>) -> Result<()> {
+    let sizes: &[usize] = if full { &[64, 128, 256] } else { &[64, 128] };
+    println!(
+        "L. the peers' case (sphere R = 1, E* = 1, γ = 1e-3, L = 1, free, Tabor μ = 3): pull-off"
+    );
+    println!("   against the same law's converged value; time also in bare FFT pairs");
+    println!(
+        "   {:<14} {:>5} {:>9} {:>11} {:>6} {:>9} {:>9} {:>9}",
+        "law", "n", "time [s]", "FFT pairs", "steps", "products", "F/(πγR)", "error"
+    );
+    for &n in sizes {
+        let m = tack_kernels::padded_size(n);
+        let t_pair = median_time(crate::bench::bare_fft_pair(m, m));
+        for (label, law, reference) in laws() {
+            let (seconds, steps, products, hat, failed) = run(law, n)?;
+            let error = reference.map_or(f64::NAN, |r| hat / r - 1.0);
+            let mut shown = if error.is_finite() {
+                format!("{:+.2}%", 100.0 * error)
+            } else {
+                "—".to_owned()
+            };
+            if failed > 0 {
+                shown.push_str(&format!(" ({failed} steps NOT converged)"));
+            }
+            println!(
+                "   {label:<14} {n:>5} {seconds:>9.2} {:>11.0} {steps:>6} {products:>9} {hat:>9.4} {shown:>9}",
+                seconds / t_pair
+            );
+            rows.push(Row::new(
+                "laws_peers_case",
+                format!("{label} {n}²"),
+                vec![
+                    ("n", n as f64),
+                    ("seconds", seconds),
+                    ("fft_pairs", seconds / t_pair),
+                    ("steps", steps as f64),
+                    ("products", products as f64),
+                    ("pull_off_hat", hat),
+                    ("pull_off_error", error),
+                    ("not_converged", failed as f64),
+                ],
+            ));
+        }
+    }
+    println!("   the peers, as measured in the issue (their own converged values):");
+    for (who, n, seconds, error) in PEERS {
+        println!("   {who:<36} {n:>5} {seconds:>9.1} s  {error}");
+    }
+    Ok(())
+}
