@@ -361,9 +361,6 @@ pub fn all(args: &[String]) -> Result<()> {
     println!("9. the Dugdale law (bench-dugdale's tables)");
     dugdale_tables(&[], &mut rows)?;
 
-    println!("10. every adhesion law on the peers' case (bench-laws' table)");
-    crate::bench_laws::table(full, &mut rows)?;
-
     std::fs::create_dir_all("results")?;
     tack_io::write_text_atomically("results/bench.json".as_ref(), &json(&rows))?;
     println!("wrote results/bench.json");

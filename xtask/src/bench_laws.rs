@@ -111,7 +111,7 @@ fn run(law: AdhesionLaw, n: usize) -> Result<(f64, usize, usize, f64, usize)> {
 }
 
 /// `cargo xtask bench-laws [--full]`: the table (64² and 128²; `--full` adds 256²), printed and
-/// written to `results/bench_laws.json`; `cargo xtask bench` includes it.
+/// written to `results/bench_laws.json`.
 pub fn run_table(args: &[String]) -> Result<()> {
     let mut rows = Vec::new();
     table(args.iter().any(|a| a == "--full"), &mut rows)?;
@@ -125,7 +125,7 @@ pub fn run_table(args: &[String]) -> Result<()> {
 }
 
 /// The table's rows into `rows`.
-pub fn table(full: bool, rows: &mut Vec<Row>) -> Result<()> {
+fn table(full: bool, rows: &mut Vec<Row>) -> Result<()> {
     let sizes: &[usize] = if full { &[64, 128, 256] } else { &[64, 128] };
     println!(
         "L. the peers' case (sphere R = 1, E* = 1, γ = 1e-3, L = 1, free, Tabor μ = 3): pull-off"
