@@ -50,6 +50,39 @@ const LANDINGS: usize = 4;
 const RELAX_BURST: usize = RELAX_CAP;
 /// MINRES iterations per Newton solve.
 const MINRES_CAP: usize = 2_000;
+/// Elements whose `|c| = 1/|s|` is at most this many self-compliances `k` are stiff: the Newton
+/// solve runs on a window around them (free half-space grids) and treats the rest, whose rows are
+/// diagonal to 1/WINDOW_STIFFNESS, element by element.
+const WINDOW_STIFFNESS: f64 = 100.0;
+/// Window shapes kept per solver.
+const WINDOW_SHAPES: usize = 4;
+
+/// A window's Newton system: its operator and vectors.
+struct WindowSystem {
+    op: tack_kernels::FreeOperator,
+    c: Vec<f64>,
+    b: Vec<f64>,
+    x: Vec<f64>,
+    minres: Minres,
+    grid_in: Array2<f64>,
+    grid_out: Array2<f64>,
+}
+
+impl WindowSystem {
+    fn new(shape: (usize, usize), dx: f64, e_star: f64) -> Self {
+        let n = shape.0 * shape.1;
+        Self {
+            op: crate::subgrid::free_operator(shape, dx, e_star),
+            c: vec![0.0; n],
+            b: vec![0.0; n],
+            x: vec![0.0; n],
+            minres: Minres::new(n),
+            grid_in: Array2::zeros(shape),
+            grid_out: Array2::zeros(shape),
+        }
+    }
+}
+
 /// Elements out of contact count as the cohesive zone (`n_cohesive`) when their tension exceeds
 /// this fraction of the peak tension.
 pub(crate) const ZONE_FRACTION: f64 = 0.01;
@@ -73,6 +106,9 @@ pub(crate) struct SmoothState {
     trial_disp: Array2<f64>,
     grid_in: Array2<f64>,
     grid_out: Array2<f64>,
+    /// The stiff elements of the last Newton system (its window is their box).
+    stiff: Array2<bool>,
+    windows: crate::subgrid::SubgridCache<WindowSystem>,
 }
 
 impl SmoothState {
@@ -92,6 +128,8 @@ impl SmoothState {
             trial_disp: Array2::zeros(shape),
             grid_in: Array2::zeros(shape),
             grid_out: Array2::zeros(shape),
+            stiff: Array2::from_elem(shape, false),
+            windows: crate::subgrid::SubgridCache::new(WINDOW_SHAPES),
         }
     }
 }
@@ -249,18 +287,84 @@ impl AdhesiveSolver {
                 s.b[i] = phi / st;
             }
         }
+        // The stiff elements (contact and the law's steep part) and the window around them.
         let shape = self.bonded.dim();
+        let stiff_limit = WINDOW_STIFFNESS * k;
+        for (m, &c) in s.stiff.iter_mut().zip(&s.c) {
+            *m = c.abs() <= stiff_limit;
+        }
+        let (tight, _) = crate::adhesive::bounding_box(&s.stiff, None);
+        let window = if self.base.op.is_half_space() {
+            self.subgrid_around(tight)
+        } else {
+            None
+        };
+        let s = self.smooth.as_mut().expect("a smooth law");
+        let Some(w) = window else {
+            let mut system = NewtonSystem {
+                op: self.base.op.as_mut(),
+                shape,
+                c: &s.c,
+                k,
+                spectral: self.options.preconditioned,
+                grid_in: &mut s.grid_in,
+                grid_out: &mut s.grid_out,
+            };
+            return s
+                .scratch
+                .solve(&mut system, &s.b, &mut s.x, eta, MINRES_CAP);
+        };
+        // Outside the window every element's law is soft (`|c| > WINDOW_STIFFNESS·k`): its
+        // row is nearly diagonal, `(k − c_i) δ_i = b_i`; their `K δ` enters the window's rows
+        // through one product on the grid, and the window is solved exactly by its own
+        // (smaller) transform.
+        let ny = shape.1;
+        let inside = |i: usize| {
+            let (r, c) = (i / ny, i % ny);
+            (w.i0..w.i1).contains(&r) && (w.j0..w.j1).contains(&c)
+        };
+        for i in 0..s.x.len() {
+            s.x[i] = if inside(i) {
+                0.0
+            } else {
+                s.b[i] / (k - s.c[i])
+            };
+        }
+        let x_view = ndarray::ArrayView2::from_shape(shape, &s.x).expect("grid shape");
+        self.base.op.apply(x_view, s.grid_out.view_mut());
+        let (dx, e_star) = (self.base.grid().dx(), self.base.op.e_star());
+        let sub = s
+            .windows
+            .get_or_insert_with(w.shape(), || WindowSystem::new(w.shape(), dx, e_star));
+        let (wx, wy) = w.shape();
+        for a in 0..wx {
+            for b in 0..wy {
+                let (i, j) = (w.i0 + a, w.j0 + b);
+                let e = i * ny + j;
+                let l = a * wy + b;
+                sub.c[l] = s.c[e];
+                sub.b[l] = s.b[e] - s.grid_out[[i, j]];
+            }
+        }
         let mut system = NewtonSystem {
-            op: self.base.op.as_mut(),
-            shape,
-            c: &s.c,
+            op: &mut sub.op,
+            shape: (wx, wy),
+            c: &sub.c,
             k,
             spectral: self.options.preconditioned,
-            grid_in: &mut s.grid_in,
-            grid_out: &mut s.grid_out,
+            grid_in: &mut sub.grid_in,
+            grid_out: &mut sub.grid_out,
         };
-        s.scratch
-            .solve(&mut system, &s.b, &mut s.x, eta, MINRES_CAP)
+        let it = sub
+            .minres
+            .solve(&mut system, &sub.b, &mut sub.x, eta, MINRES_CAP);
+        for a in 0..wx {
+            for b in 0..wy {
+                s.x[(w.i0 + a) * ny + w.j0 + b] = sub.x[a * wy + b];
+            }
+        }
+        // The window's iterations, and the product on the grid in units of them.
+        it + 1
     }
 
     /// Evaluates `p + α·x`: its `K p`, gap and residual, kept in the trial arrays.
