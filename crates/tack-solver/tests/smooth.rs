@@ -2,7 +2,8 @@
 //! (`tests/axisym`, checked itself against Hertz and Maugis in `tests/axisym_reference.rs`):
 //! the exponential law on a smooth sphere, the pull-off and both branches of the
 //! force–approach curve, and the order of convergence against elements per process zone; the
-//! DMT limit of a small Tabor parameter.
+//! DMT limit of a small Tabor parameter; Johnson's 1D waviness as the range shrinks; the same
+//! bits on one and two threads.
 
 mod axisym;
 
@@ -137,4 +138,95 @@ fn small_tabor_parameter_approaches_dmt() {
         "{f} {f_ref}"
     );
     assert!((f / f_ref - 1.0).abs() < 0.01, "{f} vs {f_ref}");
+}
+
+/// Same inputs, same bits, on one thread and on two: the whole curve of the μ = 1 sphere on a
+/// grid whose vectors the operator splits over threads (96² elements, padded 192²).
+#[test]
+fn same_bits_on_one_and_two_threads() {
+    let run_on = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            run(
+                AdhesionLaw::Exponential { range: 1.0 },
+                96,
+                0.125,
+                (-3.0, 1.0, 0.25, -2.0),
+            )
+        })
+    };
+    let (one, two) = (run_on(1), run_on(2));
+    assert_eq!(one.records.len(), two.records.len());
+    for (a, b) in one.records.iter().zip(&two.records) {
+        assert_eq!(a.force.to_bits(), b.force.to_bits());
+        assert_eq!((a.n_bonded, a.n_cohesive), (b.n_bonded, b.n_cohesive));
+        assert_eq!(a.cg_iterations, b.cg_iterations);
+    }
+}
+
+/// Johnson (1995) as the range shrinks: the 1D periodic waviness h[1 − cos(2πx/λ)] (λ = 1,
+/// h = 0.01, E* = 1, γ = 5e-5: α = 0.318) under the exponential law; the most tensile mean
+/// pressure of the retraction against the least of Johnson's p̄/p* = sin²ψ − α√tanψ on the
+/// partial-contact branch (ψ < 1), −0.10393.
+#[test]
+fn wavy_1d_approaches_johnson_as_the_range_shrinks() {
+    use tack_analytics::{johnson_1d_mean_pressure_ratio, johnson_alpha};
+    let (h, gamma) = (0.01, 5e-5);
+    let alpha = johnson_alpha(1.0, gamma, h, 1.0);
+    let johnson = (1..100_000)
+        .map(|i| johnson_1d_mean_pressure_ratio(alpha, i as f64 * 1e-5))
+        .fold(f64::INFINITY, f64::min);
+    let p_star = PI * h;
+    let mut deviations = Vec::new();
+    // ρ = 1e-3 on 512 and ρ = 5e-4 on 1024 elements: 4.2 process-zone elements both.
+    for (rho, nx) in [(1e-3, 512), (5e-4, 1024)] {
+        let dx = 1.0 / nx as f64;
+        let grid = Grid::new(nx, 1, dx, Boundary::Periodic).unwrap();
+        let heights = ndarray::Array2::from_shape_fn((nx, 1), |(i, _)| {
+            h * (1.0 - (2.0 * PI * (i as f64 + 0.5) * dx).cos())
+        });
+        let surface = Surface::new(grid, heights).unwrap();
+        let op = operator_for(grid, 1.0).unwrap();
+        let law = AdhesionLaw::Exponential { range: rho };
+        let mut solver =
+            AdhesiveSolver::with_law(op, &surface, gamma, law, AdhesiveOptions::default()).unwrap();
+        let path = ApproachPath {
+            start: -20.0 * rho,
+            max_approach: 0.007,
+            load_step: 5e-4,
+            unload_step: 1e-4,
+            coarse_unload_step: None,
+            refine_pull_off: false,
+            retract_to: Some(-0.006),
+            max_steps: 10_000,
+        };
+        let r = solver
+            .run_path(&path, &SnapshotRequest::None, &mut ())
+            .unwrap();
+        assert!(r.all_converged());
+        let least = r
+            .records
+            .iter()
+            .filter(|s| !s.full_contact)
+            .map(|s| s.mean_pressure)
+            .fold(f64::INFINITY, f64::min);
+        let deviation = least / p_star / johnson - 1.0;
+        eprintln!(
+            "ρ = {rho}: p̄/p* = {:.5} (Johnson {johnson:.5}), {:+.2}%",
+            least / p_star,
+            100.0 * deviation
+        );
+        deviations.push(deviation);
+    }
+    // Measured −1.04% and −0.04% (the CLI gives +0.07% at ρ = 3e-4 on 4096): the finite range's
+    // correction shrinks with ρ; 1.5% and 0.3% leave room for the sampling of the retraction in
+    // steps of 1e-4.
+    assert!(
+        deviations[0].abs() < 0.015 && deviations[1].abs() < 0.003,
+        "{deviations:?}"
+    );
+    assert!(deviations[1].abs() < deviations[0].abs(), "{deviations:?}");
 }
