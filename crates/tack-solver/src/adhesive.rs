@@ -23,6 +23,7 @@ use crate::law::Cohesive;
 use crate::relax::{Relaxation, Released, take_released};
 use crate::smooth::SmoothState;
 use crate::state::Convergence;
+pub(crate) use crate::subgrid::bounding_box;
 use crate::subgrid::{SubProblem, SubgridCache};
 use crate::{AdhesionLaw, SolverError, SolverOptions, StepRecord, validate};
 
@@ -801,34 +802,6 @@ struct CriterionMargins {
     detach: f64,
     detach_floor: f64,
     fresh: Option<Window>,
-}
-
-/// The bounding box of the `true` elements of `mask` that lie in `within` (the whole grid when
-/// `None`), and their number; `None` when there are none.
-pub(crate) fn bounding_box(
-    mask: &Array2<bool>,
-    within: Option<&Window>,
-) -> (Option<Window>, usize) {
-    let (nx, ny) = mask.dim();
-    let w = within.copied().unwrap_or(Window {
-        i0: 0,
-        i1: nx,
-        j0: 0,
-        j1: ny,
-    });
-    let (mut i0, mut i1, mut j0, mut j1) = (usize::MAX, 0, usize::MAX, 0);
-    let mut count = 0;
-    for i in w.i0..w.i1 {
-        let row = &mask.row(i).to_slice().expect("standard layout")[w.j0..w.j1];
-        if let Some(first) = row.iter().position(|&b| b) {
-            let last = row.iter().rposition(|&b| b).unwrap_or(first);
-            count += row[first..=last].iter().filter(|&&b| b).count();
-            (i0, i1) = (i0.min(i), i + 1);
-            (j0, j1) = (j0.min(w.j0 + first), j1.max(w.j0 + last + 1));
-        }
-    }
-    let tight = (count > 0).then_some(Window { i0, i1, j0, j1 });
-    (tight, count)
 }
 
 /// Deterministic fingerprint of a set from its bounding box `tight` ([`bounding_box`]): the

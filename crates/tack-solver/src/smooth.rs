@@ -296,7 +296,7 @@ impl AdhesiveSolver {
         for (m, &c) in s.stiff.iter_mut().zip(&s.c) {
             *m = c.abs() <= stiff_limit;
         }
-        let (tight, _) = crate::adhesive::bounding_box(&s.stiff, None);
+        let (tight, _) = crate::subgrid::bounding_box(&s.stiff, None);
         let window = if self.base.op.is_half_space() {
             self.subgrid_around(tight)
         } else {
