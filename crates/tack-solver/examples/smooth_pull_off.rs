@@ -1,7 +1,7 @@
 //! The peers' adhesion case under the exponential law: a sphere R = 1 on E* = 1, γ = 1e-3,
 //! a free 1 × 1 domain, Tabor μ = 3 (ρ = 3.33e-3); prints the pull-off against JKR and DMT.
 //!
-//! `cargo run --release -p tack-solver --example smooth_pull_off -- 128 3 [exp|lj] [fine]`
+//! `cargo run --release -p tack-solver --example smooth_pull_off -- 128 3 [exp|lj] [fine] [free|periodic]`
 
 use std::f64::consts::PI;
 use std::time::Instant;
@@ -16,6 +16,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let law_name = args.get(3).map_or("exponential", |s| s.as_str());
     // Retraction steps per d_c near the pull-off (coarse steps are d_c/4).
     let fine: f64 = args.get(4).map_or(Ok(100.0), |s| s.parse())?;
+    let boundary = match args.get(5).map(String::as_str) {
+        Some("periodic") => Boundary::Periodic,
+        _ => Boundary::Free,
+    };
     let (radius, e_star, gamma, side) = (1.0, 1.0, 1e-3, 1.0);
     let range = (radius * gamma * gamma / (e_star * e_star * mu * mu * mu)).cbrt();
     let law = match law_name {
@@ -23,7 +27,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         _ => AdhesionLaw::Exponential { range },
     };
     let dx = side / n as f64;
-    let grid = Grid::square(n, dx, Boundary::Free)?;
+    let grid = Grid::square(n, dx, boundary)?;
     let surface = Surface::from_shape(grid, &Sphere::new(radius)?);
     let op = operator_for(grid, e_star)?;
     let mut solver =
@@ -53,7 +57,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         -f / (PI * gamma * radius),
         steps.len()
     );
-    if args.get(5).is_some() {
+    if args.get(6).is_some() {
         for s in steps {
             println!(
                 "{:.6e} {:.6e} {} {} {} {}",
