@@ -47,6 +47,47 @@ fn reference(rho: f64, approaches: &[f64]) -> Vec<axisym::Point> {
     approaches.iter().map(|&d| r.step(d)).collect()
 }
 
+/// The loop integral `∮F dd` of a closed path by trapezoids, in path order.
+fn loop_integral(points: impl Iterator<Item = (f64, f64)>) -> f64 {
+    let p: Vec<(f64, f64)> = points.collect();
+    p.windows(2)
+        .map(|w| 0.5 * (w[0].1 + w[1].1) * (w[1].0 - w[0].0))
+        .sum()
+}
+
+/// Hysteresis under the exponential law at μ = 2 (ρ = 0.5): the loop's dissipated energy
+/// `∮F dd` against the ring solution on the same approaches.
+#[test]
+fn exponential_dissipation_follows_the_ring_solution() {
+    let rho = 0.5;
+    let law = AdhesionLaw::Exponential { range: rho };
+    let mut errors = Vec::new();
+    let mut refs = Vec::new();
+    for (n, dx) in [(32, 0.25), (64, 0.125), (128, 0.0625)] {
+        let result = run(law, n, dx, (-2.0, 1.0, 0.05, -2.0));
+        assert!(result.all_converged());
+        let approaches: Vec<f64> = result.records.iter().map(|r| r.approach).collect();
+        if refs.is_empty() {
+            refs = reference(rho, &approaches);
+        }
+        let w = loop_integral(result.records.iter().map(|r| (r.approach, r.force)));
+        let w_ref = loop_integral(refs.iter().map(|p| (p.approach, p.force)));
+        eprintln!(
+            "dx = {dx}: loop {w:.5} (ring {w_ref:.5}), {:+.2}%",
+            100.0 * (w / w_ref - 1.0)
+        );
+        errors.push(w / w_ref - 1.0);
+    }
+    // Measured +20.6%, +0.82%, −0.03% at 0.85, 1.7 and 3.4 elements per process zone: below one
+    // element the front hops and each hop dissipates (the mesh's own hysteresis, which the
+    // summary's warning flags); resolved, the loop is the ring solution's.
+    assert!(
+        errors[1].abs() < 0.02 && errors[2].abs() < 0.005,
+        "{errors:?}"
+    );
+    assert!(errors[2].abs() < errors[1].abs() && errors[1].abs() < errors[0].abs());
+}
+
 /// Exponential law at Tabor μ = 1 (ρ = 1): the pull-off converges to the ring solution's with
 /// refinement, and the whole curve, loading and retraction, follows it.
 #[test]
