@@ -14,9 +14,13 @@
 //! (K δ)_i − δ_i/s_i = q_i/s_i      off C    (δq = δp − s·δg = −q,  s = w·P'(g))
 //! ```
 //!
-//! a symmetric, indefinite matrix `K − diag(c)` (`c = 0` on `C`, `1/s` off it), by MINRES with a
-//! Jacobi preconditioner; each MINRES iteration is one product `K v` (one FFT pair). A
-//! backtracking line search on `Σ min(g/k, q)²` keeps the iteration from running off.
+//! a symmetric, indefinite matrix `K − diag(c)` (`c = 0` on `C`, `1/s` off it), by MINRES
+//! preconditioned by the spectral stiffness on the stiff elements (`|c| ≤ k`) and by
+//! `1/(k + |c|)` elsewhere; each MINRES iteration is one product `K v`. On free half-space grids
+//! the solve runs on a window around the elements with `|c| ≤ 100k` (the window's own, smaller
+//! transform); outside it every row is diagonal to 1%, `(k − c_i) δ_i = b_i`, and enters the
+//! window through one product on the grid. A backtracking line search on `Σ min(g/k, q)²` keeps
+//! the iteration from running off.
 //!
 //! On a stable equilibrium the matrix has exactly `|C|` positive eigenvalues: the law's softening
 //! `s > 0` is weaker than the body's stiffness. Past a fold (the jump-out on retraction, the
@@ -47,10 +51,8 @@ const RELAX_CAP: usize = 3_000;
 /// on a neighbouring state of the hopping front (pull-off +0.49% against +0.43% on bench-laws'
 /// path), 1e-2 more so; 1e-4 keeps the relaxation's choice.
 const LANDED: f64 = 1e-4;
-/// Relaxation bursts per step; the last one runs to Newton's tolerance (or [`RELAX_CAP`]).
+/// Landings per step; the last one runs to Newton's tolerance itself (or [`RELAX_CAP`]).
 const LANDINGS: usize = 4;
-/// Relaxation iterations of one burst before Newton tries again.
-const RELAX_BURST: usize = RELAX_CAP;
 /// MINRES iterations per Newton solve.
 const MINRES_CAP: usize = 2_000;
 /// Elements whose `|c| = 1/|s|` is at most this many self-compliances `k` are stiff: the Newton
@@ -162,17 +164,12 @@ impl AdhesiveSolver {
                 Err(()) if landings < LANDINGS => {
                     landings += 1;
                     landed = true;
-                    // Short bursts of relaxation, each followed by Newton: once the state is in
-                    // the new branch's basin Newton finishes it quadratically. After
-                    // [`LANDINGS`] − 1 failed bursts (an element that keeps switching between
-                    // wall and law) the relaxation goes on to the full tolerance itself.
+                    // Relax to [`LANDED`], then Newton finishes from the new branch's basin.
+                    // After [`LANDINGS`] − 1 failures (an element that keeps switching between
+                    // wall and law) the relaxation goes on to Newton's tolerance itself.
                     let last = landings == LANDINGS;
-                    let (target, budget) = if last {
-                        (NEWTON_TOLERANCE, RELAX_CAP)
-                    } else {
-                        (LANDED, RELAX_BURST)
-                    };
-                    let done = self.relax_smooth(d, k, peak, target, budget, &mut tally);
+                    let target = if last { NEWTON_TOLERANCE } else { LANDED };
+                    let done = self.relax_smooth(d, k, peak, target, RELAX_CAP, &mut tally);
                     merit = self.smooth_refresh(d, k);
                     if last && done && merit.worst <= NEWTON_TOLERANCE * peak {
                         tally.worst = tally.worst.max(merit.worst / peak);
