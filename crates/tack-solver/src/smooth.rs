@@ -169,7 +169,7 @@ impl AdhesiveSolver {
                     // wall and law) the relaxation goes on to Newton's tolerance itself.
                     let last = landings == LANDINGS;
                     let target = if last { NEWTON_TOLERANCE } else { LANDED };
-                    let done = self.relax_smooth(d, k, peak, target, RELAX_CAP, &mut tally);
+                    let done = self.relax_smooth(d, k, peak, target, &mut tally);
                     merit = self.smooth_refresh(d, k);
                     if last && done && merit.worst <= NEWTON_TOLERANCE * peak {
                         tally.worst = tally.worst.max(merit.worst / peak);
@@ -407,22 +407,14 @@ impl AdhesiveSolver {
 
     /// The landing after a jump (module docs): `p ← w·P(g)` off the contact set, the contact
     /// set solved exactly, its membership updated (`p < w·P(0)` leaves, `g < 0` joins), until the
-    /// residual is below `target` of the peak (returns true) or after `budget` iterations (false).
-    fn relax_smooth(
-        &mut self,
-        d: f64,
-        k: f64,
-        peak: f64,
-        target: f64,
-        budget: usize,
-        tally: &mut Tally,
-    ) -> bool {
+    /// residual is below `target` of the peak (returns true) or after [`RELAX_CAP`] iterations (false).
+    fn relax_smooth(&mut self, d: f64, k: f64, peak: f64, target: f64, tally: &mut Tally) -> bool {
         let weights = self.weights();
         // The contact solves need only be as exact as the landing is far from its target.
         let mut level = 1e-6;
         let pre = self.options.preconditioned;
         let mut held = Array2::from_elem(self.bonded.dim(), false);
-        for _ in 0..budget {
+        for _ in 0..RELAX_CAP {
             let cg = SolverOptions {
                 tolerance: level,
                 ..self.options.cg

@@ -145,7 +145,10 @@ fn law_extras(
 ) {
     match problem.law {
         AdhesionLaw::JkrLimit { kappa } => {
-            let sigma_c = (problem.e_star * problem.gamma / (kappa * problem.grid.dx())).sqrt();
+            let sigma_c =
+                problem
+                    .law
+                    .peak_tension(problem.gamma, problem.e_star, problem.grid.dx());
             extra.insert("sigma_c".to_owned(), sigma_c);
             extra.insert("kappa".to_owned(), kappa);
         }
