@@ -330,7 +330,12 @@ fn rough_sphere_path(n: usize, seed: u64, crop: bool, subgrid: bool) -> Result<(
 /// `cargo xtask bench [--full]`: every speed table, each timing a ratio measured in the same
 /// run; writes `results/bench.json`. `--full` adds a_c/Δx = 80, the 1024² operator and the
 /// 1024² refined retraction.
-pub fn all(args: &[String]) -> Result<()> {
+/// A table of another module that `bench` runs: it appends its rows.
+pub type Table = fn(&mut Vec<Row>) -> Result<()>;
+
+/// Every table, then the `extra` tables of other modules (a title and the table), and
+/// `results/bench.json`.
+pub fn all(args: &[String], extra: &[(&str, Table)]) -> Result<()> {
     let full = args.iter().any(|a| a == "--full");
     // 4096² rough-sphere pull-off (hours on 2 cores) only when asked.
     let huge = args.iter().any(|a| a == "--4096");
@@ -360,6 +365,11 @@ pub fn all(args: &[String]) -> Result<()> {
 
     println!("9. the Dugdale law (bench-dugdale's tables)");
     dugdale_tables(&[], &mut rows)?;
+
+    for (title, table) in extra {
+        println!("{title}");
+        table(&mut rows)?;
+    }
 
     std::fs::create_dir_all("results")?;
     tack_io::write_text_atomically("results/bench.json".as_ref(), &json(&rows))?;

@@ -3,6 +3,7 @@
 
 mod bench;
 mod bench_laws;
+mod bench_visco;
 mod convergence;
 mod engine;
 mod figures;
@@ -46,6 +47,9 @@ commands:
                           64² and 128² (--full: 256²): time, FFT pairs, products and error
                           against the same law's converged pull-off, beside the peers' figures;
                           writes results/bench_laws.json
+  bench-visco [N...]       viscoelastic pull-off (the example scene viscoelastic_sphere, no hold)
+                          against the elastic one of the same grid and steps on N² (default
+                          48 96 192): both times, their ratio, FFT pairs
   bench-rough [N]          sphere + H = 0.5 roughness pull-off on an N² L = R grid (default
                           512): plain, cropped, sub-grid CG, both
   bench [--full] [--4096] every speed table (operator, CG iteration, JKR path, rough-sphere
@@ -53,7 +57,7 @@ commands:
                           --4096; inexact against exact rounds; refined against fine retraction;
                           15-realization sweep point and one run on 1 and 2 threads, compared
                           bit for bit; periodic contact 256² … 4096²; free Hertz; bench-dugdale's
-                          tables); writes results/bench.json
+                          and bench-visco's tables); writes results/bench.json
   convergence [N...]      pull-off convergence on smooth, wavy (α = 0.5, 1) and band-limited
                           rough spheres (H = 0.3, 0.7, three seeds) at n = 64 128 256 512 (or
                           the N given): Richardson, observed order, error estimate against the
@@ -93,7 +97,12 @@ fn main() -> Result<()> {
         Some("bench-rough") => pool()?.install(|| bench::rough(&args[1..])),
         Some("bench-dugdale") => pool()?.install(|| bench::dugdale(&args[1..])),
         Some("bench-laws") => pool()?.install(|| bench_laws::run_table(&args[1..])),
-        Some("bench") => pool()?.install(|| bench::all(&args[1..])),
+        Some("bench-visco") => pool()?.install(|| bench_visco::run(&args[1..])),
+        Some("bench") => pool()?.install(|| {
+            let visco: bench::Table = |rows| bench_visco::table(&[], rows);
+            let title = "10. a viscoelastic pull-off against the elastic one (bench-visco's table)";
+            bench::all(&args[1..], &[(title, visco)])
+        }),
         Some("convergence") => pool()?.install(|| convergence::run(&args[1..])),
         Some("study") => pool()?.install(|| study::run(&args[1..])),
         Some("tidy") => tidy::run(&args[1..]),

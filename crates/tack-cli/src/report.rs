@@ -41,31 +41,29 @@ fn body_lines(scene: &Scene, p: &Problem) -> Vec<String> {
         format!("scene       {origin}"),
         format!("body        {}", describe_body(&f.geometry, &f.roughness)),
     ];
-    let law = match p.law {
-        tack::solver::AdhesionLaw::JkrLimit { kappa } => {
-            format!("zero-range limit, kappa = {}", rounded(kappa))
-        }
-        tack::solver::AdhesionLaw::Dugdale { sigma0 } => format!(
-            "Dugdale, sigma0 = {}, range = {}",
-            rounded(sigma0),
-            rounded(p.gamma / sigma0)
-        ),
-        tack::solver::AdhesionLaw::Exponential { range } => format!(
-            "exponential, range rho = {}, peak tension = {}",
-            rounded(range),
-            rounded(p.law.peak_tension(p.gamma, p.e_star, p.grid.dx()))
-        ),
-        tack::solver::AdhesionLaw::LennardJones { range } => format!(
-            "Lennard-Jones 9-3, range epsilon = {}, peak tension = {}",
-            rounded(range),
-            rounded(p.law.peak_tension(p.gamma, p.e_star, p.grid.dx()))
-        ),
-    };
+    let law = p.law.describe(p.gamma, p.e_star, p.grid.dx());
     lines.push(format!(
         "material    E* = {}, gamma = {} ({law})",
         rounded(p.e_star),
         rounded(p.gamma),
     ));
+    if let Some((prony, rates)) = &p.viscoelastic {
+        let arms: Vec<String> = prony
+            .arms()
+            .iter()
+            .map(|a| format!("[{}, {}]", rounded(a.modulus), rounded(a.time)))
+            .collect();
+        lines.push(format!(
+            "            viscoelastic: E* relaxes from {} to {} (arms [E_k, tau_k] {}); speed {}, \
+             unload speed {}, dwell {}",
+            rounded(prony.instantaneous()),
+            rounded(prony.relaxed()),
+            arms.join(", "),
+            rounded(rates.speed),
+            rounded(rates.unload_speed),
+            rounded(rates.dwell),
+        ));
+    }
     if let Some(layer) = &p.layer {
         lines.push(format!(
             "            a layer of thickness h = {}, nu = {}, {} on a rigid base",
@@ -145,6 +143,23 @@ pub fn path_lines(p: &Problem, path: &PathResult) -> Vec<String> {
     let mut lines = vec![format!("path        {}{stopped}", describe_path(p, path))];
     if let Some(rule) = &p.path_rule {
         lines.push(format!("            {}", rule));
+    }
+    if let (Some((_, rates)), Some(end)) =
+        (&p.viscoelastic, path.records.last().and_then(|r| r.time))
+    {
+        let hold = if rates.dwell > 0.0 {
+            format!(
+                ", held {} at the deepest approach in {} steps",
+                rounded(rates.dwell),
+                rates.dwell_steps
+            )
+        } else {
+            String::new()
+        };
+        lines.push(format!(
+            "time        t = 0 to {}: the first step instantly, then |Δd|/speed each{hold}",
+            rounded(end)
+        ));
     }
     let full = path.records.iter().filter(|r| r.full_contact).count();
     if full > 0 {

@@ -120,6 +120,7 @@ macro_rules! scene_fields {
 scene_fields! {
     MATERIAL_E_STAR = material.e_star,
     MATERIAL_GAMMA = material.gamma,
+    MATERIAL_PRONY = material.prony,
     BODY_KIND = body.kind,
     BODY_THICKNESS = body.thickness,
     BODY_POISSON = body.poisson,
@@ -175,6 +176,10 @@ scene_fields! {
     PROTOCOL_REFINE_PULL_OFF = protocol.refine_pull_off,
     PROTOCOL_RETRACT_TO = protocol.retract_to,
     PROTOCOL_MAX_STEPS = protocol.max_steps,
+    PROTOCOL_SPEED = protocol.speed,
+    PROTOCOL_UNLOAD_SPEED = protocol.unload_speed,
+    PROTOCOL_DWELL = protocol.dwell,
+    PROTOCOL_DWELL_STEPS = protocol.dwell_steps,
     OUTPUT_SNAPSHOTS = output.snapshots,
     OUTPUT_SURFACE = output.surface,
 }
@@ -215,6 +220,11 @@ pub const FIELDS: &[Field] = &[
         MATERIAL_GAMMA,
         Kind::Number,
         "work of adhesion γ per unit area (0: non-adhesive)",
+    ),
+    f(
+        MATERIAL_PRONY,
+        Kind::Form("a list of arms [E_k, tau_k], each a pair of numbers > 0"),
+        "viscoelastic arms of E(t) = E0 + Σ E_k e^(−t/τ_k), E0 = material.e_star relaxed",
     ),
     f(
         BODY_KIND,
@@ -459,6 +469,26 @@ pub const FIELDS: &[Field] = &[
         "cap on the number of steps",
     ),
     f(
+        PROTOCOL_SPEED,
+        Kind::Number,
+        "viscoelastic: approach rate of the loading (and of the retraction unless unload_speed)",
+    ),
+    f(
+        PROTOCOL_UNLOAD_SPEED,
+        Kind::Number,
+        "viscoelastic: approach rate of the retraction",
+    ),
+    f(
+        PROTOCOL_DWELL,
+        Kind::Number,
+        "viscoelastic: time held at the deepest approach before the retraction",
+    ),
+    f(
+        PROTOCOL_DWELL_STEPS,
+        AT_LEAST_ONE,
+        "viscoelastic: time steps of the hold",
+    ),
+    f(
         OUTPUT_SNAPSHOTS,
         Kind::Form(SNAPSHOT_FORMS),
         "which steps store their pressure field and bonded mask",
@@ -540,7 +570,7 @@ mod tests {
             );
             assert!(!f.meaning.is_empty(), "{}", f.name);
         }
-        assert_eq!(FIELDS.len(), 59);
+        assert_eq!(FIELDS.len(), 64);
     }
 
     #[test]

@@ -61,6 +61,7 @@
 //!     mean_pressure: None,
 //!     full_contact: None,
 //!     n_cohesive: None,
+//!     time: None,
 //! };
 //! let result = RunResult {
 //!     provenance: Provenance {

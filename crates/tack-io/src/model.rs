@@ -67,6 +67,9 @@ pub struct Curve {
     /// Dugdale law: elements of the cohesive zone (out of contact, carrying the tension σ0);
     /// `None` for the zero-range criterion and in files written before the column existed.
     pub n_cohesive: Option<Vec<u64>>,
+    /// Viscoelastic solids: the time at the end of each step; `None` for elastic solids and in
+    /// files written before the column existed.
+    pub time: Option<Vec<f64>>,
 }
 
 impl Curve {
@@ -100,6 +103,9 @@ impl Curve {
         }
         if let Some(z) = &self.n_cohesive {
             cols.push(("n_cohesive", z.len()));
+        }
+        if let Some(t) = &self.time {
+            cols.push(("time", t.len()));
         }
         cols
     }

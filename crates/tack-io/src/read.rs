@@ -338,7 +338,7 @@ fn read_column<T: H5Type>(
 }
 
 /// The columns of `/curve`, `approach` first, and whether each is optional.
-const CURVE_COLUMNS: [(&str, bool); 11] = [
+const CURVE_COLUMNS: [(&str, bool); 12] = [
     ("approach", false),
     ("force", false),
     ("area", false),
@@ -350,6 +350,7 @@ const CURVE_COLUMNS: [(&str, bool); 11] = [
     ("mean_pressure", true),
     ("full_contact", true),
     ("n_cohesive", true),
+    ("time", true),
 ];
 
 /// Checks, before any is read, that `approach` fits the file (`budget`, not taken) and every
@@ -418,6 +419,11 @@ fn read_curve(file: &File, path: &Path, budget: &mut Budget) -> Result<Curve, Io
         },
         n_cohesive: if g.link_exists("n_cohesive") {
             Some(read_column(&g, "n_cohesive", path, budget)?)
+        } else {
+            None
+        },
+        time: if g.link_exists("time") {
+            Some(read_column(&g, "time", path, budget)?)
         } else {
             None
         },

@@ -209,6 +209,9 @@ fn write_curve(file: &File, curve: &Curve, path: &Path) -> Result<(), IoError> {
     if let Some(zone) = &curve.n_cohesive {
         write_dataset(&group, "n_cohesive", zone.into(), path)?;
     }
+    if let Some(time) = &curve.time {
+        write_dataset(&group, "time", time.into(), path)?;
+    }
     Ok(())
 }
 

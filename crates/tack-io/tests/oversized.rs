@@ -82,6 +82,7 @@ fn small() -> RunResult {
         },
         curve: Curve {
             n_cohesive: None,
+            time: None,
             approach: vec![0.0, 0.25, 0.5, 0.25, 0.0],
             force: vec![0.0, 1.5, 3.0, 0.5, -0.75],
             area: vec![0.0, 0.1, 0.2, 0.1, 0.05],

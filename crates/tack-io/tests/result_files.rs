@@ -98,6 +98,7 @@ fn sample() -> RunResult {
         },
         curve: Curve {
             n_cohesive: None,
+            time: None,
             force: vec![0.0, 1.5, -0.875, f64::MIN_POSITIVE, 2.0_f64.sqrt()],
             area: vec![0.0, 0.1, 0.2, 0.3, 0.0],
             n_bonded: vec![0, 10, 20, 30, 0],
@@ -140,6 +141,7 @@ fn minimal() -> RunResult {
         provenance: Provenance::current("unknown", "2026-01-01T00:00:00Z"),
         curve: Curve {
             n_cohesive: None,
+            time: None,
             approach: vec![0.5],
             force: vec![1.0],
             area: vec![0.1],

@@ -59,8 +59,9 @@ fn counts<'py>(py: Python<'py>, v: &[u64]) -> Bound<'py, PyArray1<i64>> {
 impl Result {
     /// The force–approach curve, one entry per step: a dict of 1-D arrays `approach`, `force`,
     /// `area`, `n_bonded`, `n_clusters`, `iterations`, `active_set_iterations` (int64),
-    /// `converged` (bool), and `mean_pressure`, `full_contact`, `n_cohesive` (Dugdale law: the
-    /// cohesive zone's elements) where the file has them.
+    /// `converged` (bool), and `mean_pressure`, `full_contact`, `n_cohesive` (finite-range laws:
+    /// the cohesive or process zone's elements) and `time` (viscoelastic solids: the time at the
+    /// end of each step) where the file has them.
     #[getter]
     fn curve(&self, py: Python<'_>) -> PyResult<Py<PyDict>> {
         let dict = self.curve.get_or_try_init(py, || -> PyResult<Py<PyDict>> {
@@ -82,6 +83,9 @@ impl Result {
             }
             if let Some(z) = &c.n_cohesive {
                 d.set_item("n_cohesive", counts(py, z))?;
+            }
+            if let Some(t) = &c.time {
+                d.set_item("time", t.clone().into_pyarray(py))?;
             }
             if let Some(f) = &c.full_contact {
                 d.set_item("full_contact", f.clone().into_pyarray(py))?;

@@ -270,18 +270,12 @@ pub fn pull_off(
                 .map_err(|e| value_error_named(e, PULL_OFF_NAMES))?
         }
     };
-    let model = match model {
-        "jkr_limit" => tack::AdhesionModel::JkrLimit,
-        "dugdale" => tack::AdhesionModel::Dugdale,
-        "exponential" => tack::AdhesionModel::Exponential,
-        "lennard_jones" => tack::AdhesionModel::LennardJones,
-        other => {
-            return Err(value_error(format!(
-                "model = {other:?} is invalid: must be \"jkr_limit\", \"dugdale\", \
-                 \"exponential\" or \"lennard_jones\""
-            )));
-        }
-    };
+    let model = tack::AdhesionModel::from_name(model).ok_or_else(|| {
+        value_error(format!(
+            "model = {model:?} is invalid: must be {}",
+            tack::AdhesionModel::names()
+        ))
+    })?;
     let spec = tack::heights::PullOffSpec {
         dx,
         boundary: if periodic {

@@ -394,3 +394,22 @@ def test_smooth_law_arguments_are_checked():
     with pytest.raises(ValueError, match="gamma"):
         tack.pull_off(heights, dx=0.1, e_star=1.0, gamma=0.0, max_approach=0.1,
                       unload_step=0.01, law=tack.Exponential(range=0.1))
+
+
+def test_a_viscoelastic_scene_records_time_and_names_its_bad_input(repo):
+    # The standard linear solid of data/examples/viscoelastic_sphere.toml: each step lasts
+    # 0.1 tau, the hold one tau in ten steps; the arms' dissipation at the front doubles the
+    # pull-off of both elastic limits (docs/theory.md section 3.10).
+    scene = repo / "data/examples/viscoelastic_sphere.toml"
+    result = tack.run(scene)
+    time = result.curve["time"]
+    assert time.dtype == np.float64 and time.shape == (len(result),)
+    assert time[0] == 0.0 and np.allclose(np.diff(time), 0.1)
+    assert result.summary["e_instantaneous"] == 10.0
+    assert 2.0 < result.pull_off_ratio < 3.2
+    # An elastic scene has no time column.
+    assert "time" not in tack.run(repo / "data/examples/smooth_jkr_sphere.toml").curve
+    with pytest.raises(tack.SceneError, match=r"^material.prony = -1 is invalid"):
+        tack.run(scene, overrides={"material.prony": [[-1.0, 1.0]]})
+    with pytest.raises(tack.SceneError, match=r"^protocol.speed = -1 is invalid"):
+        tack.run(scene, overrides={"protocol.speed": -1.0})

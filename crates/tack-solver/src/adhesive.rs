@@ -1,16 +1,7 @@
-//! JKR-limit adhesive contact: a bonded set with the Pohrt–Popov mesh-dependent detachment
-//! criterion, solved at a prescribed approach by an active-set loop around a linear CG.
-//!
-//! Protocol at approach `d` (docs/theory.md §3.4): solve `K p = d − f` on the bonded set `C`
-//! (`p = 0` off it); detach **every** bonded element whose tension exceeds `σ_c` (all at once,
-//! as in the reference prototype); attach every free element that penetrates; repeat until `C`
-//! no longer changes. Both decisions come from the same solution and are applied together, so
-//! the result does not depend on iteration order. Cycles are detected by remembering every
-//! bonded set visited in the step; a revisit stops the loop and the step reports
-//! `converged = false`. The loop is also capped.
-
-use crate::rounds::{Rounds, Tally};
-use std::hash::{DefaultHasher, Hash, Hasher};
+//! The adhesive solver: its state, construction and options, and the round loop shared by the
+//! laws with sets (`criterion.rs`, `dugdale.rs`): rounds of one linear solve on the loaded set,
+//! then every transition that solution calls for, until an exact round changes nothing. The
+//! smooth laws run their own Newton iteration (`smooth.rs`).
 
 use ndarray::{Array2, ArrayView2, Zip};
 use tack_geometry::{Boundary, Surface, Window};
@@ -19,12 +10,15 @@ use tack_kernels::{ElasticOperator, padded_size};
 use crate::base::SolverBase;
 use crate::cg::{PcgWork, assign};
 use crate::clusters::count_clusters;
+use crate::criterion::Criterion;
+use crate::dugdale::Dugdale;
 use crate::law::Cohesive;
-use crate::relax::{Relaxation, Released, take_released};
+use crate::relax::Relaxation;
+use crate::rounds::{Round, Rounds, SetRules, Tally};
 use crate::smooth::SmoothState;
 use crate::state::Convergence;
-pub(crate) use crate::subgrid::bounding_box;
 use crate::subgrid::{SubProblem, SubgridCache};
+use crate::viscoelastic::Viscous;
 use crate::{AdhesionLaw, SolverError, SolverOptions, StepRecord, validate};
 
 /// The Pohrt–Popov constant κ of `σ_c = sqrt(E*γ/(κΔx))`, from the mean displacement of a
@@ -68,7 +62,7 @@ pub struct AdhesiveOptions {
     /// Inexact rounds: the CG tolerance of the detach/attach rounds that only have to find
     /// which elements cross the criterion (`None`: every round is solved to `cg.tolerance`).
     /// Such a round detaches only tensions beyond `σ_c (1 + m)` and attaches only gaps below a
-    /// margin ([`LOOSE_DETACH_MARGIN`], [`LOOSE_ATTACH_MARGIN`]): a wrong detachment can set off
+    /// margin ([`crate::LOOSE_DETACH_MARGIN`], [`crate::LOOSE_ATTACH_MARGIN`]): a wrong detachment can set off
     /// a cascade, and adhesion holds a wrongly attached element. On free grids it updates the
     /// gap only inside its sub-grid, so only elements there may attach. When a round changes
     /// nothing, the same set is solved to `cg.tolerance` and judged everywhere without margin,
@@ -87,23 +81,6 @@ pub struct AdhesiveOptions {
     /// half-space, where the windows' operator is exact.
     pub local_relaxation: bool,
 }
-
-/// The tolerance [`LOOSE_DETACH_MARGIN`] was measured at; margins scale with a round's
-/// tolerance relative to it.
-pub(crate) const LOOSE_REFERENCE_TOLERANCE: f64 = 1e-3;
-
-/// Relative tension margin `m` of an inexact round: it detaches `p < −σ_c (1 + m)` only. With
-/// `round_tolerance = 1e-3`, `m = 0.001` let a Kendall punch at a/Δx = 20 pull off 0.6% early
-/// (a rim element within the inexact solve's error of σ_c started the cascade), and `0.003` let
-/// a flat-tipped body z = r⁴ pull off 1.7% and 0.9% early at a_F/Δx = 10 and 20
-/// (`tests/power_law.rs`), and the 512² rough sphere of `cargo xtask bench` 1.2·10⁻⁴ early;
-/// `0.006` gives the exact algorithm's pull-off on all three (`tests/adhesion.rs`,
-/// `tests/power_law.rs`, `crates/tack/tests/relaxation.rs`, docs/theory.md §3.4).
-pub const LOOSE_DETACH_MARGIN: f64 = 0.006;
-
-/// Gap margin of an inexact round, in units of its residual bound: it attaches only gaps below
-/// `−LOOSE_ATTACH_MARGIN · round_tolerance · scale` (scale: the rms of `d − f` over the set).
-pub const LOOSE_ATTACH_MARGIN: f64 = 10.0;
 
 impl Default for AdhesiveOptions {
     fn default() -> Self {
@@ -149,7 +126,9 @@ pub struct AdhesiveSolver {
     /// A smooth law's curve and Newton vectors (`None`: the criterion or the Dugdale law).
     pub(crate) smooth: Option<SmoothState>,
     /// Windowed solves of [`AdhesiveOptions::local_relaxation`].
-    relaxation: Relaxation,
+    pub(crate) relaxation: Relaxation,
+    /// A viscoelastic solid's arms and clock (`None`: elastic).
+    pub(crate) visco: Option<Viscous>,
 }
 
 /// Distinct sub-grid shapes kept by one solver (the least recently used is replaced). Each holds
@@ -226,6 +205,7 @@ impl AdhesiveSolver {
             cohesive,
             smooth,
             relaxation: Relaxation::new(base_dx, e_star),
+            visco: None,
         })
     }
 
@@ -270,20 +250,11 @@ impl AdhesiveSolver {
             });
         }
         let (gamma_ref, law) = self.reference;
-        self.tension = match law {
-            AdhesionLaw::JkrLimit { kappa } => {
-                let scale = self.base.op.e_star() / (kappa * self.base.grid().dx());
-                gamma.mapv(|g| (scale * g).sqrt())
-            }
-            AdhesionLaw::Dugdale { sigma0 } => gamma.mapv(|g| sigma0 * (g / gamma_ref)),
-            AdhesionLaw::Exponential { .. } | AdhesionLaw::LennardJones { .. } => {
-                let share: std::sync::Arc<[f64]> = gamma.iter().map(|g| g / gamma_ref).collect();
-                if let Some(s) = self.smooth.as_mut() {
-                    s.weights = Some(share);
-                }
-                gamma.mapv(|g| self.sigma_c * (g / gamma_ref))
-            }
-        };
+        let (e_star, dx) = (self.base.op.e_star(), self.base.grid().dx());
+        self.tension = gamma.mapv(|g| law.element_tension(g, gamma_ref, e_star, dx));
+        if let Some(s) = self.smooth.as_mut() {
+            s.weights = Some(gamma.iter().map(|g| g / gamma_ref).collect());
+        }
         self.patterned = true;
         Ok(())
     }
@@ -342,100 +313,109 @@ impl AdhesiveSolver {
     ///
     /// Under the Dugdale law the same loop runs on three sets (contact, cohesive zone, free);
     /// see [`AdhesionLaw::Dugdale`].
+    ///
+    /// A viscoelastic solid ([`AdhesiveSolver::set_viscoelastic`]) takes the step in time:
+    /// `|Δd|` over the loading or the retraction speed.
     pub fn step(&mut self, approach: f64) -> Result<StepRecord, SolverError> {
         let d = validate::approach(approach)?;
+        match &self.visco {
+            Some(v) => {
+                let dt = v.step_time(self.last_approach, d);
+                self.step_in_time(d, dt)
+            }
+            None => self.step_elastic(d),
+        }
+    }
+
+    /// The elastic step at the validated approach `d`: the smooth laws' Newton iteration or
+    /// the round loop of the laws with sets.
+    pub(crate) fn step_elastic(&mut self, d: f64) -> Result<StepRecord, SolverError> {
         if self.smooth.is_some() {
             return Ok(self.step_smooth(d));
         }
         self.predict(d);
-        if self.cohesive.is_some() {
-            return Ok(self.step_dugdale(d));
-        }
-        self.step_criterion(d)
+        let tally = match self.cohesive.take() {
+            Some(state) => {
+                let mut rules = Dugdale { state };
+                let tally = self.run_rounds(d, &mut rules);
+                self.cohesive = Some(rules.state);
+                tally
+            }
+            None => {
+                let mut rules = Criterion::new(self);
+                self.run_rounds(d, &mut rules)
+            }
+        }?;
+        Ok(self.record(d, &tally))
     }
 
-    /// One approach step under the zero-range criterion: rounds of one solve on the bonded
-    /// set, then every detachment and attachment that solution calls for, until an exact round
-    /// changes nothing (module docs); `d` is validated.
-    fn step_criterion(&mut self, d: f64) -> Result<StepRecord, SolverError> {
+    /// One approach step of a law with sets (module docs; `d` is validated): rounds of one
+    /// solve on the loaded set, then every transition the `rules` find in that solution, until
+    /// an exact round changes nothing. A revisited set stops the step as not converged, as does
+    /// the round cap ([`AdhesiveOptions::max_active_set_iterations`]).
+    pub(crate) fn run_rounds<R: SetRules>(
+        &mut self,
+        d: f64,
+        rules: &mut R,
+    ) -> Result<Tally, SolverError> {
         let periodic = self.base.periodic();
-        let n = self.base.heights().len();
         let mut tally = Tally::new();
         let closed = self.base.closed(d);
         if closed {
             self.bonded.fill(true);
-        } else if self.sigma_c == 0.0
-            && !self.patterned
-            && self.options.nested_start
-            && !self.bonded.iter().any(|&b| b)
-        {
-            tally.cg += self.start_from_coarse(d)?;
         }
-        let sigma_c = self.sigma_c;
+        rules.prepare(self, d, closed, &mut tally)?;
         // Inexact rounds until one finds nothing clear, then an exact round on the same set.
-        let mut schedule = Rounds::new(self.options.round_tolerance, self.options.cg.tolerance);
+        let tolerance = self.options.cg.tolerance;
+        let mut schedule = Rounds::new(rules.start(&self.options), tolerance);
         // `work.disp` and the gap are up to date only inside the last inexact round's window.
         let mut stale = false;
-        // A window known to hold every bonded element and every non-zero pressure (`None`: the
+        // A window known to hold every loaded element and every non-zero pressure (`None`: the
         // whole grid): after an inexact sub-grid round only its window can have changed, so
         // the next round's bookkeeping scans that instead of the grid.
         let mut extent: Option<Window> = None;
-        // The elements the last round detached, whose tension the next round's start relaxes.
-        // Inexact rounds only: `round_tolerance = None` stays the exact loop, bit for bit.
-        let relaxing = self.options.local_relaxation
-            && self.options.round_tolerance.is_some()
-            && !periodic
-            && (sigma_c > 0.0 || self.patterned);
-        let mut released: Vec<Released> = Vec::new();
         loop {
             if tally.rounds == self.options.max_active_set_iterations {
                 tally.converged = false;
                 break;
             }
             tally.rounds += 1;
-            let (tight, n_bonded) = bounding_box(&self.bonded, extent.as_ref());
-            if periodic && n_bonded == n {
+            if periodic && self.bonded.iter().all(|&b| b) {
+                // Full contact, with σ_c (σ0) the greatest tension.
                 let map = self.patterned.then_some(self.tension.view());
-                match self.base.full_contact_or_weakest(closed, sigma_c, map) {
+                match self.base.full_contact_or_weakest(closed, self.sigma_c, map) {
                     None => {
                         tally.full = true;
                         break;
                     }
                     Some(weakest) => {
                         self.bonded[weakest] = false;
+                        rules.release(weakest);
                         continue;
                     }
                 }
             }
-            let fingerprint = hash_box(&self.bonded, tight.as_ref());
-            let window = self.subgrid_around(tight);
-            let cycle = schedule.visit(fingerprint);
-            if let Some(t) = tight.filter(|_| !released.is_empty()) {
-                self.relaxation.relax(
-                    &mut self.base.pressure,
-                    &self.bonded,
-                    (t.i0, t.j0),
-                    &mut released,
-                    self.options.preconditioned,
-                );
-            }
-            released.clear();
-            let round = CriterionRound {
+            let loaded = rules.loaded(self, extent);
+            let window = self.subgrid_around(loaded.tight);
+            let cycle = schedule.visit(loaded.fingerprint);
+            rules.before_solve(self, loaded.tight);
+            let round = Round {
+                d,
                 exact: schedule.exact,
                 level: schedule.level,
-                n_bonded,
+                loaded: loaded.count,
                 window,
+                extent,
             };
-            let margins = self.solve_criterion_round(d, round, extent.as_ref(), &mut tally);
-            stale = margins.fresh.is_some();
-            extent = margins.fresh;
-            self.update_gap_after_round(d, margins.fresh);
+            let (fresh, margins) = rules.solve(self, round, &mut tally);
+            stale = fresh.is_some();
+            extent = fresh;
+            self.update_gap_after_round(d, fresh);
             if cycle {
                 tally.converged = false;
                 break;
             }
-            let changed = self.judge_criterion(&margins, relaxing, &mut released);
-            if schedule.done(changed) {
+            if schedule.done(rules.judge(self, fresh, &margins)) {
                 break;
             }
         }
@@ -443,114 +423,7 @@ impl AdhesiveSolver {
             // The step ended on an inexact sub-grid round: bring `K p` and the gap up to date.
             self.refresh_after_inexact_round(d);
         }
-        Ok(self.record(d, &tally))
-    }
-
-    /// A criterion round's solve: none on an empty set, else an inexact one (returning the
-    /// margins its decisions carry and the window where its gap is fresh) or an exact one
-    /// (counted in the `tally`'s residual and convergence).
-    fn solve_criterion_round(
-        &mut self,
-        d: f64,
-        round: CriterionRound,
-        extent: Option<&Window>,
-        tally: &mut Tally,
-    ) -> CriterionMargins {
-        let sigma_c = self.sigma_c;
-        let mut margins = CriterionMargins {
-            attach_below: 0.0,
-            detach: 0.0,
-            detach_floor: 0.0,
-            fresh: None,
-        };
-        if round.n_bonded == 0 {
-            self.base.pressure.fill(0.0);
-            self.base.work.disp.fill(0.0);
-        } else if !round.exact {
-            // An inexact round: the gap is only brought up to date inside the sub-grid
-            // window, so only elements there may attach; the exact round checks them all.
-            // Margins scale with the round's tolerance; without adhesion the equilibrium is
-            // unique (a convex problem), so no decision needs one.
-            let level = round.level;
-            let (c, w) = self.solve_set(d, level, false, round.window, extent);
-            tally.cg += c.iterations;
-            if sigma_c > 0.0 || self.patterned {
-                let relative = level / LOOSE_REFERENCE_TOLERANCE;
-                margins.attach_below = -LOOSE_ATTACH_MARGIN * level * c.scale;
-                let margin = LOOSE_DETACH_MARGIN * relative;
-                // Detach where `p < −σ·(1 + margin) − floor`: on a map a floor of the
-                // reference's margin, so elements of little γ keep one too.
-                let floor = if self.patterned {
-                    sigma_c * margin
-                } else {
-                    0.0
-                };
-                (margins.detach, margins.detach_floor) = (margin, floor);
-            }
-            margins.fresh = w;
-        } else {
-            let tolerance = self.options.cg.tolerance;
-            let (c, _) = self.solve_set(d, tolerance, true, round.window, extent);
-            tally.cg += c.iterations;
-            tally.exact(&c);
-        }
-        margins
-    }
-
-    /// A criterion round's tests: detach every bonded element under tension beyond σ_c (with
-    /// the round's margins), attach every free element whose gap is below `attach_below`, in
-    /// the window where the gap is fresh; returns whether any changed. With `relaxing` the
-    /// detached elements' pressure goes to `released` (cleared there) for the next round.
-    fn judge_criterion(
-        &mut self,
-        margins: &CriterionMargins,
-        relaxing: bool,
-        released: &mut Vec<Released>,
-    ) -> bool {
-        // After an inexact sub-grid round only its window can change: every bonded element
-        // lies inside it, and only elements there may attach.
-        let block = round_block(margins.fresh);
-        let (margin, floor, attach_below) =
-            (margins.detach, margins.detach_floor, margins.attach_below);
-        let tension = self
-            .tension
-            .broadcast(self.bonded.dim())
-            .expect("a 1 × 1 array or the grid's shape");
-        let zip = Zip::from(self.bonded.slice_mut(block))
-            .and(self.base.pressure.slice_mut(block))
-            .and(self.base.gap.slice(block))
-            .and(tension.slice(block));
-        // Each element's test reads only that element: the split over threads cannot
-        // change the outcome. With relaxation a detached element keeps its pressure until
-        // `take_released` below collects and clears it.
-        let judge = |changed: bool, b: &mut bool, p: &mut f64, &g: &f64, &s: &f64| {
-            if *b && *p < -s * (1.0 + margin) - floor {
-                *b = false;
-                if !relaxing {
-                    *p = 0.0;
-                }
-                true
-            } else if !*b && g < attach_below {
-                *b = true;
-                true
-            } else {
-                changed
-            }
-        };
-        let changed = if crate::cg::parallel(zip.size()) {
-            zip.par_fold(|| false, judge, |a, b| a || b)
-        } else {
-            zip.fold(false, judge)
-        };
-        if relaxing && changed {
-            let origin = margins.fresh.map_or((0, 0), |w| (w.i0, w.j0));
-            *released = take_released(
-                self.base.pressure.slice_mut(block),
-                self.bonded.slice(block),
-                origin,
-            );
-        }
-        changed
+        Ok(tally)
     }
 
     /// After a round's solve: the gap everywhere, or only in the window `fresh` of an inexact
@@ -576,7 +449,7 @@ impl AdhesiveSolver {
     /// fine rounds. The fine rounds end on the fine grid's own exact state; only the work
     /// changes. Returns the CG iterations spent on the coarse grids (in fine-grid units: each
     /// coarse iteration counted as a quarter of the level above).
-    fn start_from_coarse(&mut self, d: f64) -> Result<usize, SolverError> {
+    pub(crate) fn start_from_coarse(&mut self, d: f64) -> Result<usize, SolverError> {
         let Some((surface, op)) = self.base.coarsened() else {
             return Ok(0);
         };
@@ -623,7 +496,7 @@ impl AdhesiveSolver {
 
     /// Solves the bonded (contact) set to `tolerance`, warm-started from the current pressure:
     /// `K_CC p_C = (d − f)_C` under the criterion, and under the Dugdale law the same with the
-    /// zone's tension `−σ0` held (`crate::dugdale`). On free grids whose loaded elements fill
+    /// tension of its `zone` held (`crate::dugdale`). On free grids whose loaded elements fill
     /// little of the grid, the solve runs on the sub-grid `window` around them (the free
     /// operator is exact on any sub-grid, so the linear problem is the same). With `full`,
     /// `work.disp = K p` on the whole grid afterwards (one full-grid product after a sub-grid
@@ -639,6 +512,7 @@ impl AdhesiveSolver {
         full: bool,
         window: Option<Window>,
         extent: Option<&Window>,
+        zone: Option<ArrayView2<bool>>,
     ) -> (Convergence, Option<Window>) {
         let cg = SolverOptions {
             tolerance,
@@ -647,12 +521,12 @@ impl AdhesiveSolver {
         let pre = self.options.preconditioned;
         let base = &mut self.base;
         // The Dugdale law's zone and tensions (`None`: the criterion).
-        let held = self.cohesive.as_ref().map(|c| {
+        let held = zone.map(|z| {
             let tension = self
                 .tension
                 .broadcast(self.bonded.dim())
                 .expect("a 1 × 1 array or the grid's shape");
-            (c.zone.view(), tension)
+            (z, tension)
         });
         let Some(window) = window else {
             let c = crate::cg::solve_grid(
@@ -766,85 +640,13 @@ impl AdhesiveSolver {
             edge_contact: free
                 && (crate::touches_edge(&self.bonded) || zone.is_some_and(crate::touches_edge)),
             n_cohesive,
+            time: None,
         }
     }
 }
 
 /// A sub-grid is used when its transform costs less than this fraction of the full grid's.
 const SUBGRID_COST_RATIO: f64 = 0.8;
-
-/// The block of a round's tests: the window `fresh` where its gap is up to date (an inexact
-/// sub-grid round), or the whole grid.
-pub(crate) fn round_block(
-    fresh: Option<Window>,
-) -> ndarray::SliceInfo<[ndarray::SliceInfoElem; 2], ndarray::Ix2, ndarray::Ix2> {
-    match fresh {
-        Some(w) => ndarray::s![w.i0..w.i1, w.j0..w.j1],
-        None => ndarray::s![.., ..],
-    }
-}
-
-/// What a criterion round solves: exact or at the inexact `level`, on a set of `n_bonded`
-/// elements, on the sub-grid `window` (`None`: the grid).
-#[derive(Clone, Copy)]
-struct CriterionRound {
-    exact: bool,
-    level: f64,
-    n_bonded: usize,
-    window: Option<Window>,
-}
-
-/// What a criterion round's solve leaves its tests: detach where
-/// `p < −σ·(1 + detach) − detach_floor`, attach where `g < attach_below`, and the window
-/// where the gap is fresh (`None`: everywhere).
-struct CriterionMargins {
-    attach_below: f64,
-    detach: f64,
-    detach_floor: f64,
-    fresh: Option<Window>,
-}
-
-/// Deterministic fingerprint of a set from its bounding box `tight` ([`bounding_box`]): the
-/// box and the mask inside it, packed into 64-bit words row by row, hashed.
-fn hash_box(mask: &Array2<bool>, tight: Option<&Window>) -> u64 {
-    let mut h = DefaultHasher::new();
-    if let Some(w) = tight {
-        (w.i0, w.i1, w.j0, w.j1).hash(&mut h);
-        for i in w.i0..w.i1 {
-            let row = &mask.row(i).to_slice().expect("standard layout")[w.j0..w.j1];
-            pack_into(row, &mut h);
-        }
-    }
-    h.finish()
-}
-
-/// Deterministic fingerprint of several masks of one grid (the Dugdale law's two sets) whose
-/// `true` elements all lie in the box `tight` (the box of their union, [`bounding_box`]): the
-/// box and each mask inside it, packed into 64-bit words row by row, hashed.
-pub(crate) fn hash_masks_in(masks: &[&Array2<bool>], tight: Option<&Window>) -> u64 {
-    let mut h = DefaultHasher::new();
-    if let Some(w) = tight {
-        (w.i0, w.i1, w.j0, w.j1).hash(&mut h);
-        for mask in masks {
-            for i in w.i0..w.i1 {
-                let row = &mask.row(i).to_slice().expect("standard layout")[w.j0..w.j1];
-                pack_into(row, &mut h);
-            }
-        }
-    }
-    h.finish()
-}
-
-/// Hashes `bits` packed into 64-bit words.
-fn pack_into(bits: &[bool], h: &mut DefaultHasher) {
-    for chunk in bits.chunks(64) {
-        let word = chunk
-            .iter()
-            .enumerate()
-            .fold(0u64, |w, (k, &b)| w | (u64::from(b) << k));
-        word.hash(h);
-    }
-}
 
 #[cfg(test)]
 mod tests;

@@ -14,22 +14,24 @@
 //! (near `g = h0` both states can be admissible: the law's own bistability, settled by the
 //! previous step's state).
 //!
-//! As under the criterion, rounds start inexact (`AdhesiveOptions::round_tolerance`, here
+//! The law's rules run in the round loop it shares with the criterion
+//! (`AdhesiveSolver::run_rounds`). As under the criterion, rounds start inexact (`AdhesiveOptions::round_tolerance`, here
 //! divided by [`DUGDALE_ROUND_FACTOR`]): such a round solves loosely, on a sub-grid brings the
 //! gap up to date only there, and makes only the transitions its error cannot reverse: tension
 //! beyond `σ0 (1 + m)`, gaps below `−ε` or beyond `h0 ± ε` with `ε` ten times its error. When
 //! one finds nothing, the tolerance tightens until the exact round, which judges the whole
 //! grid without those margins; so every step ends on an exact solve and an exact test.
 
-use crate::rounds::{Rounds, Tally};
-use ndarray::{Array2, Zip};
+use ndarray::Zip;
 use tack_geometry::Window;
 
-use crate::adhesive::{
-    LOOSE_ATTACH_MARGIN, LOOSE_DETACH_MARGIN, LOOSE_REFERENCE_TOLERANCE, bounding_box,
-    hash_masks_in, round_block,
+use crate::law::Cohesive;
+use crate::rounds::{
+    LOOSE_ATTACH_MARGIN, LOOSE_DETACH_MARGIN, LOOSE_REFERENCE_TOLERANCE, Loaded, Round, SetRules,
+    Tally, hash_masks_in, round_block,
 };
-use crate::{AdhesiveSolver, StepRecord};
+use crate::subgrid::bounding_box;
+use crate::{AdhesiveOptions, AdhesiveSolver, SolverError};
 
 /// The Dugdale law's inexact rounds start `round_tolerance / DUGDALE_ROUND_FACTOR` (`1e-5` by
 /// default): each of their zone-edge tests (`g` against `h0`) needs a gap margin of ten times
@@ -40,132 +42,126 @@ use crate::{AdhesiveSolver, StepRecord};
 /// one with the same pull-off.
 const DUGDALE_ROUND_FACTOR: f64 = 100.0;
 
-impl AdhesiveSolver {
-    /// One approach step under the Dugdale law (module docs); `d` is validated.
-    pub(crate) fn step_dugdale(&mut self, d: f64) -> StepRecord {
-        let periodic = self.base.periodic();
-        let (sigma0, range) = {
-            let c = self.cohesive.as_ref().expect("the Dugdale law");
-            (c.sigma0, c.range)
-        };
-        let tolerance = self.options.cg.tolerance;
-        let mut tally = Tally::new();
-        let closed = self.base.closed(d);
+/// The Dugdale law's rules for one step: the law's state (σ0, range, the cohesive zone), held
+/// by the rules while the step runs.
+pub(crate) struct Dugdale {
+    pub(crate) state: Cohesive,
+}
+
+/// The margins of a Dugdale round's tests: tension (`C → Z`), gap below zero (`Z → C`,
+/// `F → C`) and gap against the range (`Z ↔ F`).
+pub(crate) struct DugdaleMargins {
+    p: f64,
+    g: f64,
+    r: f64,
+}
+
+impl SetRules for Dugdale {
+    type Margins = DugdaleMargins;
+
+    fn start(&self, options: &AdhesiveOptions) -> Option<f64> {
+        options.round_tolerance.map(|t| t / DUGDALE_ROUND_FACTOR)
+    }
+
+    /// A closed periodic grid starts in full contact: no zone.
+    fn prepare(
+        &mut self,
+        _s: &mut AdhesiveSolver,
+        _d: f64,
+        closed: bool,
+        _tally: &mut Tally,
+    ) -> Result<(), SolverError> {
         if closed {
-            self.bonded.fill(true);
-            self.zone_mut().fill(false);
+            self.state.zone.fill(false);
         }
-        // Inexact rounds until one finds nothing clear, then exact rounds (as under the
-        // criterion): the tolerance starts at `round_tolerance / DUGDALE_ROUND_FACTOR`,
-        // tightens 100× whenever an inexact round finds nothing and returns to its start when
-        // a round changes a set.
-        let start = self
-            .options
-            .round_tolerance
-            .map(|t| t / DUGDALE_ROUND_FACTOR);
-        let mut schedule = Rounds::new(start, tolerance);
-        // `work.disp` and the gap are up to date only inside the last inexact round's window.
-        let mut stale = false;
-        // A window known to hold every loaded element (`None`: the whole grid).
-        let mut extent: Option<Window> = None;
-        loop {
-            if tally.rounds == self.options.max_active_set_iterations {
-                tally.converged = false;
-                break;
-            }
-            tally.rounds += 1;
-            if periodic && self.bonded.iter().all(|&b| b) {
-                // Full contact: as under the criterion, with σ0 the greatest tension; the
-                // released element joins the zone.
-                let map = self.patterned.then_some(self.tension.view());
-                match self.base.full_contact_or_weakest(closed, sigma0, map) {
-                    None => {
-                        tally.full = true;
-                        break;
-                    }
-                    Some(weakest) => {
-                        self.bonded[weakest] = false;
-                        self.zone_mut()[weakest] = true;
-                        continue;
-                    }
-                }
-            }
-            let (tight, fingerprint) = self.loaded_set(extent);
-            let window = self.subgrid_around(tight);
-            let cycle = schedule.visit(fingerprint);
-            let (exact, level) = (schedule.exact, schedule.level);
-            let (c, fresh) = if exact {
-                self.solve_set(d, tolerance, true, window, extent.as_ref())
-            } else {
-                self.solve_set(d, level, false, window, extent.as_ref())
-            };
-            extent = fresh;
-            tally.cg += c.iterations;
-            if exact {
-                tally.exact(&c);
-            }
-            stale = fresh.is_some();
-            self.update_gap_after_round(d, fresh);
-            if cycle {
-                tally.converged = false;
-                break;
-            }
-            // Exact rounds: the `C ↔ Z` tests carry the CG tolerance (module docs), `Z ↔ F`
-            // none. Inexact rounds: every test carries the inexact solve's error, so each
-            // transition they make is one the exact solve would make too; the gap is fresh only
-            // in the round's sub-grid, so only elements there may change.
-            let margins = if exact {
-                (tolerance * sigma0, tolerance * c.scale.max(range), 0.0)
-            } else {
-                let relative = level / LOOSE_REFERENCE_TOLERANCE;
-                let g = LOOSE_ATTACH_MARGIN * level * c.scale.max(range);
-                (LOOSE_DETACH_MARGIN * relative * sigma0, g, g)
-            };
-            if schedule.done(self.judge_dugdale(fresh, margins, range)) {
-                break;
-            }
-        }
-        if stale {
-            // The step ended on an inexact sub-grid round (the round cap): `K p` and the gap.
-            self.refresh_after_inexact_round(d);
-        }
-        self.record(d, &tally)
+        Ok(())
+    }
+
+    /// The element full contact released joins the zone.
+    fn release(&mut self, weakest: (usize, usize)) {
+        self.state.zone[weakest] = true;
     }
 
     /// The loaded set (contact or zone, into the law's `loaded` mask), its bounding box and
     /// fingerprint, searched only in `extent`: after an inexact sub-grid round every loaded
     /// element lies in its window.
-    fn loaded_set(&mut self, extent: Option<Window>) -> (Option<Window>, u64) {
-        let coh = self.cohesive.as_mut().expect("the Dugdale law");
+    fn loaded(&mut self, s: &AdhesiveSolver, extent: Option<Window>) -> Loaded {
+        let coh = &mut self.state;
         let block = round_block(extent);
         Zip::from(coh.loaded.slice_mut(block))
-            .and(self.bonded.slice(block))
+            .and(s.bonded.slice(block))
             .and(coh.zone.slice(block))
             .for_each(|l, &b, &z| *l = b || z);
-        let (tight, _) = bounding_box(&coh.loaded, extent.as_ref());
-        let fingerprint = hash_masks_in(&[&self.bonded, &coh.zone], tight.as_ref());
-        (tight, fingerprint)
+        let (tight, count) = bounding_box(&coh.loaded, extent.as_ref());
+        let fingerprint = hash_masks_in(&[&s.bonded, &coh.zone], tight.as_ref());
+        Loaded {
+            tight,
+            count,
+            fingerprint,
+        }
+    }
+
+    /// The contact set's solve with the zone's tension held. Exact rounds: the `C ↔ Z` tests
+    /// carry the CG tolerance (module docs), `Z ↔ F` none. Inexact rounds: every test carries
+    /// the inexact solve's error, so each transition they make is one the exact solve would
+    /// make too; the gap is fresh only in the round's sub-grid, so only elements there may
+    /// change.
+    fn solve(
+        &mut self,
+        s: &mut AdhesiveSolver,
+        round: Round,
+        tally: &mut Tally,
+    ) -> (Option<Window>, DugdaleMargins) {
+        let (sigma0, range) = (self.state.sigma0, self.state.range);
+        let tolerance = s.options.cg.tolerance;
+        let zone = Some(self.state.zone.view());
+        let (d, extent) = (round.d, round.extent.as_ref());
+        let (c, fresh) = if round.exact {
+            s.solve_set(d, tolerance, true, round.window, extent, zone)
+        } else {
+            s.solve_set(d, round.level, false, round.window, extent, zone)
+        };
+        tally.cg += c.iterations;
+        if round.exact {
+            tally.exact(&c);
+        }
+        let margins = if round.exact {
+            DugdaleMargins {
+                p: tolerance * sigma0,
+                g: tolerance * c.scale.max(range),
+                r: 0.0,
+            }
+        } else {
+            let relative = round.level / LOOSE_REFERENCE_TOLERANCE;
+            let g = LOOSE_ATTACH_MARGIN * round.level * c.scale.max(range);
+            DugdaleMargins {
+                p: LOOSE_DETACH_MARGIN * relative * sigma0,
+                g,
+                r: g,
+            }
+        };
+        (fresh, margins)
     }
 
     /// A Dugdale round's transitions (module docs) in the window `fresh` where the gap is up
-    /// to date (`None`: the grid), with the `(p_margin, g_margin, r_margin)` of the round's
-    /// tests and the law's `range`; returns whether any set changed.
-    fn judge_dugdale(
+    /// to date (`None`: the grid).
+    fn judge(
         &mut self,
+        s: &mut AdhesiveSolver,
         fresh: Option<Window>,
-        (p_margin, g_margin, r_margin): (f64, f64, f64),
-        range: f64,
+        margins: &DugdaleMargins,
     ) -> bool {
         let block = round_block(fresh);
-        let coh = self.cohesive.as_mut().expect("the Dugdale law");
-        let tension = self
+        let range = self.state.range;
+        let (p_margin, g_margin, r_margin) = (margins.p, margins.g, margins.r);
+        let tension = s
             .tension
-            .broadcast(self.bonded.dim())
+            .broadcast(s.bonded.dim())
             .expect("a 1 × 1 array or the grid's shape");
-        let zip = Zip::from(self.bonded.slice_mut(block))
-            .and(coh.zone.slice_mut(block))
-            .and(self.base.pressure.slice_mut(block))
-            .and(self.base.gap.slice(block))
+        let zip = Zip::from(s.bonded.slice_mut(block))
+            .and(self.state.zone.slice_mut(block))
+            .and(s.base.pressure.slice_mut(block))
+            .and(s.base.gap.slice(block))
             .and(tension.slice(block));
         // Each element's tests read only that element: the split over threads cannot
         // change the outcome.
@@ -197,9 +193,5 @@ impl AdhesiveSolver {
         } else {
             zip.fold(false, judge)
         }
-    }
-
-    fn zone_mut(&mut self) -> &mut Array2<bool> {
-        &mut self.cohesive.as_mut().expect("the Dugdale law").zone
     }
 }

@@ -96,6 +96,15 @@ impl Traction {
     }
 }
 
+/// Least length of a Dugdale cohesive zone, in elements, below which a result is flagged: the
+/// zone's tension is then carried by a ring of elements too thin to shape it.
+pub const MIN_COHESIVE_ZONE_ELEMENTS: f64 = 2.0;
+
+/// Least width of a smooth law's process zone, in elements, below which a result is flagged:
+/// an element's own stiffness `E*/(κ₀Δx)` then no longer holds the law's steepest softening,
+/// the front advances element by element and the forces depend on the mesh.
+pub const MIN_PROCESS_ZONE_ELEMENTS: f64 = 1.0;
+
 /// A smooth law's reach ([`AdhesionLaw::reach`]) is where its tension falls to this fraction
 /// of the peak: what a crop leaves out is a tension below it.
 pub const REACH_FRACTION: f64 = 1e-8;
@@ -168,6 +177,126 @@ impl AdhesionLaw {
     pub fn tabor(&self, e_star: f64, gamma: f64, radius: f64) -> Option<f64> {
         let l = self.range(gamma)?;
         Some((radius * gamma * gamma / (e_star * e_star * l * l * l)).cbrt())
+    }
+
+    /// The greatest tension of an element of work of adhesion `gamma` when the law was set for
+    /// the `reference` work (a γ map, [`crate::AdhesiveSolver::set_gamma_map`]): the criterion's
+    /// own `σ_c(γ)`; the Dugdale law keeps its range `h0 = γ_ref/σ0` and scales σ0 by
+    /// `γ/γ_ref`; a smooth law keeps its range and scales its peak by `γ/γ_ref`.
+    pub fn element_tension(&self, gamma: f64, reference: f64, e_star: f64, dx: f64) -> f64 {
+        match *self {
+            AdhesionLaw::JkrLimit { kappa } => (e_star / (kappa * dx) * gamma).sqrt(),
+            AdhesionLaw::Dugdale { sigma0 } => sigma0 * (gamma / reference),
+            AdhesionLaw::Exponential { .. } | AdhesionLaw::LennardJones { .. } => {
+                self.peak_tension(reference, e_star, dx) * (gamma / reference)
+            }
+        }
+    }
+
+    /// The length the mesh must resolve: the Dugdale law's cohesive zone `πE*γ/(4σ0²)` ahead of
+    /// a straight crack (Griffith's `K² = 2E*γ` in `l = (π/8)(K/σ0)²`), a smooth law's process
+    /// zone `(8/3π)E*ℓ²/γ` (ℓ its range ρ or ε: the length over which the exponential law's
+    /// tension acts ahead of a crack; the Lennard-Jones law's is of the same order); `None`
+    /// for the zero-range criterion, whose mesh rule is the contact's own size.
+    pub fn zone_length(&self, e_star: f64, gamma: f64) -> Option<f64> {
+        match *self {
+            AdhesionLaw::JkrLimit { .. } => None,
+            AdhesionLaw::Dugdale { sigma0 } => {
+                Some(std::f64::consts::PI * e_star * gamma / (4.0 * sigma0 * sigma0))
+            }
+            AdhesionLaw::Exponential { range } | AdhesionLaw::LennardJones { range } => {
+                Some(8.0 / (3.0 * std::f64::consts::PI) * e_star * range * range / gamma)
+            }
+        }
+    }
+
+    /// The least number of elements across [`AdhesionLaw::zone_length`] below which a result
+    /// is flagged: [`MIN_COHESIVE_ZONE_ELEMENTS`] or [`MIN_PROCESS_ZONE_ELEMENTS`].
+    pub fn min_zone_elements(&self) -> f64 {
+        match self {
+            AdhesionLaw::JkrLimit { .. } => 0.0,
+            AdhesionLaw::Dugdale { .. } => MIN_COHESIVE_ZONE_ELEMENTS,
+            _ => MIN_PROCESS_ZONE_ELEMENTS,
+        }
+    }
+
+    /// The warning of a mesh of element `dx` that does not resolve the law's zone
+    /// ([`AdhesionLaw::zone_length`], [`AdhesionLaw::min_zone_elements`]), naming the fields
+    /// that mend it; `None` when it does (and for the criterion, whose mesh rules are the
+    /// contact's and are checked with the body).
+    pub fn mesh_warning(&self, e_star: f64, gamma: f64, dx: f64) -> Option<String> {
+        let zone = self.zone_length(e_star, gamma)?;
+        let (elements, least) = (zone / dx, self.min_zone_elements());
+        if elements >= least {
+            return None;
+        }
+        let shown = fields::num((elements * 100.0).round() / 100.0);
+        let dx_field = fields::GRID_DX;
+        Some(match self {
+            AdhesionLaw::Dugdale { .. } => format!(
+                "under-resolved cohesive zone: its length πE*γ/(4σ0²) = {} spans {shown} \
+                 elements (at least {least} needed); the Dugdale law then acts element by \
+                 element and the forces depend on the mesh (refine {dx_field} or lower {})",
+                fields::num(zone),
+                fields::ADHESION_SIGMA0,
+            ),
+            _ => format!(
+                "under-resolved process zone: its width (8/3π)E*ρ²/γ = {} spans {shown} \
+                 elements (at least {least} needed); the front then moves element by element \
+                 and the forces depend on the mesh (refine {dx_field} or raise {})",
+                fields::rounded(zone),
+                fields::ADHESION_RANGE,
+            ),
+        })
+    }
+
+    /// The law's own entries of a result's summary for work of adhesion `gamma`, modulus
+    /// `e_star` and element `dx`: `sigma_c` and `kappa` (zero-range); `sigma0`, `range` and
+    /// `cohesive_zone_elements` (Dugdale); `range`, `peak_tension` and `process_zone_elements`
+    /// (smooth laws).
+    pub fn summary_entries(&self, gamma: f64, e_star: f64, dx: f64) -> Vec<(&'static str, f64)> {
+        let peak = self.peak_tension(gamma, e_star, dx);
+        let elements = self.zone_length(e_star, gamma).map(|z| z / dx);
+        match *self {
+            AdhesionLaw::JkrLimit { kappa } => vec![("sigma_c", peak), ("kappa", kappa)],
+            AdhesionLaw::Dugdale { sigma0 } => vec![
+                ("sigma0", sigma0),
+                ("range", gamma / sigma0),
+                ("cohesive_zone_elements", elements.unwrap_or(0.0)),
+            ],
+            AdhesionLaw::Exponential { range } | AdhesionLaw::LennardJones { range } => vec![
+                ("range", range),
+                ("peak_tension", peak),
+                ("process_zone_elements", elements.unwrap_or(0.0)),
+            ],
+        }
+    }
+
+    /// One line naming the law and its parameters for a run's report, e.g. `Dugdale, sigma0 =
+    /// 2, range = 0.0005`.
+    pub fn describe(&self, gamma: f64, e_star: f64, dx: f64) -> String {
+        let r = fields::rounded;
+        let peak = r(self.peak_tension(gamma, e_star, dx));
+        match *self {
+            AdhesionLaw::JkrLimit { kappa } => format!("zero-range limit, kappa = {}", r(kappa)),
+            AdhesionLaw::Dugdale { sigma0 } => {
+                format!(
+                    "Dugdale, sigma0 = {}, range = {}",
+                    r(sigma0),
+                    r(gamma / sigma0)
+                )
+            }
+            AdhesionLaw::Exponential { range } => {
+                format!(
+                    "exponential, range rho = {}, peak tension = {peak}",
+                    r(range)
+                )
+            }
+            AdhesionLaw::LennardJones { range } => format!(
+                "Lennard-Jones 9-3, range epsilon = {}, peak tension = {peak}",
+                r(range)
+            ),
+        }
     }
 
     /// The smooth law's curve (`None` for the criterion and the Dugdale law).

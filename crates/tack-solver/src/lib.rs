@@ -90,6 +90,7 @@ mod cg;
 mod checkpoint;
 mod clusters;
 mod contact;
+mod criterion;
 mod crop;
 mod cycle;
 mod dugdale;
@@ -103,10 +104,9 @@ mod smooth;
 mod state;
 mod subgrid;
 mod validate;
+mod viscoelastic;
 
-pub use adhesive::{
-    AdhesiveOptions, AdhesiveSolver, KAPPA, KAPPA_LINE, LOOSE_ATTACH_MARGIN, LOOSE_DETACH_MARGIN,
-};
+pub use adhesive::{AdhesiveOptions, AdhesiveSolver, KAPPA, KAPPA_LINE};
 pub use checkpoint::SolverState;
 pub use clusters::count_clusters;
 pub use contact::{ContactMethod, ContactSolver};
@@ -115,9 +115,14 @@ pub use cycle::{Cycle, CycleStep, cycle};
 pub use extrapolate::{
     CRITERION_ERROR_COEFFICIENT, observed_order, pull_off_error_estimate, richardson_first_order,
 };
-pub use law::{AdhesionLaw, RANGE_ROUND_OFF, REACH_FRACTION};
+pub use law::{
+    AdhesionLaw, MIN_COHESIVE_ZONE_ELEMENTS, MIN_PROCESS_ZONE_ELEMENTS, RANGE_ROUND_OFF,
+    REACH_FRACTION,
+};
 pub use options::{SolverError, SolverOptions};
 pub use path::{
     ApproachPath, Observer, PathResult, Phase, SnapshotRequest, StepFields, pull_off_step,
 };
+pub use rounds::{LOOSE_ATTACH_MARGIN, LOOSE_DETACH_MARGIN};
 pub use state::{ContactState, StepRecord};
+pub use viscoelastic::{Prony, PronyArm, Rates};

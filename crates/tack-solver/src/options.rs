@@ -40,6 +40,14 @@ pub enum SolverError {
         /// What it needs.
         needs: &'static str,
     },
+    /// A setting the solver cannot honour with the others given, and why.
+    #[error("{field}: {reason}")]
+    Refused {
+        /// The setting refused.
+        field: &'static str,
+        /// Why, and what to give instead.
+        reason: &'static str,
+    },
     /// A [`SolverState`](crate::SolverState) restored into a solver it does not fit.
     #[error(
         "the saved solver state ({state}) does not fit this solver ({solver}): restore a state saved from the same grid and adhesion law"

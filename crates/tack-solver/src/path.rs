@@ -556,6 +556,13 @@ impl AdhesiveSolver {
         observer: &mut dyn Observer,
     ) -> Result<PathResult, SolverError> {
         path.validate()?;
+        if path.refine_pull_off && self.visco.is_some() {
+            return Err(SolverError::Refused {
+                field: fields::PROTOCOL_REFINE_PULL_OFF,
+                reason: "a viscoelastic path is not retraced (its arms carry the time): leave \
+                         refine_pull_off out and set unload_step to the retraction's time step",
+            });
+        }
         let mut keeper = SnapshotKeeper::new(snapshots);
         let mut out = self.drive(
             path,
@@ -585,6 +592,17 @@ impl AdhesiveSolver {
             .is_none_or(|r| r.approach < path.max_approach)
         {
             return Ok(out);
+        }
+        // A viscoelastic solid holds the deepest approach for its dwell, in steps of the load.
+        let dwell = self
+            .visco
+            .as_ref()
+            .map(|v| (v.rates.dwell, v.rates.dwell_steps));
+        if let Some((dwell, steps)) = dwell.filter(|&(t, _)| t > 0.0) {
+            for _ in 0..steps {
+                let rec = self.hold(dwell / steps as f64)?;
+                self.tell(rec, Phase::Load, observer, &mut out)?;
+            }
         }
         if let (true, Some(coarse)) = (path.refine_pull_off, path.coarse_unload_step) {
             self.retract_refined(path, coarse, observer, &mut out)?;
@@ -784,6 +802,17 @@ impl AdhesiveSolver {
         out: &mut PathResult,
     ) -> Result<StepRecord, SolverError> {
         let rec = self.step(d)?;
+        self.tell(rec, phase, observer, out)
+    }
+
+    /// The step just solved, `rec`: tell the observer (fields, then record), append the record.
+    fn tell(
+        &mut self,
+        rec: StepRecord,
+        phase: Phase,
+        observer: &mut dyn Observer,
+        out: &mut PathResult,
+    ) -> Result<StepRecord, SolverError> {
         let index = out.records.len();
         observer.on_fields(index, phase, &rec, self.pressure(), self.bonded());
         observer.on_step(index, phase, &rec);

@@ -303,7 +303,7 @@ mod tests {
 
     /// The first row and column of the bonded set (its bounding box's corner).
     fn corner(bonded: &Array2<bool>) -> (usize, usize) {
-        let (tight, _) = crate::adhesive::bounding_box(bonded, None);
+        let (tight, _) = crate::subgrid::bounding_box(bonded, None);
         let w = tight.expect("a bonded element");
         (w.i0, w.j0)
     }

@@ -1,8 +1,135 @@
-//! The schedule of one step's detach/attach rounds, shared by both adhesion laws: inexact
-//! rounds until one finds nothing clear, tighter ones, then exact rounds until one changes
-//! nothing (docs/theory.md §3.4, §3.7).
+//! The round loop's parts shared by the laws with sets (the zero-range criterion in
+//! `criterion.rs`, the Dugdale law in `dugdale.rs`): the [`SetRules`] a law gives the loop, the
+//! schedule of one step's rounds (inexact rounds until one finds nothing clear, tighter ones,
+//! then exact rounds until one changes nothing; docs/theory.md §3.4, §3.7), the inexact rounds'
+//! margins and the sets' fingerprints.
 
 use std::collections::HashSet;
+use std::hash::{DefaultHasher, Hash, Hasher};
+
+use ndarray::Array2;
+use tack_geometry::Window;
+
+use crate::{AdhesiveOptions, AdhesiveSolver, SolverError};
+
+/// The tolerance [`LOOSE_DETACH_MARGIN`] was measured at; margins scale with a round's
+/// tolerance relative to it.
+pub(crate) const LOOSE_REFERENCE_TOLERANCE: f64 = 1e-3;
+
+/// Relative tension margin `m` of an inexact round: it detaches `p < −σ_c (1 + m)` only. With
+/// `round_tolerance = 1e-3`, `m = 0.001` let a Kendall punch at a/Δx = 20 pull off 0.6% early
+/// (a rim element within the inexact solve's error of σ_c started the cascade), and `0.003` let
+/// a flat-tipped body z = r⁴ pull off 1.7% and 0.9% early at a_F/Δx = 10 and 20
+/// (`tests/power_law.rs`), and the 512² rough sphere of `cargo xtask bench` 1.2·10⁻⁴ early;
+/// `0.006` gives the exact algorithm's pull-off on all three (`tests/adhesion.rs`,
+/// `tests/power_law.rs`, `crates/tack/tests/relaxation.rs`, docs/theory.md §3.4).
+pub const LOOSE_DETACH_MARGIN: f64 = 0.006;
+
+/// Gap margin of an inexact round, in units of its residual bound: it attaches only gaps below
+/// `−LOOSE_ATTACH_MARGIN · round_tolerance · scale` (scale: the rms of `d − f` over the set).
+pub const LOOSE_ATTACH_MARGIN: f64 = 10.0;
+
+/// What a law with sets gives the shared round loop ([`AdhesiveSolver::run_rounds`]): its
+/// rounds' starting tolerance, what it does before the rounds and when full periodic contact
+/// releases an element, its loaded set, its solve and its transitions. The loop owns the
+/// schedule, the cap, the cycle test, the sub-grid and the gap; a law owns its sets' state for
+/// the step.
+pub(crate) trait SetRules {
+    /// What a round's solve leaves its tests (margins, the window where the gap is fresh).
+    type Margins;
+    /// The inexact rounds' starting tolerance (`None`: exact rounds only).
+    fn start(&self, options: &AdhesiveOptions) -> Option<f64>;
+    /// Before the first round at approach `d`; `closed` when every element was bonded (full
+    /// periodic contact is possible).
+    fn prepare(
+        &mut self,
+        s: &mut AdhesiveSolver,
+        d: f64,
+        closed: bool,
+        tally: &mut Tally,
+    ) -> Result<(), SolverError>;
+    /// Full periodic contact released the `weakest` element (already taken off the bonded set).
+    fn release(&mut self, weakest: (usize, usize));
+    /// The loaded set, searched only in `extent` (`None`: the grid).
+    fn loaded(&mut self, s: &AdhesiveSolver, extent: Option<Window>) -> Loaded;
+    /// Before the round's solve, with the loaded set's box `tight`.
+    fn before_solve(&mut self, _s: &mut AdhesiveSolver, _tight: Option<Window>) {}
+    /// The round's solve; returns the window where the gap is fresh (`None`: everywhere, once
+    /// the loop has updated it) and the margins of the round's tests.
+    fn solve(
+        &mut self,
+        s: &mut AdhesiveSolver,
+        round: Round,
+        tally: &mut Tally,
+    ) -> (Option<Window>, Self::Margins);
+    /// The round's transitions in the window `fresh`; returns whether any set changed.
+    fn judge(
+        &mut self,
+        s: &mut AdhesiveSolver,
+        fresh: Option<Window>,
+        margins: &Self::Margins,
+    ) -> bool;
+}
+
+/// A law's loaded set for one round: its bounding box, how many elements and its fingerprint.
+pub(crate) struct Loaded {
+    pub(crate) tight: Option<Window>,
+    pub(crate) count: usize,
+    pub(crate) fingerprint: u64,
+}
+
+/// What one round solves: the approach, exact or at the inexact `level`, the loaded set's
+/// size, the sub-grid `window` (`None`: the grid) and a window `extent` holding every
+/// non-zero pressure (`None`: anywhere).
+#[derive(Clone, Copy)]
+pub(crate) struct Round {
+    pub(crate) d: f64,
+    pub(crate) exact: bool,
+    pub(crate) level: f64,
+    pub(crate) loaded: usize,
+    pub(crate) window: Option<Window>,
+    pub(crate) extent: Option<Window>,
+}
+
+/// The block of a round's tests: the window `fresh` where its gap is up to date (an inexact
+/// sub-grid round), or the whole grid.
+pub(crate) fn round_block(
+    fresh: Option<Window>,
+) -> ndarray::SliceInfo<[ndarray::SliceInfoElem; 2], ndarray::Ix2, ndarray::Ix2> {
+    match fresh {
+        Some(w) => ndarray::s![w.i0..w.i1, w.j0..w.j1],
+        None => ndarray::s![.., ..],
+    }
+}
+
+/// Deterministic fingerprint of one or more masks of one grid (the criterion's bonded set, the
+/// Dugdale law's contact and zone) whose `true` elements all lie in the box `tight` (the box of
+/// their union, [`crate::subgrid::bounding_box`]): the box and each mask inside it, packed into
+/// 64-bit words row by row, hashed.
+pub(crate) fn hash_masks_in(masks: &[&Array2<bool>], tight: Option<&Window>) -> u64 {
+    let mut h = DefaultHasher::new();
+    if let Some(w) = tight {
+        (w.i0, w.i1, w.j0, w.j1).hash(&mut h);
+        for mask in masks {
+            for i in w.i0..w.i1 {
+                let row = &mask.row(i).to_slice().expect("standard layout")[w.j0..w.j1];
+                pack_into(row, &mut h);
+            }
+        }
+    }
+    h.finish()
+}
+
+/// Hashes `bits` packed into 64-bit words.
+fn pack_into(bits: &[bool], h: &mut DefaultHasher) {
+    for chunk in bits.chunks(64) {
+        let word = chunk
+            .iter()
+            .enumerate()
+            .fold(0u64, |w, (k, &b)| w | (u64::from(b) << k));
+        word.hash(h);
+    }
+}
 
 /// The inexact rounds' tolerance tightens by this factor each time a round finds nothing.
 pub(crate) const LOOSE_TIGHTENING: f64 = 100.0;

@@ -65,6 +65,10 @@ pub struct StepRecord {
     /// Dugdale law: elements of the cohesive zone (out of contact, carrying the tension σ0);
     /// always 0 under the zero-range criterion.
     pub n_cohesive: usize,
+    /// The time at the end of the step on a viscoelastic solid
+    /// ([`AdhesiveSolver::set_viscoelastic`](crate::AdhesiveSolver::set_viscoelastic)), `None`
+    /// on an elastic one.
+    pub time: Option<f64>,
 }
 
 /// The integrals of a pressure field that both records carry.

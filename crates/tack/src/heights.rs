@@ -227,6 +227,7 @@ pub fn pull_off_scene(
         material: Material {
             e_star: spec.e_star,
             gamma: spec.gamma,
+            prony: None,
         },
         geometry: Geometry::None,
         roughness: None,
@@ -256,6 +257,7 @@ pub fn pull_off_scene(
             refine_pull_off: spec.refine_pull_off.then_some(true),
             retract_to: None,
             max_steps: None,
+            ..Protocol::default()
         },
         output: OutputSpec {
             snapshots: spec.snapshots.clone(),

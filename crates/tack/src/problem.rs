@@ -15,8 +15,8 @@ use tack_geometry::{
     Boundary, Grid, RoughSpec, Shape, Surface, Waviness1d, Waviness2d, Window, rough_surface,
 };
 use tack_solver::{
-    AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, KAPPA, SnapshotRequest,
-    contact_window,
+    AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, KAPPA, Prony, Rates,
+    SnapshotRequest, contact_window,
 };
 
 use crate::scene::{
@@ -68,6 +68,8 @@ pub struct Problem {
     /// The adhesion law (`[adhesion]`): the zero-range criterion with [`Problem::kappa`], or a
     /// Dugdale cohesive zone.
     pub law: AdhesionLaw,
+    /// A viscoelastic solid and the rates of its path in time (`None`: elastic).
+    pub viscoelastic: Option<(Prony, Rates)>,
     /// Solver settings.
     pub options: AdhesiveOptions,
     /// The approach path.
@@ -244,7 +246,7 @@ impl Problem {
                 default_path: path_rule.is_some(),
                 film: layer.is_some(),
                 material,
-                finite_range: law_range(law, gamma).is_some(),
+                finite_range: law.reach(gamma).is_some(),
             })?;
         }
         check_memory(scene, &grid, Some(path.step_bound()), gamma_array)?;
@@ -263,12 +265,14 @@ impl Problem {
             first_touch,
         ));
         let options = solver_options(&f.solver)?;
+        let viscoelastic = viscoelastic(f, law, layer.is_some())?;
         if let AdhesionLaw::Dugdale { sigma0 } = law {
-            dugdale_references(&mut references, &mut warnings, e_star, gamma, sigma0, &grid);
+            dugdale_references(&mut references, e_star, gamma, sigma0);
         }
         if law.is_smooth() {
-            smooth_references(&mut references, &mut warnings, law, e_star, gamma, &grid);
+            smooth_references(&mut references, law, e_star, gamma);
         }
+        warnings.extend(law.mesh_warning(e_star, gamma, grid.dx()));
         if let Some(layer) = &layer {
             crate::layer::film_warnings(layer, &references, law, gamma, grid.dx(), &mut warnings);
         }
@@ -291,6 +295,7 @@ impl Problem {
             layer,
             kappa,
             law,
+            viscoelastic,
             options,
             path,
             snapshots: (&f.output.snapshots).into(),
@@ -339,6 +344,9 @@ impl Problem {
                 None => map.view(),
             };
             solver.set_gamma_map(view)?;
+        }
+        if let Some((prony, rates)) = &self.viscoelastic {
+            solver.set_viscoelastic(prony.clone(), *rates)?;
         }
         Ok(solver)
     }
@@ -524,40 +532,16 @@ fn crop_window(
     contact_window(
         surface,
         path.max_approach,
-        roughness_range + law_range(law, gamma).unwrap_or(0.0),
+        roughness_range + law.reach(gamma).unwrap_or(0.0),
         material.e_star,
         gamma_max,
     )
     .filter(|w| w.shape() != surface.grid().shape())
 }
 
-/// The range of an adhesion law: γ/σ0 for the Dugdale law, `None` for the zero-range
-/// criterion.
-pub fn law_range(law: AdhesionLaw, gamma: f64) -> Option<f64> {
-    law.reach(gamma)
-}
-
-/// Least length of a Dugdale cohesive zone, in elements, below which a result is flagged: the
-/// zone's tension is then carried by a ring of elements too thin to shape it.
-pub const MIN_COHESIVE_ZONE_ELEMENTS: f64 = 2.0;
-
-/// The length `πE*γ/(4σ0²)` of the cohesive zone ahead of a straight crack under the Dugdale law
-/// (Griffith's `K² = 2E*γ` in `l = (π/8)(K/σ0)²`): what the mesh must resolve.
-pub fn cohesive_zone_length(e_star: f64, gamma: f64, sigma0: f64) -> f64 {
-    std::f64::consts::PI * e_star * gamma / (4.0 * sigma0 * sigma0)
-}
-
-/// The Dugdale law's references and warnings: λ and the Maugis–Dugdale pull-off of a sphere
-/// (its radius read back from F_JKR),
-/// and a zone narrower than [`MIN_COHESIVE_ZONE_ELEMENTS`].
-fn dugdale_references(
-    references: &mut References,
-    warnings: &mut Vec<String>,
-    e_star: f64,
-    gamma: f64,
-    sigma0: f64,
-    grid: &Grid,
-) {
+/// The Dugdale law's references: λ and the Maugis–Dugdale pull-off of a sphere (its radius
+/// read back from F_JKR).
+fn dugdale_references(references: &mut References, e_star: f64, gamma: f64, sigma0: f64) {
     if let Some(f_jkr) = references.f_jkr {
         let radius = -f_jkr / (1.5 * std::f64::consts::PI * gamma);
         references.maugis_lambda =
@@ -566,60 +550,96 @@ fn dugdale_references(
             e_star, gamma, radius, sigma0,
         ));
     }
-    let zone = cohesive_zone_length(e_star, gamma, sigma0);
-    let elements = zone / grid.dx();
-    if elements < MIN_COHESIVE_ZONE_ELEMENTS {
-        warnings.push(format!(
-            "under-resolved cohesive zone: its length πE*γ/(4σ0²) = {} spans {} elements (at \
-             least {MIN_COHESIVE_ZONE_ELEMENTS} needed); the Dugdale law then acts element by \
-             element and the forces depend on the mesh (refine {dx} or lower {sigma0_field})",
-            num(zone),
-            num((elements * 100.0).round() / 100.0),
-            dx = fields::GRID_DX,
-            sigma0_field = fields::ADHESION_SIGMA0,
+}
+
+/// The viscoelastic solid of `material.prony` and the rates of `[protocol]`, checked: the
+/// rates only with `prony`; with it a half-space, a finite-range law when there is adhesion (the
+/// zero-range criterion has no rate-consistent form), `speed` and a path in time
+/// (`max_approach` and `load_step`, each load step lasting `load_step/speed`; no refined
+/// retraction, which retraces steps).
+fn viscoelastic(
+    f: &SceneSchema,
+    law: AdhesionLaw,
+    film: bool,
+) -> Result<Option<(Prony, Rates)>, SceneError> {
+    let p = &f.protocol;
+    let prony_field = fields::MATERIAL_PRONY;
+    let rates = [
+        (fields::PROTOCOL_SPEED, p.speed.is_some()),
+        (fields::PROTOCOL_UNLOAD_SPEED, p.unload_speed.is_some()),
+        (fields::PROTOCOL_DWELL, p.dwell.is_some()),
+        (fields::PROTOCOL_DWELL_STEPS, p.dwell_steps.is_some()),
+    ];
+    let Some(arms) = &f.material.prony else {
+        if let Some((field, _)) = rates.iter().find(|(_, given)| *given) {
+            return Err(SceneError::Inconsistent(format!(
+                "{field} is a rate of a path in time, read only for a viscoelastic solid: give \
+                 {prony_field} (its arms [E_k, tau_k]) or leave {field} out"
+            )));
+        }
+        return Ok(None);
+    };
+    let pairs: Vec<(f64, f64)> = arms.iter().map(|&[e, t]| (e, t)).collect();
+    let prony = Prony::new(f.material.e_star, &pairs)?;
+    let refuse = |what: String| Err(SceneError::Inconsistent(what));
+    if film {
+        return refuse(format!(
+            "{prony_field}: viscoelastic solids are half-spaces; {} = \"layer\" is elastic only",
+            fields::BODY_KIND
         ));
     }
+    if matches!(law, AdhesionLaw::JkrLimit { .. }) && f.material.gamma > 0.0 {
+        return refuse(format!(
+            "{prony_field} with adhesion needs a finite-range law: the zero-range criterion has \
+             no rate-consistent form; set {} = \"dugdale\", \"exponential\" or \
+             \"lennard_jones\"",
+            fields::ADHESION_MODEL
+        ));
+    }
+    let Some(speed) = p.speed else {
+        return refuse(format!(
+            "{prony_field} needs {}: the approach rate that turns the path's steps into time \
+             steps",
+            fields::PROTOCOL_SPEED
+        ));
+    };
+    if p.indent.is_none() && (p.max_approach.is_none() || p.load_step.is_none()) {
+        return refuse(format!(
+            "{prony_field} needs a path in time: give {} and {} (a load step lasts \
+             load_step/speed, an unload step unload_step/unload_speed)",
+            fields::PROTOCOL_MAX_APPROACH,
+            fields::PROTOCOL_LOAD_STEP
+        ));
+    }
+    if p.refine_pull_off == Some(true) {
+        return refuse(format!(
+            "{} retraces steps, which a viscoelastic path cannot (its arms carry the time): \
+             leave it out and choose unload_step for the retraction's time step",
+            fields::PROTOCOL_REFINE_PULL_OFF
+        ));
+    }
+    if p.dwell_steps.is_some() && p.dwell.is_none() {
+        return refuse(format!(
+            "{} cuts the hold {} into steps: give {1} too, or leave {0} out",
+            fields::PROTOCOL_DWELL_STEPS,
+            fields::PROTOCOL_DWELL
+        ));
+    }
+    let rates = Rates {
+        speed,
+        unload_speed: p.unload_speed.unwrap_or(speed),
+        dwell: p.dwell.unwrap_or(0.0),
+        dwell_steps: p.dwell_steps.unwrap_or(crate::scene::DEFAULT_DWELL_STEPS),
+    };
+    rates.validate()?;
+    Ok(Some((prony, rates)))
 }
 
-/// Least width of a smooth law's process zone, in elements, below which a result is flagged:
-/// an element's own stiffness `E*/(κ₀Δx)` then no longer holds the law's steepest softening,
-/// the front advances element by element and the forces depend on the mesh.
-pub const MIN_PROCESS_ZONE_ELEMENTS: f64 = 1.0;
-
-/// The width `(8/3π)E*ℓ²/γ` of a smooth law's process zone (ℓ its range ρ or ε): the length
-/// over which the law's tension acts ahead of a crack (for the exponential law; the
-/// Lennard-Jones law's is of the same order). What the mesh must resolve.
-pub fn process_zone_length(e_star: f64, gamma: f64, range: f64) -> f64 {
-    8.0 / (3.0 * std::f64::consts::PI) * e_star * range * range / gamma
-}
-
-/// A smooth law's references and warnings: Tabor's μ of the sphere (its radius read back from
-/// F_JKR) and a process zone narrower than [`MIN_PROCESS_ZONE_ELEMENTS`].
-fn smooth_references(
-    references: &mut References,
-    warnings: &mut Vec<String>,
-    law: AdhesionLaw,
-    e_star: f64,
-    gamma: f64,
-    grid: &Grid,
-) {
-    let range = law.range(gamma).expect("a smooth law has a range");
+/// A smooth law's reference: Tabor's μ of the sphere (its radius read back from F_JKR).
+fn smooth_references(references: &mut References, law: AdhesionLaw, e_star: f64, gamma: f64) {
     if let Some(f_jkr) = references.f_jkr {
         let radius = -f_jkr / (1.5 * std::f64::consts::PI * gamma);
         references.tabor_mu = law.tabor(e_star, gamma, radius);
-    }
-    let zone = process_zone_length(e_star, gamma, range);
-    let elements = zone / grid.dx();
-    if elements < MIN_PROCESS_ZONE_ELEMENTS {
-        warnings.push(format!(
-            "under-resolved process zone: its width (8/3π)E*ρ²/γ = {} spans {} elements (at \
-             least {MIN_PROCESS_ZONE_ELEMENTS} needed); the front then moves element by element \
-             and the forces depend on the mesh (refine {dx} or raise {range_field})",
-            tack_fields::rounded(zone),
-            num((elements * 100.0).round() / 100.0),
-            dx = fields::GRID_DX,
-            range_field = fields::ADHESION_RANGE,
-        ));
     }
 }
 
@@ -932,7 +952,7 @@ fn default_branch(
     let max_approach = depth
         .or(rule.map(|r| r.path.max_approach))
         .unwrap_or_default();
-    let range = law_range(body.law, body.material.gamma);
+    let range = body.law.reach(body.material.gamma);
     let (start, load) = crate::pull_off_path::load_plan(first_touch, max_approach, unload, range);
     let path = ApproachPath {
         start,
@@ -1095,7 +1115,7 @@ fn finish_default_path(
             depth.unwrap_or(path.max_approach),
             body.surface.min(),
             body.material,
-            law_range(body.law, body.material.gamma),
+            body.law.reach(body.material.gamma),
         )?;
     }
     Ok(PathRule {

@@ -51,13 +51,17 @@ pub struct SceneSchema {
 }
 
 /// `[material]`: the elastic half-space and the adhesion.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Material {
-    /// Effective modulus `E*` (> 0).
+    /// Effective modulus `E*` (> 0); with `prony` the relaxed modulus `E0`.
     pub e_star: f64,
     /// Work of adhesion `γ` per unit area (≥ 0; 0 is non-adhesive).
     pub gamma: f64,
+    /// A viscoelastic solid: the arms `[E_k, τ_k]` of `E(t) = E0 + Σ E_k e^(−t/τ_k)` (each
+    /// > 0); paths then run in time (`protocol.speed`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub prony: Option<Vec<[f64; 2]>>,
 }
 
 /// `[adhesion]`: which law turns the work of adhesion `material.gamma` into tractions, and
@@ -208,6 +212,29 @@ pub enum AdhesionModel {
 }
 
 impl AdhesionModel {
+    /// Every model, in the order the docs list them.
+    pub const ALL: [AdhesionModel; 4] = [
+        Self::JkrLimit,
+        Self::Dugdale,
+        Self::Exponential,
+        Self::LennardJones,
+    ];
+
+    /// The model of a scene file's name (`None`: no such model).
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|m| m.name() == name)
+    }
+
+    /// The names, quoted and joined for messages: `"jkr_limit", "dugdale", … or "…"`.
+    pub fn names() -> String {
+        let quoted: Vec<String> = Self::ALL
+            .iter()
+            .map(|m| format!("{:?}", m.name()))
+            .collect();
+        let (last, rest) = quoted.split_last().expect("four models");
+        format!("{} or {last}", rest.join(", "))
+    }
+
     /// The name in scene files and results: `"jkr_limit"`, `"dugdale"`, `"exponential"` or
     /// `"lennard_jones"`.
     pub fn name(self) -> &'static str {
@@ -428,7 +455,24 @@ pub struct Protocol {
     /// Cap on the number of steps (default 100000).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_steps: Option<usize>,
+    /// Viscoelastic solids (`material.prony`): the approach rate of the loading, and of the
+    /// retraction unless `unload_speed` (> 0; required there).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub speed: Option<f64>,
+    /// Viscoelastic solids: the approach rate of the retraction (> 0); default `speed`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub unload_speed: Option<f64>,
+    /// Viscoelastic solids: the time held at the deepest approach (≥ 0); default 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dwell: Option<f64>,
+    /// Viscoelastic solids: the time steps of the hold (≥ 1); default
+    /// [`DEFAULT_DWELL_STEPS`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dwell_steps: Option<usize>,
 }
+
+/// Default of [`Protocol::dwell_steps`]: the hold in 20 equal time steps.
+pub const DEFAULT_DWELL_STEPS: usize = 20;
 
 /// Default of [`Protocol::max_steps`].
 pub const DEFAULT_MAX_STEPS: usize = 100_000;
@@ -934,7 +978,7 @@ load_step = 0.05
             ("[material]", "colour = 1"),
             ("[geometry]", "height = 1"),
             ("[grid]", "m = 3"),
-            ("[protocol]", "speed = 1"),
+            ("[protocol]", "velocity = 1"),
         ] {
             let text = MINIMAL.replace(section, &format!("{section}\n{extra}"));
             let e = parse(&text).unwrap_err().to_string();

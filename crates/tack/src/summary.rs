@@ -65,6 +65,12 @@ pub fn summary(problem: &Problem, path: &PathResult) -> tack_io::Summary {
         extra.insert("min_mean_pressure".to_owned(), min_mean_pressure);
     }
     law_extras(problem, r, &mut extra);
+    if let Some((prony, rates)) = &problem.viscoelastic {
+        extra.insert("e_instantaneous".to_owned(), prony.instantaneous());
+        extra.insert("speed".to_owned(), rates.speed);
+        extra.insert("unload_speed".to_owned(), rates.unload_speed);
+        extra.insert("dwell".to_owned(), rates.dwell);
+    }
     let cycle = path.cycle();
     // The refined retraction samples the retraction only every coarse step away from the
     // pull-off's brackets: the loop integral and the jump-out are not measured by it (the
@@ -143,33 +149,9 @@ fn law_extras(
     r: &crate::references::References,
     extra: &mut std::collections::BTreeMap<String, f64>,
 ) {
-    match problem.law {
-        AdhesionLaw::JkrLimit { kappa } => {
-            let sigma_c =
-                problem
-                    .law
-                    .peak_tension(problem.gamma, problem.e_star, problem.grid.dx());
-            extra.insert("sigma_c".to_owned(), sigma_c);
-            extra.insert("kappa".to_owned(), kappa);
-        }
-        AdhesionLaw::Dugdale { sigma0 } => {
-            extra.insert("sigma0".to_owned(), sigma0);
-            extra.insert("range".to_owned(), problem.gamma / sigma0);
-            let zone = crate::problem::cohesive_zone_length(problem.e_star, problem.gamma, sigma0);
-            extra.insert(
-                "cohesive_zone_elements".to_owned(),
-                zone / problem.grid.dx(),
-            );
-        }
-        AdhesionLaw::Exponential { range } | AdhesionLaw::LennardJones { range } => {
-            extra.insert("range".to_owned(), range);
-            let peak = problem
-                .law
-                .peak_tension(problem.gamma, problem.e_star, problem.grid.dx());
-            extra.insert("peak_tension".to_owned(), peak);
-            let zone = crate::problem::process_zone_length(problem.e_star, problem.gamma, range);
-            extra.insert("process_zone_elements".to_owned(), zone / problem.grid.dx());
-        }
+    let (gamma, e_star, dx) = (problem.gamma, problem.e_star, problem.grid.dx());
+    for (key, value) in problem.law.summary_entries(gamma, e_star, dx) {
+        extra.insert(key.to_owned(), value);
     }
     if let Some(mu) = r.tabor_mu {
         extra.insert("tabor_mu".to_owned(), mu);
@@ -404,6 +386,11 @@ pub fn curve(path: &PathResult) -> tack_io::Curve {
         mean_pressure: Some(r.iter().map(|s| s.mean_pressure).collect()),
         full_contact: Some(r.iter().map(|s| s.full_contact).collect()),
         n_cohesive: cohesive.then(|| r.iter().map(|s| s.n_cohesive as u64).collect()),
+        time: r
+            .iter()
+            .map(|s| s.time)
+            .collect::<Option<Vec<f64>>>()
+            .filter(|t| !t.is_empty()),
     }
 }
 

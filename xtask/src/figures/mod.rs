@@ -292,6 +292,7 @@ pub fn write_figure(
         },
         curve: tack_io::Curve {
             n_cohesive: None,
+            time: None,
             approach: table.x.clone(),
             force: table.y.clone(),
             area: table.spread.clone(),

@@ -1,6 +1,8 @@
 //! Tests of the adhesive solver: the detach/attach rounds, both laws' steps, options and caps.
 
 use super::*;
+use crate::rounds::hash_masks_in;
+use crate::subgrid::bounding_box;
 use tack_geometry::{Grid, Sphere, Waviness2d};
 
 #[test]
@@ -30,13 +32,13 @@ fn a_window_holding_the_set_gives_the_grid_scan_box_count_and_fingerprint() {
     ] {
         assert_eq!(bounding_box(&mask, Some(&within)), (whole, count));
     }
-    let print = hash_box(&mask, whole.as_ref());
+    let print = hash_masks_in(&[&mask], whole.as_ref());
     let mut other = mask.clone();
     other[[12, 25]] = false;
     other[[12, 26]] = true;
     let (box2, n2) = bounding_box(&other, None);
     assert_eq!((box2, n2), (whole, count));
-    assert_ne!(hash_box(&other, box2.as_ref()), print);
+    assert_ne!(hash_masks_in(&[&other], box2.as_ref()), print);
     let empty = Array2::from_elem((40, 50), false);
     assert_eq!(bounding_box(&empty, None), (None, 0));
     // Two masks (the Dugdale law's contact and zone) over the box of their union: moving

@@ -663,6 +663,112 @@ mod adhesion_tests {
     }
 
     #[test]
+    fn a_viscoelastic_solid_is_read_and_its_inputs_are_checked() {
+        let exp = ["adhesion.model=\"exponential\"", "adhesion.range=0.05"];
+        let path = [
+            "protocol.max_approach=0.5",
+            "protocol.load_step=0.05",
+            "protocol.speed=0.1",
+        ];
+        let visco = [
+            exp[0],
+            exp[1],
+            path[0],
+            path[1],
+            path[2],
+            "material.prony=[[9.0, 2.0]]",
+        ];
+        let p = build(&visco).unwrap();
+        let (prony, rates) = p.viscoelastic.as_ref().expect("a viscoelastic solid");
+        assert_eq!((prony.relaxed(), prony.instantaneous()), (1.0, 10.0));
+        assert_eq!(
+            (rates.speed, rates.unload_speed, rates.dwell),
+            (0.1, 0.1, 0.0)
+        );
+        fn with<'a>(base: &[&'a str], extra: &[&'a str]) -> Vec<&'a str> {
+            [base, extra].concat()
+        }
+        let held = build(&with(
+            &visco,
+            &["protocol.dwell=3.0", "protocol.unload_speed=1.0"],
+        ))
+        .unwrap();
+        let rates = held.viscoelastic.unwrap().1;
+        assert_eq!(
+            (rates.unload_speed, rates.dwell, rates.dwell_steps),
+            (1.0, 3.0, 20)
+        );
+        assert!(p.solver(None).unwrap().viscoelastic().is_some());
+        // Rates without a viscoelastic solid.
+        for rate in [
+            "protocol.speed=1.0",
+            "protocol.dwell=1.0",
+            "protocol.unload_speed=1.0",
+        ] {
+            let message = err(&[exp[0], exp[1], path[0], path[1], rate]);
+            assert!(
+                message.contains("read only for a viscoelastic solid"),
+                "{message}"
+            );
+        }
+        // Bad arms, named.
+        for bad in ["[[-1.0, 1.0]]", "[[1.0, 0.0]]", "[[1.0, nan]]", "[]"] {
+            let arms = format!("material.prony={bad}");
+            let message = err(&with(&visco[..5], &[&arms]));
+            assert!(message.starts_with("material.prony = "), "{bad}: {message}");
+        }
+        // The criterion with adhesion, no speed, no path in time, refined retraction, a film.
+        let criterion = [path[0], path[1], path[2], "material.prony=[[9.0, 2.0]]"];
+        assert!(err(&criterion).contains("needs a finite-range law"));
+        let no_speed = [
+            exp[0],
+            exp[1],
+            path[0],
+            path[1],
+            "material.prony=[[9.0, 2.0]]",
+        ];
+        assert!(err(&no_speed).contains("needs protocol.speed"));
+        let default_path = [exp[0], exp[1], path[2], "material.prony=[[9.0, 2.0]]"];
+        assert!(err(&default_path).contains("needs a path in time"));
+        assert!(
+            err(&with(
+                &visco,
+                &[
+                    "protocol.coarse_unload_step=0.1",
+                    "protocol.refine_pull_off=true"
+                ]
+            ))
+            .contains("protocol.refine_pull_off retraces steps")
+        );
+        assert!(
+            err(&with(&visco, &["protocol.dwell_steps=4"])).contains("give protocol.dwell too")
+        );
+        for bad in [
+            "protocol.speed=-1.0",
+            "protocol.dwell=-1.0",
+            "protocol.unload_speed=0.0",
+        ] {
+            let message = err(&with(&visco, &[bad]));
+            let field = bad.split('=').next().unwrap();
+            assert!(message.starts_with(&format!("{field} = ")), "{message}");
+        }
+        let film = with(
+            &visco,
+            &[
+                "body.kind=\"layer\"",
+                "body.thickness=1.0",
+                "body.poisson=0.3",
+                "grid.boundary=\"periodic\"",
+            ],
+        );
+        let message = err(&film);
+        assert!(
+            message.contains("viscoelastic solids are half-spaces"),
+            "{message}"
+        );
+    }
+
+    #[test]
     fn the_dugdale_law_is_read_and_its_inputs_are_checked() {
         let p = build(&["adhesion.model=\"dugdale\"", "adhesion.sigma0=1.0"]).unwrap();
         assert_eq!(p.law, AdhesionLaw::Dugdale { sigma0: 1.0 });
