@@ -11,6 +11,7 @@ mod plot;
 mod reproduce;
 mod spec;
 mod study;
+mod study_rate;
 mod sweeps;
 mod tidy;
 mod validation;
@@ -63,7 +64,7 @@ commands:
                           the N given): Richardson, observed order, error estimate against the
                           distance to the finest Richardson value, time per level; writes
                           results/convergence.json
-  study <loading|dissipation|jkr-limit> [--n N] [--first-seed F] [--seeds S]
+  study <loading|dissipation|jkr-limit|rate> [--n N] [--first-seed F] [--seeds S]
         [--lambdas L,..|none] [--steps K,..] [--ratios R,..]
                           finite-range studies. loading: a rough sphere (H = 0.5, R = L, N²
                           default 256, seeds F..S default 0..4, seed 0 the smooth sphere),
@@ -73,8 +74,11 @@ commands:
                           α* = 0.2..0.7 (loaded in 20 steps unless --steps), and
                           results/study-dissipation.svg; jkr-limit: the smooth sphere's
                           Dugdale pull-off at each λ beside the criterion at a_c/dx = R
-                          (default 20,40,80, each double the last); writes
-                          results/study-<name>.md
+                          (default 20,40,80, each double the last); rate: a standard linear
+                          solid under the exponential law, the smooth sphere's pull-off against
+                          the retraction speed (results/study-rate.svg), the hold and the
+                          preload (96²), rough spheres at α* = 0.3, 0.7 at three speeds (N²
+                          default 128, seeds 1..S default 3); writes results/study-<name>.md
   tidy                    source checks beyond clippy: every .rs file opens with a //! line,
                           every scene field of tack_fields::FIELDS is documented in
                           docs/scenes.md, no scene field spelled as a string literal outside

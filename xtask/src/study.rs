@@ -390,8 +390,10 @@ fn jkr_limit(opts: &Opts) -> Result<String> {
 struct Opts {
     /// Seed 0 is the smooth sphere.
     first_seed: u64,
-    /// Whether `--steps` was given.
+    /// Whether `--steps`, `--n`, `--seeds` were given.
     steps_given: bool,
+    n_given: bool,
+    seeds_given: bool,
     ratios: Vec<f64>,
     n: usize,
     seeds: u64,
@@ -416,6 +418,8 @@ impl Default for Opts {
             ratios: vec![20.0, 40.0, 80.0],
             first_seed: 0,
             steps_given: false,
+            n_given: false,
+            seeds_given: false,
         }
     }
 }
@@ -425,7 +429,7 @@ pub fn run(args: &[String]) -> Result<()> {
     let mut opts = Opts::default();
     let Some(what) = args.first() else {
         bail!(
-            "usage: cargo xtask study <loading|dissipation|jkr-limit> [--n N] [--seeds S] [--lambdas L,..] [--steps K,..]"
+            "usage: cargo xtask study <loading|dissipation|jkr-limit|rate> [--n N] [--seeds S] [--lambdas L,..] [--steps K,..]"
         );
     };
     let mut it = args[1..].iter();
@@ -434,8 +438,8 @@ pub fn run(args: &[String]) -> Result<()> {
             bail!("{flag} needs a value");
         };
         match flag.as_str() {
-            "--n" => opts.n = value.parse()?,
-            "--seeds" => opts.seeds = value.parse()?,
+            "--n" => (opts.n, opts.n_given) = (value.parse()?, true),
+            "--seeds" => (opts.seeds, opts.seeds_given) = (value.parse()?, true),
             "--first-seed" => opts.first_seed = value.parse()?,
             "--lambdas" if value == "none" => opts.lambdas = Vec::new(),
             "--lambdas" => opts.lambdas = list(value)?,
@@ -449,7 +453,14 @@ pub fn run(args: &[String]) -> Result<()> {
         "loading" => loading(&opts)?,
         "dissipation" => dissipation(&opts)?,
         "jkr-limit" => jkr_limit(&opts)?,
-        other => bail!("unknown study `{other}` (loading, dissipation, jkr-limit)"),
+        // Its own sizes: the smooth sphere's tables at 96², the rough spheres at 128² (or
+        // `--n`), three seeds (or `--seeds`).
+        "rate" => crate::study_rate::rate(
+            96,
+            if opts.n_given { opts.n } else { 128 },
+            if opts.seeds_given { opts.seeds } else { 3 },
+        )?,
+        other => bail!("unknown study `{other}` (loading, dissipation, jkr-limit, rate)"),
     };
     let out = format!("results/study-{what}.md");
     std::fs::write(&out, &report)?;
