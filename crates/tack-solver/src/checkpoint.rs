@@ -96,8 +96,16 @@ impl AdhesiveSolver {
     }
 
     /// Goes back to `state`, saved from this solver (or one built the same way). A state of
-    /// another grid shape or another law (a cohesive zone or none) is refused.
+    /// another grid shape or another law (a cohesive zone or none) is refused, and so is any
+    /// state on a viscoelastic solver (the state holds no arms).
     pub fn restore_state(&mut self, state: &SolverState) -> Result<(), SolverError> {
+        if self.visco.is_some() {
+            return Err(SolverError::Refused {
+                field: tack_fields::MATERIAL_PRONY,
+                reason: "a saved state holds no viscoelastic arms: a viscoelastic solver is not \
+                         restored (build a new one and run its path again)",
+            });
+        }
         let describe = |shape: (usize, usize), zone: bool| {
             let law = if zone {
                 "a cohesive zone"

@@ -319,3 +319,45 @@ fn a_smooth_law_pull_off_converges_in_the_time_step_and_keeps_its_bits_on_two_th
     };
     assert!(on(1) == on(2), "the same bits on one and two threads");
 }
+
+#[test]
+fn what_a_viscoelastic_solver_refuses_is_named() {
+    let sphere = Sphere::new(1.0).unwrap();
+    let law = AdhesionLaw::Exponential { range: 0.01 };
+    let message = |e: tack_solver::SolverError| e.to_string();
+    // Another modulus than the operator's, the criterion with adhesion, bad rates.
+    let mut s = solver(&sphere, 16, 1.2, 2.0, 1e-3, law);
+    let e = message(s.set_viscoelastic(sls(), rates(1.0, 1.0)).unwrap_err());
+    assert!(e.starts_with("material.e_star = 1 is invalid"), "{e}");
+    let criterion = AdhesionLaw::JkrLimit { kappa: KAPPA };
+    let mut s = solver(&sphere, 16, 1.2, 1.0, 1e-3, criterion);
+    let e = message(s.set_viscoelastic(sls(), rates(1.0, 1.0)).unwrap_err());
+    assert!(
+        e.starts_with("adhesion.model: the zero-range criterion"),
+        "{e}"
+    );
+    let mut s = solver(&sphere, 16, 1.2, 1.0, 1e-3, law);
+    let e = message(s.set_viscoelastic(sls(), rates(-1.0, 1.0)).unwrap_err());
+    assert!(e.starts_with("protocol.speed = -1 is invalid"), "{e}");
+    // A hold before any step; a solid set after one; a saved state restored.
+    s.set_viscoelastic(sls(), rates(1.0, 1.0)).unwrap();
+    assert!(message(s.hold(1.0).unwrap_err()).contains("take a step first"));
+    s.step(0.001).unwrap();
+    let saved = s.save_state();
+    assert!(message(s.restore_state(&saved).unwrap_err()).contains("holds no viscoelastic arms"));
+    let first = s.hold(1.0).unwrap();
+    assert_eq!(
+        first.time,
+        Some(1.0),
+        "the first step is instant, the hold lasts 1"
+    );
+    let mut late = solver(&sphere, 16, 1.2, 1.0, 1e-3, law);
+    late.step(0.001).unwrap();
+    let e = message(late.set_viscoelastic(sls(), rates(1.0, 1.0)).unwrap_err());
+    assert!(e.contains("starts at rest"), "{e}");
+    // An arm that is not a spring and a dashpot.
+    for arms in [[(0.0, 1.0)], [(1.0, f64::INFINITY)]] {
+        let e = message(Prony::new(1.0, &arms).unwrap_err());
+        assert!(e.starts_with("material.prony = "), "{e}");
+    }
+}

@@ -65,6 +65,12 @@ pub const GAMMA_MAP_FIELDS: f64 = 3.0;
 /// each four f64 fields (pressure, gap, displacement, the predictor's pressure) and two masks.
 pub const REFINED_STATE_FIELDS: f64 = 13.0;
 
+/// A viscoelastic solid (`material.prony`) of `arms` arms: each arm's stress, the unit-modulus
+/// pressure, the history and its displacement, the body's own heights and the shifted ones.
+pub fn viscoelastic_fields(arms: usize) -> f64 {
+    arms as f64 + 5.0
+}
+
 impl Estimate {
     /// Adds `per_element` f64 fields of the grid's size (a varying γ: [`GAMMA_MAP_FIELDS`]).
     pub fn add_fields(&mut self, per_element: f64) {

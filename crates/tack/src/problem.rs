@@ -322,6 +322,9 @@ impl Problem {
         if self.path.refine_pull_off {
             e.add_fields(crate::memory::REFINED_STATE_FIELDS);
         }
+        if let Some((prony, _)) = &self.viscoelastic {
+            e.add_fields(crate::memory::viscoelastic_fields(prony.arms().len()));
+        }
         e
     }
 
@@ -1153,6 +1156,9 @@ fn check_memory(
     }
     if f.protocol.refine_pull_off == Some(true) {
         estimate.add_fields(crate::memory::REFINED_STATE_FIELDS);
+    }
+    if let Some(arms) = &f.material.prony {
+        estimate.add_fields(crate::memory::viscoelastic_fields(arms.len()));
     }
     let grid_field = if f.grid.n.is_some() {
         fields::GRID_N
