@@ -65,12 +65,13 @@ commands:
                           distance to the finest Richardson value, time per level; writes
                           results/convergence.json
   study <loading|dissipation|jkr-limit|rate> [--n N] [--first-seed F] [--seeds S]
-        [--lambdas L,..|none] [--steps K,..] [--ratios R,..]
+        [--lambdas L,..|none] [--mus M,..] [--steps K,..] [--ratios R,..]
                           finite-range studies. loading: a rough sphere (H = 0.5, R = L, N²
                           default 256, seeds F..S default 0..4, seed 0 the smooth sphere),
                           |F/F_JKR| against the number of load steps (K default 1,5,20,80)
-                          under the zero-range law and the Dugdale law at each Maugis λ (default
-                          1,2,3); dissipation: the loop's dissipated energy against
+                          under the zero-range law, the Dugdale law at each Maugis λ (default
+                          1,2,3) and the exponential law at each Tabor μ (--mus, default none);
+                          dissipation: the loop's dissipated energy against
                           α* = 0.2..0.7 (loaded in 20 steps unless --steps), and
                           results/study-dissipation.svg; jkr-limit: the smooth sphere's
                           Dugdale pull-off at each λ beside the criterion at a_c/dx = R

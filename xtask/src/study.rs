@@ -13,7 +13,15 @@ use tack::problem::Problem;
 /// steps (5.5e-4 while compressive, 5.5e-5 once tensile); the Dugdale law at Maugis parameter
 /// `lambda` (of R = 1) when given.
 fn rough_scene(n: usize, seed: u64, h: f64, lambda: Option<f64>) -> Result<tack::Scene> {
-    let gamma = 1.44868e-4;
+    rough_scene_with(n, seed, h, dugdale_sets(ROUGH_GAMMA, lambda))
+}
+
+/// The work of adhesion of [`rough_scene`]: a_c ≈ 0.078 R.
+const ROUGH_GAMMA: f64 = 1.44868e-4;
+
+/// [`rough_scene`] with the law's overrides `sets` (none: the zero-range law).
+fn rough_scene_with(n: usize, seed: u64, h: f64, sets: Vec<String>) -> Result<tack::Scene> {
+    let gamma = ROUGH_GAMMA;
     // Seed 0: the smooth sphere, the reference of the same law, mesh and path.
     let roughness = if seed == 0 {
         String::new()
@@ -27,8 +35,20 @@ fn rough_scene(n: usize, seed: u64, h: f64, lambda: Option<f64>) -> Result<tack:
          unload_step = 5.5e-5\n[output]\nsnapshots = \"none\"\n",
         1.0 / n as f64
     );
-    let sets = dugdale_sets(gamma, lambda);
     Ok(tack::Scene::parse(&text, ".", &sets)?)
+}
+
+/// The `--set` overrides that put a scene of R = E* = 1 and work of adhesion `gamma` under the
+/// exponential law at Tabor parameter `mu` (ρ = (Rγ²/(E*²μ³))^(1/3)).
+fn exponential_sets(gamma: f64, mu: f64) -> Vec<String> {
+    vec![
+        format!("{}=\"exponential\"", tack_fields::ADHESION_MODEL),
+        format!(
+            "{}={}",
+            tack_fields::ADHESION_RANGE,
+            (gamma * gamma / (mu * mu * mu)).cbrt()
+        ),
+    ]
 }
 
 /// The `--set` overrides that put a scene of R = E* = 1 and work of adhesion `gamma` under the
@@ -118,8 +138,9 @@ fn run_loaded(scene: &tack::Scene, load_steps: usize) -> Result<StudyRun> {
     })
 }
 
-/// `cargo xtask study loading [--seeds N] [--n N] [--lambdas L,L] [--steps K,K]`: the rough
-/// sphere's |F/F_JKR| against the number of load steps, zero-range and Dugdale.
+/// `cargo xtask study loading [--seeds N] [--n N] [--lambdas L,L] [--mus M,M] [--steps K,K]`:
+/// the rough sphere's |F/F_JKR| against the number of load steps, zero-range, Dugdale and
+/// exponential.
 fn loading(opts: &Opts) -> Result<String> {
     let mut s = format!(
         "## Loading history: rough sphere (H = 0.5, h = 0.0052, R = L, {n}²)\n\n\
@@ -134,13 +155,24 @@ fn loading(opts: &Opts) -> Result<String> {
         "---|".repeat(opts.steps.len()),
         n = opts.n
     );
-    let laws: Vec<Option<f64>> = std::iter::once(None)
-        .chain(opts.lambdas.iter().map(|&l| Some(l)))
+    // Each law's name and overrides: zero-range, Dugdale at each λ, exponential at each μ.
+    let laws: Vec<(String, Vec<String>)> = std::iter::once(("zero-range".to_string(), vec![]))
+        .chain(opts.lambdas.iter().map(|&l| {
+            (
+                format!("Dugdale λ = {l}"),
+                dugdale_sets(ROUGH_GAMMA, Some(l)),
+            )
+        }))
+        .chain(opts.mus.iter().map(|&m| {
+            (
+                format!("exponential μ = {m}"),
+                exponential_sets(ROUGH_GAMMA, m),
+            )
+        }))
         .collect();
-    for law in &laws {
+    for (name, sets) in &laws {
         for seed in opts.first_seed..=opts.seeds {
-            let scene = rough_scene(opts.n, seed, 0.0052, *law)?;
-            let name = law.map_or("zero-range".to_string(), |l| format!("Dugdale λ = {l}"));
+            let scene = rough_scene_with(opts.n, seed, 0.0052, sets.clone())?;
             let label = if seed == 0 {
                 "smooth".to_string()
             } else {
@@ -398,6 +430,8 @@ struct Opts {
     n: usize,
     seeds: u64,
     lambdas: Vec<f64>,
+    /// Tabor parameters of the exponential law (`--mus`; loading study only).
+    mus: Vec<f64>,
     steps: Vec<usize>,
 }
 
@@ -414,6 +448,7 @@ impl Default for Opts {
             n: 256,
             seeds: 4,
             lambdas: vec![1.0, 2.0, 3.0],
+            mus: Vec::new(),
             steps: vec![1, 5, 20, 80],
             ratios: vec![20.0, 40.0, 80.0],
             first_seed: 0,
@@ -443,6 +478,7 @@ pub fn run(args: &[String]) -> Result<()> {
             "--first-seed" => opts.first_seed = value.parse()?,
             "--lambdas" if value == "none" => opts.lambdas = Vec::new(),
             "--lambdas" => opts.lambdas = list(value)?,
+            "--mus" => opts.mus = list(value)?,
             "--steps" => (opts.steps, opts.steps_given) = (list(value)?, true),
             "--ratios" => opts.ratios = list(value)?,
             _ => bail!("unknown option {flag}"),

@@ -190,6 +190,9 @@ fn execute(command: Command) -> anyhow::Result<()> {
             if let Some(rule) = &p.path_rule {
                 println!("  {rule}");
             }
+            if let Some((prony, rates)) = &p.viscoelastic {
+                println!("  {}", report::describe_viscoelastic(prony, rates));
+            }
             let steps = p.path.step_bound();
             let bound = if steps < p.path.max_steps {
                 format!("{steps} steps: the path's own count")

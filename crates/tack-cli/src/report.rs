@@ -48,20 +48,9 @@ fn body_lines(scene: &Scene, p: &Problem) -> Vec<String> {
         rounded(p.gamma),
     ));
     if let Some((prony, rates)) = &p.viscoelastic {
-        let arms: Vec<String> = prony
-            .arms()
-            .iter()
-            .map(|a| format!("[{}, {}]", rounded(a.modulus), rounded(a.time)))
-            .collect();
         lines.push(format!(
-            "            viscoelastic: E* relaxes from {} to {} (arms [E_k, tau_k] {}); speed {}, \
-             unload speed {}, dwell {}",
-            rounded(prony.instantaneous()),
-            rounded(prony.relaxed()),
-            arms.join(", "),
-            rounded(rates.speed),
-            rounded(rates.unload_speed),
-            rounded(rates.dwell),
+            "            {}",
+            describe_viscoelastic(prony, rates)
         ));
     }
     if let Some(layer) = &p.layer {
@@ -122,6 +111,26 @@ fn pattern_line(scene: &Scene) -> Option<String> {
             opt(a.period)
         ),
     })
+}
+
+/// A viscoelastic solid and its rates in one line: `viscoelastic: E* relaxes from 10 to 1 (arms
+/// [E_k, tau_k] [9, 1]); speed 0.01, unload speed 0.01, dwell 1`.
+pub fn describe_viscoelastic(prony: &tack::solver::Prony, rates: &tack::solver::Rates) -> String {
+    let arms: Vec<String> = prony
+        .arms()
+        .iter()
+        .map(|a| format!("[{}, {}]", rounded(a.modulus), rounded(a.time)))
+        .collect();
+    format!(
+        "viscoelastic: E* relaxes from {} to {} (arms [E_k, tau_k] {}); speed {}, unload speed \
+         {}, dwell {}",
+        rounded(prony.instantaneous()),
+        rounded(prony.relaxed()),
+        arms.join(", "),
+        rounded(rates.speed),
+        rounded(rates.unload_speed),
+        rounded(rates.dwell),
+    )
 }
 
 /// What the path was (an indentation, one load step or several, the retraction and where it

@@ -31,7 +31,8 @@ class Result:
     @property
     def curve(self) -> Dict[str, npt.NDArray[Any]]:
         """1-D arrays per step: approach, force, area, n_bonded, n_clusters, iterations,
-        active_set_iterations, converged, mean_pressure, full_contact (where present)."""
+        active_set_iterations, converged, mean_pressure, full_contact, n_cohesive, time (where
+        present)."""
     @property
     def summary(self) -> Dict[str, Any]:
         """pull_off_force, f_jkr, pull_off_ratio, johnson_alpha, alpha_star, then extras."""
