@@ -686,12 +686,12 @@ fn rough_sphere_scene(n: usize, exact_rounds: bool) -> Result<tack::Scene> {
 }
 
 /// One rough-sphere pull-off run: (seconds, CG iterations, rounds, steps, pull-off force bits).
-struct PullOffRun {
-    seconds: f64,
+pub(crate) struct PullOffRun {
+    pub(crate) seconds: f64,
     cg: usize,
     rounds: usize,
-    steps: usize,
-    force: f64,
+    pub(crate) steps: usize,
+    pub(crate) force: f64,
     /// Every step's force, approach and bonded count, hashed bit for bit.
     curve: u64,
     /// Peak heap bytes the run held (see [`with_peak`]).
@@ -703,7 +703,7 @@ fn rough_sphere_pull_off(n: usize, threads: usize, exact_rounds: bool) -> Result
 }
 
 /// Runs `scene` on `threads` and times it; the path must complete with every step converged.
-fn timed_pull_off(scene: &tack::Scene, threads: usize) -> Result<PullOffRun> {
+pub(crate) fn timed_pull_off(scene: &tack::Scene, threads: usize) -> Result<PullOffRun> {
     let options = tack::RunOptions {
         threads: Some(threads),
         ..tack::RunOptions::default()

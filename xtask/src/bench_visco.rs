@@ -2,8 +2,6 @@
 //! scene, grid and steps, both timed in the same run (issue "Rate-dependent adhesion": at most
 //! 3× the elastic cost), and the bare FFT pair of the padded size beside them.
 
-use std::time::Instant;
-
 use anyhow::Result;
 
 use crate::bench::{Row, bare_fft_pair, median_time};
@@ -32,17 +30,11 @@ fn scenes(n: usize) -> Result<(tack::Scene, tack::Scene)> {
     ))
 }
 
-/// Seconds, steps and pull-off of one run of `scene`, which must complete and converge.
+/// Seconds, steps and pull-off of one run of `scene` on every thread of the pool; it must
+/// complete and converge (`bench`'s timed run).
 fn timed(scene: &tack::Scene) -> Result<(f64, usize, f64)> {
-    let options = tack::RunOptions::default();
-    let t = Instant::now();
-    let out = tack::run(scene, &options, &mut ())?;
-    let seconds = t.elapsed().as_secs_f64();
-    anyhow::ensure!(
-        out.path.completed && out.path.all_converged(),
-        "not converged"
-    );
-    Ok((seconds, out.path.records.len(), out.path.pull_off_force()))
+    let r = crate::bench::timed_pull_off(scene, rayon::current_num_threads())?;
+    Ok((r.seconds, r.steps, r.force))
 }
 
 /// Prints and records the table at each `n` (default 48 96 192).

@@ -161,16 +161,7 @@ fn rates(speed: f64, unload: f64) -> Rates {
 /// A load–retract path of the adhesive tests: from out of range to `depth` and back until
 /// detached, in steps `step`.
 fn cycle(depth: f64, step: f64, range: f64) -> ApproachPath {
-    ApproachPath {
-        start: -range - step,
-        max_approach: depth,
-        load_step: step,
-        unload_step: step,
-        coarse_unload_step: None,
-        refine_pull_off: false,
-        retract_to: None,
-        max_steps: 100_000,
-    }
+    ApproachPath::load_retract(-range - step, depth, step, step).unwrap()
 }
 
 /// The largest force difference between two curves over the steps both took (the same
