@@ -259,6 +259,36 @@ impl AdhesiveSolver {
         Ok(())
     }
 
+    /// Moves the body: the next step (or [`AdhesiveSolver::hold`]) contacts `surface` instead
+    /// of the heights before, on the same grid. The solid stays where it is, so a viscoelastic
+    /// solid keeps its history: a body translated a little every time step slides (or rolls,
+    /// without friction) over it, the way the steady-crack test drives a front at constant
+    /// speed (`tests/steady_crack.rs`). The contact state of the last step is the next one's
+    /// start.
+    ///
+    /// Errors name `surface`: a surface of another shape, element size or boundary.
+    pub fn move_body(&mut self, surface: Surface) -> Result<(), SolverError> {
+        let grid = self.base.grid();
+        if surface.grid().shape() != grid.shape() {
+            return Err(SolverError::MapShape {
+                field: "surface",
+                map: surface.grid().shape(),
+                grid: grid.shape(),
+            });
+        }
+        if surface.grid() != grid {
+            return Err(SolverError::Refused {
+                field: "surface",
+                reason: "the body must be on the solver's grid: the same element size and boundary",
+            });
+        }
+        if let Some(v) = self.visco.as_mut() {
+            v.heights.assign(surface.heights());
+        }
+        self.base.set_surface(surface);
+        Ok(())
+    }
+
     /// The greatest tension of every element: the criterion's `σ_c` or the Dugdale law's σ0,
     /// per element when the work of adhesion is a map ([`AdhesiveSolver::set_gamma_map`]).
     pub fn tension(&self) -> ArrayView2<'_, f64> {
