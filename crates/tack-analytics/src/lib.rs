@@ -11,7 +11,9 @@
 //! of Eq. 12 ([`fit_gaussian`]), as used for the paper's Fig. 7. Beyond the paper: the Maugis
 //! (1992) Dugdale model of the adhesive sphere, the JKR–DMT transition in one parameter λ, with
 //! its stable branches, pull-off and jumps under approach control ([`maugis_pull_off_hat`],
-//! [`maugis_force_at_hat`]), for comparisons with a finite interaction range.
+//! [`maugis_force_at_hat`]), for comparisons with a finite interaction range; the toughening
+//! `G(v)/G0` of a steady crack in a standard linear solid after Greenwood & Johnson (1981) and
+//! Persson & Brener (2005) ([`greenwood_johnson_toughening`], [`persson_brener_toughening`]).
 //!
 //! ```
 //! use std::f64::consts::PI;
@@ -50,6 +52,7 @@ mod pohrt_popov;
 mod power_law;
 #[cfg(test)]
 mod quad;
+mod viscous_crack;
 mod wavy_dugdale;
 mod westergaard;
 
@@ -88,6 +91,9 @@ pub use pohrt_popov::{KAPPA_CENTRE, KAPPA_MEAN, critical_stress, kappa_centre, k
 pub use power_law::{
     mdr_shape_factor, power_law_jkr_approach, power_law_jkr_force, power_law_pull_off_force,
     power_law_pull_off_radius,
+};
+pub use viscous_crack::{
+    dugdale_zone_opening, greenwood_johnson_toughening, persson_brener_toughening,
 };
 pub use wavy_dugdale::{
     WavyDugdalePoint, wavy_dugdale_lambda, wavy_dugdale_mean_pressure,

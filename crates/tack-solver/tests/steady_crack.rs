@@ -3,85 +3,17 @@
 //! Dugdale law), so the contact's trailing edge is an opening crack that runs at the sliding
 //! speed. Its cohesive zone measures the energy release rate the front needs: the zone's
 //! tension cancels the singularity when `K = σ0·sqrt(8c/π)`, so `G/G0 = K²/(2E0 γ) = c/c0`
-//! with `c0 = πE0γ/(4σ0²)` the relaxed solid's zone. Greenwood–Johnson's `G(v)/G0` for a
-//! Dugdale zone is computed here from its creep integral (docs/theory.md §3.10); the
-//! Persson–Brener form with a fixed cut-off is printed beside it.
+//! with `c0 = πE0γ/(4σ0²)` the relaxed solid's zone, against Greenwood–Johnson's `G(v)/G0`
+//! for a Dugdale zone (`tack_analytics::greenwood_johnson_toughening`, docs/theory.md §3.10);
+//! the Persson–Brener form with a fixed cut-off is printed beside it.
 //!
 //! Units: the period L = 1, E0 = 1, τ = 1.
 
 use ndarray::Array2;
+use tack_analytics::{greenwood_johnson_toughening, persson_brener_toughening};
 use tack_geometry::{Boundary, Grid, Surface};
 use tack_kernels::operator_for;
 use tack_solver::{AdhesionLaw, AdhesiveOptions, AdhesiveSolver, Prony, Rates};
-
-/// The Dugdale zone's opening over the zone, `s` from the crack tip (0) to the zone's head
-/// (1), over the tip's: `√(1−s) − (s/2) ln[(1+√(1−s))/(1−√(1−s))]`.
-fn dugdale_opening(s: f64) -> f64 {
-    if s >= 1.0 {
-        return 0.0;
-    }
-    if s <= 0.0 {
-        return 1.0;
-    }
-    let r = (1.0 - s).sqrt();
-    r - 0.5 * s * ((1.0 + r) / (1.0 - r)).ln()
-}
-
-/// `φ(β) = ∫₀¹ e^(−βs) (−f′(s)) ds = 1 − β ∫₀¹ e^(−βs) f(s) ds` by Simpson's rule.
-fn phi(beta: f64) -> f64 {
-    let n = 20_000;
-    let h = 1.0 / n as f64;
-    let mut sum = 0.0;
-    for k in 0..=n {
-        let s = k as f64 * h;
-        let w = if k == 0 || k == n {
-            1.0
-        } else if k % 2 == 1 {
-            4.0
-        } else {
-            2.0
-        };
-        sum += w * (-beta * s).exp() * dugdale_opening(s);
-    }
-    1.0 - beta * sum * h / 3.0
-}
-
-/// Greenwood–Johnson's `g = G(v)/G0` of a standard linear solid (relaxed `e0`, instantaneous
-/// `e_inf`, retardation time `tau_r`) with a Dugdale zone of relaxed length `c0`: the tip opens
-/// to the critical opening under the creep compliance `J(t)`, so
-/// `g·[1 − (1 − E0/E∞)·φ(c0·g/(v·τ_r))] = 1`. Solved by bisection on `g ∈ [1, E∞/E0]`.
-fn greenwood_johnson(e0: f64, e_inf: f64, tau_r: f64, c0: f64, v: f64) -> f64 {
-    let k = 1.0 - e0 / e_inf;
-    let residual = |g: f64| g * (1.0 - k * phi(c0 * g / (v * tau_r))) - 1.0;
-    let (mut lo, mut hi) = (1.0, e_inf / e0);
-    for _ in 0..80 {
-        let mid = 0.5 * (lo + hi);
-        if residual(mid) > 0.0 {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    0.5 * (lo + hi)
-}
-
-/// Persson–Brener's `G(v)/G0 = 1/[1 − (2/π)∫₀¹ dx/x √(1−x²) |Im E0/E(2πvx/a)|]` of the
-/// standard linear solid `E(ω) = E0 + E1·iωτ/(1+iωτ)` with a fixed cut-off length `a`.
-fn persson_brener(e0: f64, e1: f64, tau: f64, a: f64, v: f64) -> f64 {
-    let n = 20_000;
-    let h = 1.0 / n as f64;
-    let mut sum = 0.0;
-    for k in 0..n {
-        let x = (k as f64 + 0.5) * h;
-        let w = 2.0 * std::f64::consts::PI * v * x / a;
-        // E0/E(ω) = E0(1 + iωτ)/(E0 + iωτ(E0 + E1)).
-        let (re_d, im_d) = (e0, w * tau * (e0 + e1));
-        let (re_n, im_n) = (e0, e0 * w * tau);
-        let im = (im_n * re_d - re_n * im_d) / (re_d * re_d + im_d * im_d);
-        sum += (1.0 - x * x).sqrt() / x * (e0 * im).abs() * h;
-    }
-    1.0 / (1.0 - 2.0 / std::f64::consts::PI * sum)
-}
 
 /// The wave `A(1 − cos(2π(x − shift)))` on the strip.
 fn wave(grid: Grid, amplitude: f64, shift: f64) -> Surface {
@@ -174,7 +106,7 @@ fn a_steady_opening_crack_follows_greenwood_johnson() {
     let dx = 1.0 / strip.n as f64;
     let (e0, e1, tau) = (1.0, 2.0, 1.0);
     let prony = Prony::new(e0, &[(e1, tau)]).unwrap();
-    let (e_inf, tau_r) = (e0 + e1, tau * (e0 + e1) / e0);
+    let tau_r = tau * (e0 + e1) / e0;
     // The elastic solid: both edges hold the relaxed zone, up to the lattice (the front moves
     // by whole elements, and sliding leaves the opening edge a step behind the closing one).
     let (behind, ahead) = strip.slide(None, 1.0, 0.05);
@@ -189,8 +121,8 @@ fn a_steady_opening_crack_follows_greenwood_johnson() {
     // tolerance (one element is 6% of the zone).
     for (v_over, tolerance) in [(0.1, 0.06), (1.0, 0.04), (10.0, 0.04)] {
         let v = v_over * strip.c0 / tau_r;
-        let gj = greenwood_johnson(e0, e_inf, tau_r, strip.c0, v);
-        let pb = persson_brener(e0, e1, tau, strip.c0, v);
+        let gj = greenwood_johnson_toughening(e0, e1, tau, strip.c0, v);
+        let pb = persson_brener_toughening(e0, e1, tau, strip.c0, v);
         let (behind, ahead) = strip.slide(Some(&prony), v, 0.12);
         let g = behind as f64 * dx / strip.c0;
         println!(
