@@ -64,17 +64,40 @@ fn scene(p: &RatePath) -> Result<tack::Scene> {
     Ok(tack::Scene::parse(&text, ".", &[])?)
 }
 
-/// The pull-off over F_JKR = −1.5πγR of `p`, and whether every step converged.
-fn pull_off(p: &RatePath) -> Result<(f64, bool, f64)> {
+/// One pull-off of the study: over F_JKR = −1.5πγR, whether every step converged, the wall
+/// time, and the contact front's speed at the pull-off.
+struct Pull {
+    ratio: f64,
+    ok: bool,
+    secs: f64,
+    front_speed: f64,
+}
+
+/// The pull-off of `p`.
+fn pull_off(p: &RatePath) -> Result<Pull> {
     let t = std::time::Instant::now();
     let out = tack::run(&scene(p)?, &tack::RunOptions::default(), &mut ())?;
     let f_jkr = -1.5 * std::f64::consts::PI * p.gamma;
-    let ok = out.path.completed && out.path.all_converged();
-    Ok((
-        out.path.pull_off_force() / f_jkr,
-        ok,
-        t.elapsed().as_secs_f64(),
-    ))
+    Ok(Pull {
+        ratio: out.path.pull_off_force() / f_jkr,
+        ok: out.path.completed && out.path.all_converged(),
+        secs: t.elapsed().as_secs_f64(),
+        front_speed: front_speed(&out.path),
+    })
+}
+
+/// The contact front's speed at the pull-off, `−Δa/Δt` over the pull-off step with the contact
+/// radius `a = √(A/π)`; NaN on a path without time or without a step before the pull-off.
+fn front_speed(path: &tack::solver::PathResult) -> f64 {
+    let Some(k) = path.pull_off_step().filter(|&k| k > 0) else {
+        return f64::NAN;
+    };
+    let (r0, r1) = (&path.records[k - 1], &path.records[k]);
+    let radius = |area: f64| (area / std::f64::consts::PI).sqrt();
+    match (r0.time, r1.time) {
+        (Some(t0), Some(t1)) if t1 > t0 => -(radius(r1.area) - radius(r0.area)) / (t1 - t0),
+        _ => f64::NAN,
+    }
 }
 
 /// The smooth sphere of the example scene (γ = 1e-3, ρ = 0.01: Tabor μ = 1 at E0) on `n²`.
@@ -104,30 +127,61 @@ fn speeds(n: usize, s: &mut String) -> Result<()> {
             ..base
         })
     };
-    let (low, high) = (elastic(1.0)?.0, elastic(10.0)?.0);
+    let (low, high) = (elastic(1.0)?.ratio, elastic(10.0)?.ratio);
+    // Persson–Brener's toughening at the front's speed at pull-off, with their fixed cut-off the
+    // exponential law's process zone at E0, times the elastic E0 pull-off: the quasi-static
+    // reading F ∝ G(v).
+    let law = tack::solver::AdhesionLaw::Exponential { range: base.range };
+    let cutoff = law.zone_length(1.0, base.gamma).unwrap_or(f64::NAN);
     writeln!(
         s,
         "## A. Smooth sphere, pull-off against the retraction speed ({n}²)\n\n\
          R = 1, γ = 1e-3, exponential law ρ = 0.01 (Tabor μ = 1 at E0, 0.22 at E∞); loaded at \
          1e-4 R/τ (relaxed) to d = 0.02, retracted in steps of 5e-4. Elastic pull-offs on the \
          same grid and steps: {low:.3} F_JKR at E0, {high:.3} at E∞. The apparent work of \
-         adhesion of JKR's F = 1.5πγ_app R is γ_app/γ = F/F_JKR.\n\n\
-         | retraction speed (R/τ) | F/F_JKR = γ_app/γ | converged | time |\n|---|---|---|---|"
+         adhesion of JKR's F = 1.5πγ_app R is γ_app/γ = F/F_JKR. Beside it: the contact \
+         front's speed at pull-off (−da/dt over the pull-off step), Persson–Brener's G(v)/G0 at \
+         that speed (cut-off a = the process zone (8/3π)E0ρ²/γ = {cutoff:.4}), and the pull-off \
+         it predicts if F ∝ G: the elastic E0 pull-off times G(v)/G0.\n\n\
+         | retraction speed (R/τ) | F/F_JKR = γ_app/γ | front speed at pull-off | PB G/G0 | \
+         PB × E0 pull-off | converged | time |\n|---|---|---|---|---|---|---|"
     )?;
     let mut points = Vec::new();
+    let mut pb_points = Vec::new();
     for k in 0..=10 {
         let v = 1e-4 * 10f64.powf(k as f64 / 2.0);
-        let (ratio, ok, secs) = pull_off(&RatePath {
+        let pull = pull_off(&RatePath {
             rates: Some((1e-4, v, 0.0)),
             ..base
         })?;
-        eprintln!("speed {v:.1e}: F/F_JKR = {ratio:.4} ({secs:.1} s)");
-        writeln!(s, "| {v:.1e} | {ratio:.3} | {ok} | {secs:.1} s |")?;
-        points.push((v.log10(), ratio));
+        let pb = tack_analytics::persson_brener_toughening(1.0, 9.0, 1.0, cutoff, pull.front_speed);
+        eprintln!(
+            "speed {v:.1e}: F/F_JKR = {:.4}, front {:.2e}, PB {pb:.3} ({:.1} s)",
+            pull.ratio, pull.front_speed, pull.secs
+        );
+        writeln!(
+            s,
+            "| {v:.1e} | {:.3} | {:.2e} | {pb:.3} | {:.3} | {} | {:.1} s |",
+            pull.ratio,
+            pull.front_speed,
+            low * pb,
+            pull.ok,
+            pull.secs
+        )?;
+        points.push((v.log10(), pull.ratio));
+        if pb.is_finite() {
+            pb_points.push((v.log10(), low * pb));
+        }
     }
     let line = |y: f64| vec![(-4.2, y), (1.2, y)];
     let series = vec![
         crate::plot::Series::new("viscoelastic", points, crate::plot::Style::Line, 0),
+        crate::plot::Series::new(
+            "Persson–Brener at the front's speed × E0 pull-off",
+            pb_points,
+            crate::plot::Style::Dashed,
+            3,
+        ),
         crate::plot::Series::new("elastic, E0", line(low), crate::plot::Style::Dashed, 1),
         crate::plot::Series::new("elastic, E∞", line(high), crate::plot::Style::Dashed, 2),
     ];
@@ -137,7 +191,7 @@ fn speeds(n: usize, s: &mut String) -> Result<()> {
         y_label: "F / F_JKR".into(),
         series,
         x_range: Some((-4.2, 1.2)),
-        y_range: Some((0.0, 4.0)),
+        y_range: Some((0.0, 12.0)),
     };
     crate::plot::svg(
         std::path::Path::new("results/study-rate.svg"),
@@ -158,7 +212,9 @@ fn hold_and_preload(n: usize, s: &mut String) -> Result<()> {
     for depth in [0.01, 0.02, 0.04] {
         let mut row = format!("| {depth} |");
         for dwell in [0.0, 0.3, 1.0, 3.0, 10.0] {
-            let (ratio, ok, secs) = pull_off(&RatePath {
+            let Pull {
+                ratio, ok, secs, ..
+            } = pull_off(&RatePath {
                 depth,
                 rates: Some((1.0, 1e-2, dwell)),
                 ..base
@@ -210,14 +266,20 @@ fn rough(n: usize, seeds: u64, s: &mut String) -> Result<()> {
                 ..base
             })
         };
-        let (smooth, _, secs) = at(None)?;
+        let Pull {
+            ratio: smooth,
+            secs,
+            ..
+        } = at(None)?;
         eprintln!("speed {v:.0e}: smooth {smooth:.4} ({secs:.1} s)");
         let mut row = format!("| {v:.0e} | {smooth:.3} |");
         for alpha in [0.3, 0.7] {
             let h = tack_analytics::rms_height_from_alpha_star(1.0, gamma, alpha, 0.5, q0, q1);
             let mut values = Vec::new();
             for seed in 1..=seeds {
-                let (ratio, ok, secs) = at(Some((h, seed)))?;
+                let Pull {
+                    ratio, ok, secs, ..
+                } = at(Some((h, seed)))?;
                 eprintln!("speed {v:.0e} α* {alpha} seed {seed}: {ratio:.4} {ok} ({secs:.1} s)");
                 values.push(ratio);
             }

@@ -36,6 +36,12 @@ const PULL_OFF_NAMES: Names = &[
     (fields::PROTOCOL_COARSE_UNLOAD_STEP, "coarse_unload_step"),
     (fields::PROTOCOL_REFINE_PULL_OFF, "refine_pull_off"),
     (fields::PROTOCOL_UNLOAD_STEP, "unload_step"),
+    (fields::PROTOCOL_LOAD_STEP, "load_step"),
+    // `material.prony` stays: the attribute of `material=tack.Viscoelastic(...)`.
+    (fields::PROTOCOL_UNLOAD_SPEED, "material.unload_speed"),
+    (fields::PROTOCOL_DWELL_STEPS, "material.dwell_steps"),
+    (fields::PROTOCOL_DWELL, "material.dwell"),
+    (fields::PROTOCOL_SPEED, "material.speed"),
     (fields::SOLVER_KAPPA, "law.kappa"),
     (fields::ADHESION_SIGMA0, "law.sigma0"),
     (fields::ADHESION_RANGE, "law.range"),
@@ -222,7 +228,7 @@ fn command_line(py: Python<'_>) -> String {
 
 /// The pull-off of a body given as heights (`tack::heights::pull_off`).
 #[pyfunction]
-#[pyo3(signature = (heights, *, dx, e_star, gamma, gamma_map=None, periodic=false, radius=None, max_approach=None, unload_step=None, coarse_unload_step=None, refine_pull_off=false, kappa=None, model="jkr_limit", sigma0=None, range=None, snapshots=None, threads=None, progress=None, thickness=None, poisson=None, interface=None, richardson=false))]
+#[pyo3(signature = (heights, *, dx, e_star, gamma, gamma_map=None, periodic=false, radius=None, max_approach=None, unload_step=None, coarse_unload_step=None, refine_pull_off=false, kappa=None, model="jkr_limit", sigma0=None, range=None, snapshots=None, threads=None, progress=None, thickness=None, poisson=None, interface=None, richardson=false, load_step=None, prony=None, speed=None, unload_speed=None, dwell=None, dwell_steps=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn pull_off(
     py: Python<'_>,
@@ -248,8 +254,32 @@ pub fn pull_off(
     poisson: Option<f64>,
     interface: Option<String>,
     richardson: bool,
+    load_step: Option<f64>,
+    prony: Option<Vec<(f64, f64)>>,
+    speed: Option<f64>,
+    unload_speed: Option<f64>,
+    dwell: Option<f64>,
+    dwell_steps: Option<usize>,
 ) -> PyResult<Result> {
     let threads = check_threads(threads)?;
+    // `tack.Viscoelastic` gives the arms and the speed together; the rates alone are refused
+    // by the scene's own check, which names them.
+    let viscoelastic = match (prony, speed) {
+        (Some(arms), Some(speed)) => Some(tack::heights::ViscoelasticSpec {
+            prony: arms.into_iter().map(|(e, t)| [e, t]).collect(),
+            speed,
+            unload_speed,
+            dwell,
+            dwell_steps,
+        }),
+        (None, None) => None,
+        _ => {
+            return Err(value_error(
+                "material: a viscoelastic solid needs both its arms (prony) and its speed"
+                    .to_string(),
+            ));
+        }
+    };
     let body = match crate::body::layer_of(thickness, poisson, interface.as_deref())? {
         None => tack::scene::BodySpec::default(),
         Some(layer) => tack::scene::BodySpec {
@@ -300,6 +330,8 @@ pub fn pull_off(
         snapshots,
         gamma_map: gamma_map.map(|g| g.as_array().to_owned()),
         body,
+        load_step,
+        viscoelastic,
     };
     let heights = heights.as_array().to_owned();
     let options = RunOptions {

@@ -396,6 +396,79 @@ def test_smooth_law_arguments_are_checked():
                       unload_step=0.01, law=tack.Exponential(range=0.1))
 
 
+def test_pull_off_runs_a_viscoelastic_solid_given_as_a_material():
+    # The study's sphere (R = 1, gamma = 1e-3, exponential law rho = 0.01, E0 = 1, one arm
+    # E1 = 9, tau = 1) on a coarse grid, loaded slowly: a slow retraction stays near the
+    # elastic E0 pull-off, a fast one is stronger (docs/theory.md section 3.10).
+    dx = 1.2 / 32
+    heights = tack.surface.sphere((32, 32), dx=dx, radius=1.0)
+    law = tack.Exponential(range=0.01)
+    path = dict(max_approach=0.02, load_step=0.002, unload_step=0.001)
+
+    def pull(unload_speed=None):
+        material = None
+        if unload_speed is not None:
+            material = tack.Viscoelastic([(9.0, 1.0)], speed=1e-4, unload_speed=unload_speed)
+        return tack.pull_off(heights, dx=dx, e_star=1.0, gamma=1e-3, law=law,
+                             material=material, snapshots="none", **path)
+
+    elastic, slow, fast = pull(), pull(1e-4), pull(1.0)
+    assert "time" not in elastic.curve
+    time = slow.curve["time"]
+    assert time[0] == 0.0 and np.all(np.diff(time) > 0.0)
+    assert slow.summary["e_instantaneous"] == 10.0
+    assert slow.summary["speed"] == 1e-4 and fast.summary["unload_speed"] == 1.0
+    # Measured at 96² (README): 1.20 slow, 3.54 fast, elastic 1.11.
+    assert abs(slow.pull_off_force / elastic.pull_off_force - 1.0) < 0.2
+    assert fast.pull_off_force < 2.0 * slow.pull_off_force < 0.0
+    v = tack.Viscoelastic([(9.0, 1.0)], speed=1e-4, dwell=2.0, dwell_steps=4)
+    assert eval(repr(v)) == v and v.prony == ((9.0, 1.0),)
+    held = tack.pull_off(heights, dx=dx, e_star=1.0, gamma=1e-3, law=law, material=v,
+                         snapshots="none", **path)
+    # The hold: four steps of half a tau at the deepest approach, after the load's last.
+    approach = held.curve["approach"]
+    times = held.curve["time"][approach == approach.max()]
+    assert len(times) == 5 and np.allclose(np.diff(times), 0.5)
+
+
+def test_viscoelastic_pull_off_names_its_bad_input():
+    dx = 1.2 / 16
+    heights = tack.surface.sphere((16, 16), dx=dx, radius=1.0)
+    solid = tack.Viscoelastic([(9.0, 1.0)], speed=1e-3)
+    base = dict(dx=dx, e_star=1.0, gamma=1e-3, law=tack.Exponential(range=0.01),
+                max_approach=0.02, load_step=0.002)
+    with pytest.raises(TypeError, match=r"^material: expected None"):
+        tack.pull_off(heights, material="pdms", **base)
+    with pytest.raises(TypeError, match=r"^prony: expected a non-empty sequence"):
+        tack.Viscoelastic(9.0, speed=1.0)
+    with pytest.raises(TypeError, match=r"^prony\[0\]: expected a pair"):
+        tack.Viscoelastic([(9.0, 1.0, 2.0)], speed=1.0)
+    with pytest.raises(tack.TackError, match=r"^prony\[0\]\[0\] = -1 is invalid"):
+        tack.Viscoelastic([(-1.0, 1.0)], speed=1.0)
+    with pytest.raises(tack.TackError, match=r"^prony\[1\]\[1\] = 0 is invalid"):
+        tack.Viscoelastic([(1.0, 1.0), (1.0, 0.0)], speed=1.0)
+    with pytest.raises(tack.TackError, match=r"^prony = \[\] is invalid"):
+        tack.Viscoelastic([], speed=1.0)
+    with pytest.raises(tack.TackError, match=r"^speed = 0 is invalid"):
+        tack.Viscoelastic([(1.0, 1.0)], speed=0.0)
+    with pytest.raises(tack.TackError, match=r"^dwell = -1 is invalid"):
+        tack.Viscoelastic([(1.0, 1.0)], speed=1.0, dwell=-1.0)
+    with pytest.raises(TypeError, match=r"^speed: expected"):
+        tack.Viscoelastic([(1.0, 1.0)], speed="fast")
+    # The scene's checks, named by the arguments.
+    with pytest.raises(tack.TackError, match=r"load_step"):
+        tack.pull_off(heights, **{**base, "load_step": None}, material=solid)
+    with pytest.raises(tack.TackError, match=r"^material.prony with adhesion needs a "
+                                             r"finite-range law"):
+        tack.pull_off(heights, **{**base, "law": tack.JkrLimit()}, material=solid)
+    with pytest.raises(tack.TackError, match=r"^refine_pull_off retraces steps"):
+        tack.pull_off(heights, **base, material=solid, refine_pull_off=True,
+                      unload_step=0.001, coarse_unload_step=0.004)
+    with pytest.raises(tack.TackError, match=r"material.dwell_steps"):
+        tack.pull_off(heights, **base,
+                      material=tack.Viscoelastic([(9.0, 1.0)], speed=1.0, dwell_steps=3))
+
+
 def test_a_viscoelastic_scene_records_time_and_names_its_bad_input(repo):
     # The standard linear solid of data/examples/viscoelastic_sphere.toml: each step lasts
     # 0.1 tau, the hold one tau in ten steps; the arms' dissipation at the front doubles the

@@ -114,6 +114,30 @@ pub struct PullOffSpec {
     pub gamma_map: Option<Array2<f64>>,
     /// The elastic body (`[body]`): the half-space (default) or a layer on a rigid base.
     pub body: crate::scene::BodySpec,
+    /// The load's step (`protocol.load_step`); `None`: the rule's (one step to the deepest
+    /// approach, from out of a finite-range law's reach). A path in time needs it.
+    pub load_step: Option<f64>,
+    /// A viscoelastic solid and its path's rates (`material.prony`, `protocol.speed`, …);
+    /// `None`: the elastic solid `e_star`.
+    pub viscoelastic: Option<ViscoelasticSpec>,
+}
+
+/// A viscoelastic half-space for [`pull_off`]: `e_star` is its relaxed modulus E0, and the
+/// path runs in time (docs/theory.md §3.10). It needs [`PullOffSpec::max_approach`] and
+/// [`PullOffSpec::load_step`], and a finite-range law.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ViscoelasticSpec {
+    /// The Prony arms `[E_k, τ_k]` (`material.prony`).
+    pub prony: Vec<[f64; 2]>,
+    /// The approach rate of the loading, and of the retraction unless `unload_speed`
+    /// (`protocol.speed`).
+    pub speed: f64,
+    /// The approach rate of the retraction (`protocol.unload_speed`); `None`: `speed`.
+    pub unload_speed: Option<f64>,
+    /// The time held at the deepest approach (`protocol.dwell`); `None`: no hold.
+    pub dwell: Option<f64>,
+    /// The hold's time steps (`protocol.dwell_steps`); `None`: the default, 20.
+    pub dwell_steps: Option<usize>,
 }
 
 impl PullOffSpec {
@@ -134,6 +158,8 @@ impl PullOffSpec {
             snapshots: Snapshots::PullOff,
             gamma_map: None,
             body: crate::scene::BodySpec::default(),
+            load_step: None,
+            viscoelastic: None,
         }
     }
 }
@@ -201,6 +227,7 @@ pub fn pull_off_scene(
     };
     positive("radius", spec.radius)?;
     positive(tack_fields::PROTOCOL_UNLOAD_STEP, spec.unload_step)?;
+    positive(tack_fields::PROTOCOL_LOAD_STEP, spec.load_step)?;
     positive(
         tack_fields::PROTOCOL_COARSE_UNLOAD_STEP,
         spec.coarse_unload_step,
@@ -227,7 +254,7 @@ pub fn pull_off_scene(
         material: Material {
             e_star: spec.e_star,
             gamma: spec.gamma,
-            prony: None,
+            prony: spec.viscoelastic.as_ref().map(|v| v.prony.clone()),
         },
         geometry: Geometry::None,
         roughness: None,
@@ -250,14 +277,17 @@ pub fn pull_off_scene(
         protocol: Protocol {
             start: None,
             max_approach: spec.max_approach,
-            load_step: None,
+            load_step: spec.load_step,
             indent: None,
             unload_step: spec.unload_step,
             coarse_unload_step: spec.coarse_unload_step,
             refine_pull_off: spec.refine_pull_off.then_some(true),
             retract_to: None,
             max_steps: None,
-            ..Protocol::default()
+            speed: spec.viscoelastic.as_ref().map(|v| v.speed),
+            unload_speed: spec.viscoelastic.as_ref().and_then(|v| v.unload_speed),
+            dwell: spec.viscoelastic.as_ref().and_then(|v| v.dwell),
+            dwell_steps: spec.viscoelastic.as_ref().and_then(|v| v.dwell_steps),
         },
         output: OutputSpec {
             snapshots: spec.snapshots.clone(),
@@ -325,6 +355,48 @@ mod tests {
     fn sphere(n: usize, dx: f64, radius: f64) -> Array2<f64> {
         let grid = Grid::square(n, dx, Boundary::Free).unwrap();
         Surface::from_shape(grid, &Sphere::new(radius).unwrap()).into_heights()
+    }
+
+    #[test]
+    fn a_viscoelastic_spec_becomes_the_scene_material_and_rates() {
+        let heights = sphere(16, 0.075, 1.0);
+        let spec = PullOffSpec {
+            max_approach: Some(0.02),
+            load_step: Some(0.002),
+            adhesion: AdhesionSpec {
+                model: crate::AdhesionModel::Exponential,
+                range: Some(0.01),
+                ..AdhesionSpec::default()
+            },
+            viscoelastic: Some(ViscoelasticSpec {
+                prony: vec![[9.0, 1.0]],
+                speed: 1e-3,
+                unload_speed: Some(1e-2),
+                dwell: Some(1.0),
+                dwell_steps: Some(4),
+            }),
+            ..PullOffSpec::new(0.075, 1.0, 1e-3)
+        };
+        let plan = pull_off_scene(&heights, &spec).unwrap();
+        assert_eq!(plan.scene.file.material.prony, Some(vec![[9.0, 1.0]]));
+        let p = &plan.scene.file.protocol;
+        assert_eq!(
+            (p.speed, p.unload_speed, p.dwell, p.dwell_steps, p.load_step),
+            (Some(1e-3), Some(1e-2), Some(1.0), Some(4), Some(0.002))
+        );
+        let built = problem(&plan.scene, &plan.body(&heights)).unwrap();
+        let (prony, rates) = built.viscoelastic.as_ref().unwrap();
+        assert_eq!((prony.instantaneous(), rates.dwell_steps), (10.0, 4));
+        // Without the load step the path has no time: refused, naming the field.
+        let bad = PullOffSpec {
+            load_step: None,
+            ..spec
+        };
+        let e = pull_off_scene(&heights, &bad)
+            .and_then(|p| problem(&p.scene, &p.body(&heights)).map(|_| ()))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("protocol.load_step"), "{e}");
     }
 
     #[test]

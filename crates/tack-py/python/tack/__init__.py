@@ -70,8 +70,10 @@ from .models import (
     JkrLimit,
     Layer,
     LennardJones,
+    Viscoelastic,
     body_arguments,
     law_arguments,
+    material_arguments,
 )
 
 __version__: str = _tack.__version__
@@ -100,6 +102,7 @@ __all__ = [
     "SceneError",
     "SolverError",
     "TackError",
+    "Viscoelastic",
     "TackWarning",
     "UnderResolvedWarning",
     "analytics",
@@ -311,10 +314,12 @@ def pull_off(
     gamma: Any,
     law: Union[JkrLimit, Dugdale, Exponential, LennardJones] = JkrLimit(),
     body: Union[HalfSpace, Layer] = HalfSpace(),
+    material: Optional[Viscoelastic] = None,
     gamma_reference: Optional[float] = None,
     periodic: bool = False,
     radius: Optional[float] = None,
     max_approach: Optional[float] = None,
+    load_step: Optional[float] = None,
     unload_step: Optional[float] = None,
     coarse_unload_step: Optional[float] = None,
     refine_pull_off: bool = False,
@@ -350,6 +355,10 @@ def pull_off(
         body: :class:`tack.HalfSpace` (default) or :class:`tack.Layer` (a film on a rigid
             base; the closed-form references such as ``f_jkr`` stay the half-space's, and a
             :class:`tack.ReferenceWarning` says so).
+        material: None (the elastic solid ``e_star``) or :class:`tack.Viscoelastic` (a
+            Prony series whose relaxed modulus is ``e_star``, and the path's speeds): the path
+            runs in time and ``result.curve["time"]`` holds it. It needs a finite-range
+            ``law``, ``max_approach`` and ``load_step``; ``refine_pull_off`` is refused.
         gamma_reference: with a gamma array only: the reference work of adhesion of ``f_jkr``,
             the ratios and the default path (> 0). The rule, the same as a scene's: the
             reference is the gamma given explicitly as a number (``gamma`` when uniform; a
@@ -363,8 +372,10 @@ def pull_off(
         radius: radius R of the sphere the body approximates; default: fitted by least squares
             (a paraboloid with free vertex), accepted when its rise over the grid is at least
             half the roughness range.
-        max_approach, unload_step, coarse_unload_step: the path, instead of the default rule
-            (``max_approach`` finite, the steps > 0).
+        max_approach, load_step, unload_step, coarse_unload_step: the path, instead of the
+            default rule (``max_approach`` finite, the steps > 0; ``load_step`` needs
+            ``max_approach``, and the load then starts one step past the first touch; the
+            closed-form references, ``f_jkr`` and the ratio, then need ``radius``).
         refine_pull_off: the refined retraction: coarse steps (``coarse_unload_step``, default
             0.2 d_s) all the way, and every stretch of two coarse steps that may hold the
             pull-off (and the last one when the tension still grew before contact was lost)
@@ -420,6 +431,7 @@ def pull_off(
         periodic=_check.flag("periodic", periodic),
         radius=_check.optional(_check.positive, "radius", radius),
         max_approach=_check.optional(_check.finite, "max_approach", max_approach),
+        load_step=_check.optional(_check.positive, "load_step", load_step),
         unload_step=_check.optional(_check.positive, "unload_step", unload_step),
         coarse_unload_step=_check.optional(
             _check.positive, "coarse_unload_step", coarse_unload_step
@@ -430,6 +442,7 @@ def pull_off(
         threads=_threads(threads),
         **law_arguments(law),
         **body_arguments(body),
+        **material_arguments(material),
     )
     callback = _progress(progress)
     try:

@@ -118,6 +118,7 @@ def pull_off(
     kappa: Optional[float] = ...,
     model: str = ...,
     sigma0: Optional[float] = ...,
+    range: Optional[float] = ...,
     snapshots: Any = ...,
     threads: Optional[int] = ...,
     progress: Optional[Callable[[Dict[str, Any]], Any]] = ...,
@@ -125,6 +126,12 @@ def pull_off(
     poisson: Optional[float] = ...,
     interface: Optional[str] = ...,
     richardson: bool = ...,
+    load_step: Optional[float] = ...,
+    prony: Optional[Sequence[Tuple[float, float]]] = ...,
+    speed: Optional[float] = ...,
+    unload_speed: Optional[float] = ...,
+    dwell: Optional[float] = ...,
+    dwell_steps: Optional[int] = ...,
 ) -> Result: ...
 def read(path: Union[str, os.PathLike[str]]) -> Result: ...
 def contact(

@@ -7,9 +7,8 @@ type expected, :class:`tack.TackError` naming the argument, the value and the al
 is immutable, compares by value and has a repr that makes it again. They stand for a scene's
 ``[adhesion]`` and ``[body]`` tables (``docs/scenes.md``).
 
-A material model other than the linear-elastic E* (a viscoelastic one, say) would be one more
-object of this family, passed as ``material=`` beside ``e_star`` (``docs/python.md``, "Design
-note").
+A viscoelastic solid is one more object of this family, :class:`Viscoelastic`, passed to
+:func:`tack.pull_off` as ``material=`` beside ``e_star`` (then the relaxed modulus E0).
 """
 
 from __future__ import annotations
@@ -18,7 +17,15 @@ from typing import Any, Optional, Tuple
 
 from . import _check
 
-__all__ = ["Dugdale", "Exponential", "HalfSpace", "JkrLimit", "Layer", "LennardJones"]
+__all__ = [
+    "Dugdale",
+    "Exponential",
+    "HalfSpace",
+    "JkrLimit",
+    "Layer",
+    "LennardJones",
+    "Viscoelastic",
+]
 
 
 class _Value:
@@ -208,6 +215,83 @@ class Layer(_Value):
             "poisson": self.poisson,
             "interface": self.interface,
         }
+
+
+class Viscoelastic(_Value):
+    """A viscoelastic half-space, a generalised Maxwell solid of relaxation modulus
+    E(t) = E0 + sum_k E_k exp(-t/tau_k) in plane-strain moduli, with ``e_star`` its relaxed E0
+    (a scene's ``[material] prony`` and the path's ``[protocol] speed``, ``unload_speed``,
+    ``dwell``, ``dwell_steps``; ``docs/theory.md`` section 3.10). The path runs in time: a step
+    of the approach lasts its length over the speed, the first step is instantaneous (the
+    solid starts at rest), and ``result.curve["time"]`` holds the time. It needs a
+    finite-range law (:class:`Dugdale`, :class:`Exponential`, :class:`LennardJones`) and the
+    path's ``max_approach`` and ``load_step``.
+
+    Args:
+        prony: the arms, a non-empty sequence of pairs ``(E_k, tau_k)`` (each finite, > 0); one
+            arm is the standard linear solid of instantaneous modulus E0 + E_1.
+        speed: the approach rate of the loading, and of the retraction unless
+            ``unload_speed`` (finite, > 0).
+        unload_speed: the approach rate of the retraction (finite, > 0); None: ``speed``.
+        dwell: time held at the deepest approach (finite, >= 0); None: no hold.
+        dwell_steps: the hold's time steps (an int >= 1); None: 20.
+    """
+
+    _fields = ("prony", "speed", "unload_speed", "dwell", "dwell_steps")
+
+    def __init__(
+        self,
+        prony: Any,
+        *,
+        speed: float,
+        unload_speed: Optional[float] = None,
+        dwell: Optional[float] = None,
+        dwell_steps: Optional[int] = None,
+    ) -> None:
+        what = "a non-empty sequence of (E_k, tau_k) pairs"
+        if isinstance(prony, (str, bytes)) or not hasattr(prony, "__len__"):
+            raise TypeError(f"prony: expected {what}, got {_check.describe(prony)}")
+        arms = []
+        for k, arm in enumerate(prony):
+            if isinstance(arm, (str, bytes)) or not hasattr(arm, "__len__") or len(arm) != 2:
+                raise TypeError(f"prony[{k}]: expected a pair (E_k, tau_k), got {_check.describe(arm)}")
+            arms.append(
+                (
+                    _check.positive(f"prony[{k}][0]", arm[0]),
+                    _check.positive(f"prony[{k}][1]", arm[1]),
+                )
+            )
+        if not arms:
+            raise _check.invalid("prony", "[]", what)
+        self._set("prony", tuple(arms))
+        self._set("speed", _check.positive("speed", speed))
+        self._set("unload_speed", _check.optional(_check.positive, "unload_speed", unload_speed))
+        self._set("dwell", _check.optional(_check.non_negative, "dwell", dwell))
+        self._set(
+            "dwell_steps", _check.optional(_check.count, "dwell_steps", dwell_steps)
+        )
+
+    def _arguments(self) -> dict:
+        return {
+            "prony": list(self.prony),
+            "speed": self.speed,
+            "unload_speed": self.unload_speed,
+            "dwell": self.dwell,
+            "dwell_steps": self.dwell_steps,
+        }
+
+
+def material_arguments(material: Any) -> dict:
+    """``material=`` of :func:`tack.pull_off`: None (the elastic solid ``e_star``) or a
+    :class:`Viscoelastic`."""
+    if material is None:
+        return {}
+    if not isinstance(material, Viscoelastic):
+        raise TypeError(
+            "material: expected None (elastic) or tack.Viscoelastic(prony=..., speed=...), "
+            f"got {_check.describe(material)}"
+        )
+    return material._arguments()
 
 
 def law_arguments(law: Any) -> dict:
