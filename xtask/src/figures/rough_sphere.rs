@@ -532,6 +532,41 @@ mod tests {
         ));
     }
 
+    /// The exponential variant of Figure 7 (`data/figures/exponential/fig7.toml`) is Figure 7's
+    /// spec with the exponential law at Tabor's μ = 1, and its scenes build.
+    #[test]
+    fn fig7_exponential_spec_is_fig7_at_tabor_one() {
+        let dir = crate::reproduce::default_specs().join("exponential");
+        let spec = crate::spec::FigureSpec::load(&dir, 7, false).expect("exponential/fig7.toml");
+        let base = spec.scene().expect("the scene");
+        let plain = crate::spec::FigureSpec::load(&crate::reproduce::default_specs(), 7, false)
+            .unwrap()
+            .scene()
+            .unwrap();
+        let tack::scene::AdhesionSpec {
+            model: tack::scene::AdhesionModel::Exponential,
+            range: Some(range),
+            ..
+        } = base.adhesion
+        else {
+            panic!("{:?}", base.adhesion)
+        };
+        let gamma = base.material.gamma;
+        let mu = (gamma * gamma / range.powi(3)).cbrt();
+        assert!((mu - 1.0).abs() < 1e-4, "μ = {mu}");
+        assert_eq!(base.material, plain.material);
+        assert_eq!(base.geometry, plain.geometry);
+        let p: Fig7 = spec.params().unwrap();
+        let (file, _) =
+            rough_scene(&base, &p, &PullOff::for_mode(false), 0.5, 0.3, p.seeds[0]).unwrap();
+        let scene = tack::Scene::from_file(file, ".").unwrap();
+        let problem = tack::problem::Problem::from_scene(&scene).unwrap();
+        assert!(matches!(
+            problem.law,
+            tack_solver::AdhesionLaw::Exponential { .. }
+        ));
+    }
+
     /// Figure 7's roughness in both modes: every (H, α*) gets the rms height of Eq. 11 inverted
     /// on the paper's band of its grid (q0 = 2π/L, q1 = π/Δx), bit for bit (the datasets depend
     /// on it), which gives the α* back.
