@@ -185,8 +185,14 @@ impl PullOffPlan {
         HeightBody {
             heights,
             roughness_range: self.fit.map(|f| f.residual_range()),
-            // A fitted radius is found again by the builder (and reported as fitted).
-            radius: self.given_radius,
+            // A fitted radius is found again by the default path's rule (and reported as
+            // fitted); a path given in full (`load_step`) has no rule, so the fitted radius
+            // comes along for the references (F_JKR and the ratios).
+            radius: if self.scene.file.protocol.load_step.is_some() {
+                self.radius
+            } else {
+                self.given_radius
+            },
             gamma: None,
         }
     }
@@ -206,8 +212,9 @@ impl PullOffPlan {
 
 /// The scene of a pull-off of `heights` by the rule of [`PullOffSpec`]: the material, a grid
 /// of the array's shape, `geometry.shape = "none"` (the body is the array) and a `[protocol]`
-/// without `load_step`, so [`Problem`]'s builder sets the default pull-off path (the rule of
-/// [`crate::pull_off_path`], the same for scenes and arrays) from the given or fitted radius.
+/// without `load_step` unless the spec gives one, so [`Problem`]'s builder sets the default
+/// pull-off path (the rule of [`crate::pull_off_path`], the same for scenes and arrays) from
+/// the given or fitted radius; a `load_step` gives the path in full.
 /// Errors name the scene fields the spec's values go to (`material.gamma`,
 /// `protocol.unload_step`, …) and `radius`.
 pub fn pull_off_scene(
@@ -387,6 +394,9 @@ mod tests {
         let built = problem(&plan.scene, &plan.body(&heights)).unwrap();
         let (prony, rates) = built.viscoelastic.as_ref().unwrap();
         assert_eq!((prony.instantaneous(), rates.dwell_steps), (10.0, 4));
+        // The path is given in full, and the fitted radius still gives F_JKR.
+        let f_jkr = built.references.f_jkr.unwrap();
+        assert!((f_jkr / (-1.5 * std::f64::consts::PI * 1e-3) - 1.0).abs() < 1e-9);
         // Without the load step the path has no time: refused, naming the field.
         let bad = PullOffSpec {
             load_step: None,

@@ -374,8 +374,7 @@ def pull_off(
             half the roughness range.
         max_approach, load_step, unload_step, coarse_unload_step: the path, instead of the
             default rule (``max_approach`` finite, the steps > 0; ``load_step`` needs
-            ``max_approach``, and the load then starts one step past the first touch; the
-            closed-form references, ``f_jkr`` and the ratio, then need ``radius``).
+            ``max_approach``, and the load then starts one step past the first touch).
         refine_pull_off: the refined retraction: coarse steps (``coarse_unload_step``, default
             0.2 d_s) all the way, and every stretch of two coarse steps that may hold the
             pull-off (and the last one when the tension still grew before contact was lost)
