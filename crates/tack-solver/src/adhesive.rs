@@ -264,7 +264,7 @@ impl AdhesiveSolver {
     /// solid keeps its history: a body translated a little every time step slides (or rolls,
     /// without friction) over it, the way the steady-crack test drives a front at constant
     /// speed (`tests/steady_crack.rs`). The contact state of the last step is the next one's
-    /// start.
+    /// start; a γ map ([`AdhesiveSolver::set_gamma_map`]) stays where it is, with the solid.
     ///
     /// Errors name `surface`: a surface of another shape, element size or boundary.
     pub fn move_body(&mut self, surface: Surface) -> Result<(), SolverError> {
