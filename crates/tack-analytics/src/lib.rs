@@ -50,7 +50,6 @@ mod minimize;
 mod patterned;
 mod pohrt_popov;
 mod power_law;
-#[cfg(test)]
 mod quad;
 mod viscous_crack;
 mod wavy_dugdale;

@@ -1,4 +1,5 @@
-//! Test-only composite quadrature rules used to check closed forms against numerical integrals.
+//! Composite quadrature rules: the tests' checks of closed forms against numerical integrals,
+//! and the steady-crack integrals of `viscous_crack`.
 
 /// Composite Simpson rule of `f` on `[a, b]` with `n` (rounded up to even) sub-intervals.
 ///
@@ -13,11 +14,13 @@ pub(crate) fn simpson(f: impl Fn(f64) -> f64, a: f64, b: f64, n: usize) -> f64 {
 }
 
 /// Central finite difference of `f` at `x` with step `h`.
+#[cfg(test)]
 pub(crate) fn derivative(f: impl Fn(f64) -> f64, x: f64, h: f64) -> f64 {
     (f(x + h) - f(x - h)) / (2.0 * h)
 }
 
 /// Assert `actual` equals `expected` to within the relative tolerance `rel`.
+#[cfg(test)]
 pub(crate) fn assert_close(actual: f64, expected: f64, rel: f64) {
     let tol = rel * expected.abs().max(1.0e-300);
     assert!(

@@ -20,19 +20,10 @@ fn graded(g: impl Fn(f64) -> f64) -> f64 {
     }
     points.sort_by(f64::total_cmp);
     points.dedup();
-    let panels = 32;
-    let mut total = 0.0;
-    for w in points.windows(2) {
-        let (a, b) = (w[0], w[1]);
-        let h = (b - a) / panels as f64;
-        let mut sum = g(a) + g(b);
-        for k in 1..panels {
-            let weight = if k % 2 == 1 { 4.0 } else { 2.0 };
-            sum += weight * g(a + k as f64 * h);
-        }
-        total += sum * h / 3.0;
-    }
-    total
+    points
+        .windows(2)
+        .map(|w| crate::quad::simpson(&g, w[0], w[1], 32))
+        .sum()
 }
 
 /// The Dugdale zone's opening over its opening at the crack tip, at `s` from the tip (0) to

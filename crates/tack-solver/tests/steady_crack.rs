@@ -66,10 +66,8 @@ impl Strip {
         Self { n, c0, sigma0 }
     }
 
-    /// Slides the wave at `speed` by `travel` in steps of one element after a long rest (a
-    /// viscoelastic solid relaxes to E0 under the contact first; `None`: the elastic solid
-    /// at E0); the zones of the last step.
-    fn slide(&self, prony: Option<&Prony>, speed: f64, travel: f64) -> (usize, usize) {
+    /// The strip's grid and the elastic solver of the wave at rest on it.
+    fn solver(&self) -> (Grid, AdhesiveSolver) {
         let grid = Grid::new(self.n, 1, 1.0 / self.n as f64, Boundary::Periodic).unwrap();
         let op = operator_for(grid, 1.0).unwrap();
         let law = AdhesionLaw::Dugdale {
@@ -77,7 +75,15 @@ impl Strip {
         };
         let surface = wave(grid, AMPLITUDE, 0.0);
         let options = AdhesiveOptions::default();
-        let mut s = AdhesiveSolver::with_law(op, &surface, GAMMA, law, options).unwrap();
+        let s = AdhesiveSolver::with_law(op, &surface, GAMMA, law, options).unwrap();
+        (grid, s)
+    }
+
+    /// Slides the wave at `speed` by `travel` in steps of one element after a long rest (a
+    /// viscoelastic solid relaxes to E0 under the contact first; `None`: the elastic solid
+    /// at E0); the zones of the last step.
+    fn slide(&self, prony: Option<&Prony>, speed: f64, travel: f64) -> (usize, usize) {
+        let (grid, mut s) = self.solver();
         if let Some(p) = prony {
             let rates = Rates {
                 speed: 1.0,
@@ -142,14 +148,7 @@ fn a_steady_opening_crack_follows_greenwood_johnson() {
 #[test]
 fn a_body_moved_onto_another_grid_is_refused_naming_the_surface() {
     let strip = Strip::new(64, 4.0);
-    let grid = Grid::new(strip.n, 1, 1.0 / strip.n as f64, Boundary::Periodic).unwrap();
-    let op = operator_for(grid, 1.0).unwrap();
-    let law = AdhesionLaw::Dugdale {
-        sigma0: strip.sigma0,
-    };
-    let surface = wave(grid, AMPLITUDE, 0.0);
-    let options = AdhesiveOptions::default();
-    let mut s = AdhesiveSolver::with_law(op, &surface, GAMMA, law, options).unwrap();
+    let (grid, mut s) = strip.solver();
     let other = Grid::new(strip.n, 2, 1.0 / strip.n as f64, Boundary::Periodic).unwrap();
     let err = s.move_body(wave(other, AMPLITUDE, 0.0)).unwrap_err();
     assert!(err.to_string().starts_with("surface"), "{err}");

@@ -498,27 +498,17 @@ mod tests {
     use tack_analytics::{alpha_star, rms_height_from_alpha_star};
     use tack_geometry::RoughSpec;
 
-    /// The Dugdale variant of Figure 7 (`data/figures/dugdale/fig7.toml`) is Figure 7's spec
-    /// with the Dugdale law at Maugis' λ = 1, and its scenes build.
-    #[test]
-    fn fig7_dugdale_spec_is_fig7_at_maugis_lambda_one() {
-        let dir = crate::reproduce::default_specs().join("dugdale");
-        let spec = crate::spec::FigureSpec::load(&dir, 7, false).expect("dugdale/fig7.toml");
+    /// The variant of Figure 7 in `data/figures/<dir>/fig7.toml`: its material and geometry are
+    /// Figure 7's, and its first scene builds; returns its `[scene.adhesion]`, its γ and the law
+    /// the built problem runs.
+    fn fig7_variant(dir: &str) -> (tack::scene::AdhesionSpec, f64, tack_solver::AdhesionLaw) {
+        let specs = crate::reproduce::default_specs();
+        let spec = crate::spec::FigureSpec::load(&specs.join(dir), 7, false).expect(dir);
         let base = spec.scene().expect("the scene");
-        let plain = crate::spec::FigureSpec::load(&crate::reproduce::default_specs(), 7, false)
+        let plain = crate::spec::FigureSpec::load(&specs, 7, false)
             .unwrap()
             .scene()
             .unwrap();
-        let tack::scene::AdhesionSpec {
-            model: tack::scene::AdhesionModel::Dugdale,
-            sigma0: Some(sigma0),
-            ..
-        } = base.adhesion
-        else {
-            panic!("{:?}", base.adhesion)
-        };
-        let lambda = tack_analytics::maugis_lambda(1.0, base.material.gamma, 1.0, sigma0);
-        assert!((lambda - 1.0).abs() < 1e-4, "λ = {lambda}");
         assert_eq!(base.material, plain.material);
         assert_eq!(base.geometry, plain.geometry);
         let p: Fig7 = spec.params().unwrap();
@@ -526,45 +516,43 @@ mod tests {
             rough_scene(&base, &p, &PullOff::for_mode(false), 0.5, 0.3, p.seeds[0]).unwrap();
         let scene = tack::Scene::from_file(file, ".").unwrap();
         let problem = tack::problem::Problem::from_scene(&scene).unwrap();
-        assert!(matches!(
-            problem.law,
-            tack_solver::AdhesionLaw::Dugdale { .. }
-        ));
+        (base.adhesion, base.material.gamma, problem.law)
+    }
+
+    /// The Dugdale variant of Figure 7 (`data/figures/dugdale/fig7.toml`) is Figure 7's spec
+    /// with the Dugdale law at Maugis' λ = 1, and its scenes build.
+    #[test]
+    fn fig7_dugdale_spec_is_fig7_at_maugis_lambda_one() {
+        let (adhesion, gamma, law) = fig7_variant("dugdale");
+        let tack::scene::AdhesionSpec {
+            model: tack::scene::AdhesionModel::Dugdale,
+            sigma0: Some(sigma0),
+            ..
+        } = adhesion
+        else {
+            panic!("{adhesion:?}")
+        };
+        let lambda = tack_analytics::maugis_lambda(1.0, gamma, 1.0, sigma0);
+        assert!((lambda - 1.0).abs() < 1e-4, "λ = {lambda}");
+        assert!(matches!(law, tack_solver::AdhesionLaw::Dugdale { .. }));
     }
 
     /// The exponential variant of Figure 7 (`data/figures/exponential/fig7.toml`) is Figure 7's
     /// spec with the exponential law at Tabor's μ = 1, and its scenes build.
     #[test]
     fn fig7_exponential_spec_is_fig7_at_tabor_one() {
-        let dir = crate::reproduce::default_specs().join("exponential");
-        let spec = crate::spec::FigureSpec::load(&dir, 7, false).expect("exponential/fig7.toml");
-        let base = spec.scene().expect("the scene");
-        let plain = crate::spec::FigureSpec::load(&crate::reproduce::default_specs(), 7, false)
-            .unwrap()
-            .scene()
-            .unwrap();
+        let (adhesion, gamma, law) = fig7_variant("exponential");
         let tack::scene::AdhesionSpec {
             model: tack::scene::AdhesionModel::Exponential,
             range: Some(range),
             ..
-        } = base.adhesion
+        } = adhesion
         else {
-            panic!("{:?}", base.adhesion)
+            panic!("{adhesion:?}")
         };
-        let gamma = base.material.gamma;
         let mu = (gamma * gamma / range.powi(3)).cbrt();
         assert!((mu - 1.0).abs() < 1e-4, "μ = {mu}");
-        assert_eq!(base.material, plain.material);
-        assert_eq!(base.geometry, plain.geometry);
-        let p: Fig7 = spec.params().unwrap();
-        let (file, _) =
-            rough_scene(&base, &p, &PullOff::for_mode(false), 0.5, 0.3, p.seeds[0]).unwrap();
-        let scene = tack::Scene::from_file(file, ".").unwrap();
-        let problem = tack::problem::Problem::from_scene(&scene).unwrap();
-        assert!(matches!(
-            problem.law,
-            tack_solver::AdhesionLaw::Exponential { .. }
-        ));
+        assert!(matches!(law, tack_solver::AdhesionLaw::Exponential { .. }));
     }
 
     /// Figure 7's roughness in both modes: every (H, α*) gets the rms height of Eq. 11 inverted
