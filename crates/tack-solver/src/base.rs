@@ -218,7 +218,12 @@ fn mean_height(surface: &Surface) -> f64 {
 }
 
 /// `g = f − d + u` element by element, in parallel on long grids (the same bits either way).
-fn gap_of(gap: ndarray::ArrayViewMut2<f64>, f: ArrayView2<f64>, u: ArrayView2<f64>, d: f64) {
+pub(crate) fn gap_of(
+    gap: ndarray::ArrayViewMut2<f64>,
+    f: ArrayView2<f64>,
+    u: ArrayView2<f64>,
+    d: f64,
+) {
     let zip = Zip::from(gap).and(f).and(u);
     let set = |g: &mut f64, &f: &f64, &u: &f64| *g = f - d + u;
     if crate::cg::parallel(zip.size()) {

@@ -87,6 +87,15 @@ impl Traction {
         }
     }
 
+    /// Whether the law stiffens anywhere (`dp/dg < 0`: the Lennard-Jones law next to its
+    /// wall), where the landing's flow must be damped and is slow.
+    pub(crate) fn stiffens(&self) -> bool {
+        match self.curve {
+            Curve::Exponential => false,
+            Curve::LennardJones => true,
+        }
+    }
+
     /// The greatest tension of the law.
     pub(crate) fn peak(&self) -> f64 {
         match self.curve {

@@ -30,9 +30,18 @@
 //! CG each time. Its Jacobian is `D·T` (`D = diag(s)`, `T` the compliance with the contact held),
 //! whose eigenvalues lie below 1 exactly where the equilibrium is stable: it flows away from
 //! unstable states and converges to a stable one, the new branch. Newton then finishes from
-//! there. Every loop is capped; a step that meets a cap reports `converged = false`.
+//! there. Under the exponential law Newton also hands over to the flow when its residual is
+//! beyond [`NEWTON_REACH`] of the peak (a predictor across a hop of the front), where it would
+//! wander. The flow is the
+//! energy's gradient descent in the metric of `K⁻¹` (the energy's gradient is `K(p − P(g))`);
+//! Nesterov's momentum accelerates it, restarted whenever a step turns against the flow or the
+//! contact set changes, so it stays a descent towards a stable state. On free half-space grids
+//! a landing runs on the window of the contact and the law's reach, the pressure outside held
+//! (its displacement enters once), and Newton finishes on the grid. Every loop is capped; a
+//! step that meets a cap reports `converged = false`.
 
 use ndarray::{Array2, Zip};
+use tack_kernels::ElasticOperator;
 
 use crate::law::Traction;
 use crate::rounds::Tally;
@@ -42,6 +51,12 @@ use crate::{AdhesiveSolver, SolverOptions, StepRecord};
 /// pressure error of 1e-7 of the peak; the last Newton iteration would cost as much as the two
 /// before it to go to 1e-9, for force changes below 1e-7).
 const NEWTON_TOLERANCE: f64 = 1e-7;
+/// Newton runs from states whose residual is below this fraction of the peak tension; from
+/// farther (a predictor across a hop of the front) the step lands first. Measured on the peers'
+/// case at 128² (exponential law): 0.01–0.1 alike, 0.3 takes 1.2× the time and 1 (Newton first
+/// from anywhere) 1.6×. Not for a law that stiffens (Lennard-Jones): its damped flow is slow
+/// where Newton is not (at μ = 1 on 64², 36× the time and 8 steps not converged).
+const NEWTON_REACH: f64 = 0.1;
 /// Newton iterations per attempt before the step falls back to relaxation.
 const NEWTON_CAP: usize = 40;
 /// Relaxation iterations per landing.
@@ -51,6 +66,10 @@ const RELAX_CAP: usize = 3_000;
 /// on a neighbouring state of the hopping front (pull-off +0.49% against +0.43% on bench-laws'
 /// path), 1e-2 more so; 1e-4 keeps the relaxation's choice.
 const LANDED: f64 = 1e-4;
+/// The loosest relative tolerance of a landing's contact solves; they tighten to 1e-2 of the
+/// landing's residual. Measured on the peers' case at 128²: 1e-6 (and 1e-3 of the residual)
+/// takes 1.37× the operator products, the same pull-off; 1e-1 of the residual stalls.
+const LANDING_CG: f64 = 1e-4;
 /// Landings per step; the last one runs to Newton's tolerance itself (or [`RELAX_CAP`]).
 const LANDINGS: usize = 4;
 /// MINRES iterations per Newton solve.
@@ -59,6 +78,10 @@ const MINRES_CAP: usize = 2_000;
 /// solve runs on a window around them (free half-space grids) and treats the rest, whose rows are
 /// diagonal to 1/WINDOW_STIFFNESS, element by element.
 const WINDOW_STIFFNESS: f64 = 100.0;
+/// A landing's window holds the contact and every element whose law's pressure exceeds this
+/// fraction of the peak: outside it the pressure is held through the landing (Newton then
+/// finishes on the grid).
+const LANDING_REACH: f64 = 1e-4;
 /// Window shapes kept per solver.
 const WINDOW_SHAPES: usize = 4;
 
@@ -114,6 +137,8 @@ pub(crate) struct SmoothState {
     /// The stiff elements of the last Newton system (its window is their box).
     stiff: Array2<bool>,
     windows: crate::subgrid::SubgridCache<WindowSystem>,
+    /// The landings' windows.
+    landings: crate::subgrid::SubgridCache<LandingPatch>,
 }
 
 impl SmoothState {
@@ -135,6 +160,7 @@ impl SmoothState {
             grid_out: Array2::zeros(shape),
             stiff: Array2::from_elem(shape, false),
             windows: crate::subgrid::SubgridCache::new(WINDOW_SHAPES),
+            landings: crate::subgrid::SubgridCache::new(WINDOW_SHAPES),
         }
     }
 }
@@ -169,7 +195,7 @@ impl AdhesiveSolver {
                     // wall and law) the relaxation goes on to Newton's tolerance itself.
                     let last = landings == LANDINGS;
                     let target = if last { NEWTON_TOLERANCE } else { LANDED };
-                    let done = self.relax_smooth(d, k, peak, target, &mut tally);
+                    let done = self.relax_smooth(d, k, peak, target, last, &mut tally);
                     merit = self.smooth_refresh(d, k);
                     if last && done && merit.worst <= NEWTON_TOLERANCE * peak {
                         tally.worst = tally.worst.max(merit.worst / peak);
@@ -189,7 +215,8 @@ impl AdhesiveSolver {
     }
 
     /// Newton iterations from the current state until the residual meets
-    /// [`NEWTON_TOLERANCE`] (`Ok`) or the line search or the cap fails (`Err`).
+    /// [`NEWTON_TOLERANCE`] (`Ok`), or the line search or the cap fails or the residual is beyond
+    /// [`NEWTON_REACH`] (`Err`).
     fn newton(
         &mut self,
         d: f64,
@@ -203,9 +230,15 @@ impl AdhesiveSolver {
                 tally.worst = tally.worst.max(merit.worst / peak);
                 return Ok(());
             }
+            // Far from an equilibrium Newton wanders on the hopping front: the flow lands
+            // there for less, unless the law stiffens (its flow is damped and slow there).
+            if merit.worst > NEWTON_REACH * peak && !self.traction().stiffens() {
+                return Err(());
+            }
             tally.rounds += 1;
-            // Inexact Newton: the linear solve is as accurate as the residual asks for.
-            let eta = (merit.worst / peak).clamp(1e-10, 1e-2);
+            // Inexact Newton with the forcing term √(residual): superlinear, and the early
+            // solves loose.
+            let eta = (merit.worst / peak).sqrt().clamp(1e-10, 1e-2);
             let it = self.newton_direction(k, eta);
             tally.cg += it;
             let mut alpha = 1.0;
@@ -405,98 +438,94 @@ impl AdhesiveSolver {
         self.contact_from_ncp(k);
     }
 
-    /// The landing after a jump (module docs): `p ← w·P(g)` off the contact set, the contact
-    /// set solved exactly, its membership updated (`p < w·P(0)` leaves, `g < 0` joins), until the
-    /// residual is below `target` of the peak (returns true) or after [`RELAX_CAP`] iterations (false).
-    fn relax_smooth(&mut self, d: f64, k: f64, peak: f64, target: f64, tally: &mut Tally) -> bool {
+    /// The landing after a jump (module docs), on the window around the contact and the law's
+    /// reach when the grid is a free half-space and the window is smaller ([`Self::landing_window`];
+    /// not for the last landing, which must meet Newton's tolerance everywhere), otherwise on the
+    /// grid. Returns whether the landing met `target` within [`RELAX_CAP`] iterations.
+    fn relax_smooth(
+        &mut self,
+        d: f64,
+        k: f64,
+        peak: f64,
+        target: f64,
+        last: bool,
+        tally: &mut Tally,
+    ) -> bool {
         let weights = self.weights();
-        // The contact solves need only be as exact as the landing is far from its target.
-        let mut level = 1e-6;
         let pre = self.options.preconditioned;
-        let mut held = Array2::from_elem(self.bonded.dim(), false);
-        for _ in 0..RELAX_CAP {
-            let cg = SolverOptions {
-                tolerance: level,
-                ..self.options.cg
+        let cg = self.options.cg;
+        let window = if last { None } else { self.landing_window() };
+        let s = self.smooth.as_mut().expect("a smooth law");
+        let t = s.traction;
+        let b = &mut self.base;
+        let Some(w) = window else {
+            let patch = Patch {
+                op: b.op.as_mut(),
+                heights: b.surface.heights().view(),
+                pressure: &mut b.pressure,
+                gap: &mut b.gap,
+                bonded: &mut self.bonded,
+                work: &mut b.work,
+                pcg: &mut self.pcg,
+                origin: (0, 0),
             };
-            tally.rounds += 1;
-            let t = self.smooth.as_ref().expect("a smooth law").traction;
-            // Off the contact set every element takes its law's pressure; where the law
-            // stiffens (`s < 0`, the Lennard-Jones law next to its wall) the plain update would
-            // overshoot by `|s|k` and diverge, so it is damped to the element's own Newton step
-            // `1/(1 + |s|k)`.
-            Zip::indexed(&mut self.base.pressure)
-                .and(&self.base.gap)
-                .and(&self.bonded)
-                .and(&mut held)
-                .for_each(|(i, j), p, &g, &b, h| {
-                    *h = !b;
-                    if !b {
-                        let w = weights.at2(i, j);
-                        let g = g.max(0.0);
-                        let target = w * t.pressure(g);
-                        let s = w * t.stiffness(g);
-                        *p = if s < 0.0 {
-                            *p + (target - *p) / (1.0 - s * k)
-                        } else {
-                            target
-                        };
-                    }
-                });
-            let base = &mut self.base;
-            if self.bonded.iter().any(|&b| b) {
-                let c = crate::cg::pcg_holding(
-                    base.op.as_mut(),
-                    base.surface.heights().view(),
-                    self.bonded.view(),
-                    Some(held.view()),
-                    d,
-                    base.pressure.view_mut(),
-                    &mut base.work,
-                    &mut self.pcg,
-                    &cg,
-                    pre,
-                );
-                tally.cg += c.iterations;
-            } else {
-                base.op
-                    .apply(base.pressure.view(), base.work.disp.view_mut());
-                tally.cg += 1;
-            }
-            base.update_gap(d);
-            // Contact membership: leave under tension beyond the law's, join on penetration.
-            let mut changed = false;
-            Zip::indexed(&mut self.bonded)
-                .and(&self.base.pressure)
-                .and(&self.base.gap)
-                .for_each(|(i, j), b, &p, &g| {
-                    let wall = weights.at2(i, j) * t.pressure(0.0);
-                    if *b && p < wall {
-                        *b = false;
-                        changed = true;
-                    } else if !*b && g < 0.0 {
-                        *b = true;
-                        changed = true;
-                    }
-                });
-            if changed {
-                continue;
-            }
-            let m = merit_of(
-                &t,
-                &weights,
-                self.base.pressure.as_slice().expect("contiguous"),
-                self.base.gap.as_slice().expect("contiguous"),
-                k,
-            );
-            if m.worst <= target * peak {
-                return true;
-            }
-            level = (1e-3 * m.worst / peak).clamp(1e-10, 1e-6);
-        }
-        false
+            return relax(patch, &t, &weights, (d, k, peak, target), (pre, cg), tally);
+        };
+        // The pressure outside the window is held: its displacement enters the window's
+        // heights, `f + K p_out` (one product on the grid).
+        let block = ndarray::s![w.i0..w.i1, w.j0..w.j1];
+        s.trial.assign(&b.pressure);
+        s.trial.slice_mut(block).fill(0.0);
+        b.op.apply(s.trial.view(), s.trial_disp.view_mut());
+        tally.cg += 1;
+        let (dx, e_star) = (b.grid().dx(), b.op.e_star());
+        let lp = s.landings.get_or_insert_with(w.shape(), || LandingPatch {
+            sub: crate::subgrid::SubProblem::new(w.shape(), dx, e_star),
+            gap: Array2::zeros(w.shape()),
+        });
+        lp.sub.load(b, &self.bonded, &w);
+        Zip::from(&mut lp.sub.heights)
+            .and(s.trial_disp.slice(block))
+            .for_each(|h, &u| *h += u);
+        lp.sub
+            .op
+            .apply(lp.sub.pressure.view(), lp.sub.work.disp.view_mut());
+        tally.cg += 1;
+        crate::base::gap_of(
+            lp.gap.view_mut(),
+            lp.sub.heights.view(),
+            lp.sub.work.disp.view(),
+            d,
+        );
+        let patch = Patch {
+            op: &mut lp.sub.op,
+            heights: lp.sub.heights.view(),
+            pressure: &mut lp.sub.pressure,
+            gap: &mut lp.gap,
+            bonded: &mut lp.sub.bonded,
+            work: &mut lp.sub.work,
+            pcg: &mut lp.sub.pcg,
+            origin: (w.i0, w.j0),
+        };
+        let done = relax(patch, &t, &weights, (d, k, peak, target), (pre, cg), tally);
+        b.pressure.slice_mut(block).assign(&lp.sub.pressure);
+        done
     }
 
+    /// The window a landing runs on: the box of the contact and of every element whose law's
+    /// pressure at its gap exceeds [`LANDING_REACH`] of its peak, grown as a sub-grid solve's
+    /// window; `None` when the grid is periodic, sub-grids are off or the window would not be
+    /// cheaper than the grid.
+    fn landing_window(&self) -> Option<tack_geometry::Window> {
+        let s = self.smooth.as_ref().expect("a smooth law");
+        let t = s.traction;
+        let cut = LANDING_REACH * t.pressure(0.0).abs().max(self.sigma_c);
+        let mask = Zip::from(&self.bonded)
+            .and(&self.base.gap)
+            .map_collect(|&b, &g| b || t.pressure(g.max(0.0)).abs() > cut);
+        let (tight, _) = crate::subgrid::bounding_box(&mask, None);
+        self.subgrid_around(tight)
+    }
     /// Secant predictor over every element (the smooth laws load all of them); restarts after a
     /// landing, whose jump a secant would extrapolate.
     fn predict_smooth(&mut self, d: f64) {
@@ -534,6 +563,11 @@ impl AdhesiveSolver {
             });
     }
 
+    /// The smooth law's traction.
+    fn traction(&self) -> Traction {
+        self.smooth.as_ref().expect("a smooth law").traction
+    }
+
     /// Each element's share `w = γ_ij/γ` of the law (1 without a γ map).
     fn weights(&self) -> Weights {
         Weights(
@@ -541,6 +575,162 @@ impl AdhesiveSolver {
             self.bonded.ncols(),
         )
     }
+}
+
+/// The grid, or a window of it, a landing relaxes on: its operator, heights (with the held
+/// pressure's displacement outside a window), state and CG buffers, and the window's first
+/// element in the grid (for the γ map's weights).
+struct Patch<'a> {
+    op: &'a mut dyn tack_kernels::ElasticOperator,
+    heights: ndarray::ArrayView2<'a, f64>,
+    pressure: &'a mut Array2<f64>,
+    gap: &'a mut Array2<f64>,
+    bonded: &'a mut Array2<bool>,
+    work: &'a mut crate::cg::Work,
+    pcg: &'a mut crate::cg::PcgWork,
+    origin: (usize, usize),
+}
+
+/// A landing window's bonded-set problem and its gap.
+struct LandingPatch {
+    sub: crate::subgrid::SubProblem,
+    gap: Array2<f64>,
+}
+
+/// The landing's flow on `patch` (module docs), from the patch's pressure and gap: `p ← w·P(g)`
+/// off the contact set with Nesterov's momentum (restarted when a step turns against the flow
+/// or the contact set changes), the contact set solved exactly each time, its membership
+/// updated (`p < w·P(0)` leaves, `g < 0` joins), until the residual is below `target` of the
+/// peak (true) or after [`RELAX_CAP`] iterations (false). `at` is `(d, k, peak, target)`, `cg`
+/// the preconditioning switch and the contact solves' options.
+fn relax(
+    patch: Patch,
+    t: &Traction,
+    weights: &Weights,
+    at: (f64, f64, f64, f64),
+    cg: (bool, SolverOptions),
+    tally: &mut Tally,
+) -> bool {
+    let Patch {
+        op,
+        heights,
+        pressure,
+        gap,
+        bonded,
+        work,
+        pcg,
+        origin: (oi, oj),
+    } = patch;
+    let (d, k, peak, target) = at;
+    let (pre, options) = cg;
+    let weight = |i: usize, j: usize| weights.at2(i + oi, j + oj);
+    // The contact solves need only be as exact as the landing is far from its target.
+    let mut level = LANDING_CG;
+    let shape = bonded.dim();
+    let mut held = Array2::from_elem(shape, false);
+    // `x`: the last map value off the contact set; `clock`: the momentum's (1 after a restart).
+    let mut x = Array2::<f64>::zeros(shape);
+    let mut map = Array2::<f64>::zeros(shape);
+    let mut clock = 1.0f64;
+    let mut fresh = true;
+    for _ in 0..RELAX_CAP {
+        tally.rounds += 1;
+        Zip::from(&mut held).and(&*bonded).for_each(|h, &b| *h = !b);
+        // Off the contact set every element takes its law's pressure `m`; where the law
+        // stiffens (`s < 0`, the Lennard-Jones law next to its wall) the plain update would
+        // overshoot by `|s|k` and diverge, so it is damped to the element's own Newton step
+        // `1/(1 + |s|k)`. The restart tests `(y − m)·(m − x) > 0`: the last step turned
+        // against the flow.
+        let mut turn = 0.0;
+        Zip::indexed(&mut map)
+            .and(&*pressure)
+            .and(&*gap)
+            .and(&held)
+            .and(&x)
+            .for_each(|(i, j), m, &p, &g, &h, &x| {
+                if h {
+                    let w = weight(i, j);
+                    let g = g.max(0.0);
+                    let target = w * t.pressure(g);
+                    let s = w * t.stiffness(g);
+                    *m = if s < 0.0 {
+                        p + (target - p) / (1.0 - s * k)
+                    } else {
+                        target
+                    };
+                    turn += (p - *m) * (*m - x);
+                }
+            });
+        let beta = if fresh || turn > 0.0 {
+            clock = 1.0;
+            0.0
+        } else {
+            let next = 0.5 * (1.0 + (1.0 + 4.0 * clock * clock).sqrt());
+            let beta = (clock - 1.0) / next;
+            clock = next;
+            beta
+        };
+        fresh = false;
+        // `y ← m + β (m − x)`, `x ← m`.
+        Zip::from(&mut *pressure)
+            .and(&mut x)
+            .and(&map)
+            .and(&held)
+            .for_each(|p, x, &m, &h| {
+                if h {
+                    *p = m + beta * (m - *x);
+                    *x = m;
+                }
+            });
+        if bonded.iter().any(|&b| b) {
+            let opts = SolverOptions {
+                tolerance: level,
+                ..options
+            };
+            let c = crate::cg::pcg_holding(
+                &mut *op,
+                heights,
+                bonded.view(),
+                Some(held.view()),
+                d,
+                pressure.view_mut(),
+                work,
+                pcg,
+                &opts,
+                pre,
+            );
+            tally.cg += c.iterations;
+        } else {
+            op.apply(pressure.view(), work.disp.view_mut());
+            tally.cg += 1;
+        }
+        crate::base::gap_of(gap.view_mut(), heights, work.disp.view(), d);
+        // Contact membership: leave under tension beyond the law's, join on penetration.
+        let mut changed = false;
+        Zip::indexed(&mut *bonded)
+            .and(&*pressure)
+            .and(&*gap)
+            .for_each(|(i, j), b, &p, &g| {
+                let wall = weight(i, j) * t.pressure(0.0);
+                if *b && p < wall {
+                    *b = false;
+                    changed = true;
+                } else if !*b && g < 0.0 {
+                    *b = true;
+                    changed = true;
+                }
+            });
+        if changed {
+            fresh = true;
+            continue;
+        }
+        let m = merit_with(t, |i| weight(i / shape.1, i % shape.1), pressure, gap, k);
+        if m.worst <= target * peak {
+            return true;
+        }
+        level = (1e-2 * m.worst / peak).clamp(1e-10, LANDING_CG);
+    }
+    false
 }
 
 /// Each element's share `w = γ_ij/γ` of the law, in row-major order (`None`: 1 everywhere),
@@ -570,6 +760,27 @@ fn merit_of(t: &Traction, w: &Weights, p: &[f64], g: &[f64], k: f64) -> Merit {
     let (mut sum, mut worst) = (0.0, 0.0f64);
     for i in 0..p.len() {
         let (phi, _) = ncp(t, w.at(i), p[i], g[i], k);
+        sum += phi * phi;
+        worst = worst.max(phi.abs());
+    }
+    Merit { sum, worst }
+}
+
+/// [`merit_of`] on a patch's arrays, with its weights by row-major index.
+fn merit_with(
+    t: &Traction,
+    w: impl Fn(usize) -> f64,
+    p: &Array2<f64>,
+    g: &Array2<f64>,
+    k: f64,
+) -> Merit {
+    let (p, g) = (
+        p.as_slice().expect("contiguous"),
+        g.as_slice().expect("contiguous"),
+    );
+    let (mut sum, mut worst) = (0.0, 0.0f64);
+    for i in 0..p.len() {
+        let (phi, _) = ncp(t, w(i), p[i], g[i], k);
         sum += phi * phi;
         worst = worst.max(phi.abs());
     }
