@@ -668,7 +668,7 @@ pub fn rough(args: &[String]) -> Result<()> {
 /// random roughness H = 0.5, h = 0.0052, seed 1, E* = 1, γ = 1.44868e-4 (a_c ≈ 0.078 R), one
 /// load step to d = 0.02255, retraction by 5.5e-4 while compressive and 5.5e-5 once tensile.
 /// `round_tolerance = 0` runs the exact detach/attach loop (the previous version).
-fn rough_sphere_scene(n: usize, exact_rounds: bool) -> Result<tack::Scene> {
+pub(crate) fn rough_sphere_scene(n: usize, exact_rounds: bool) -> Result<tack::Scene> {
     let solver = if exact_rounds {
         "[solver]\nround_tolerance = 0\n"
     } else {

@@ -34,6 +34,15 @@ pub enum Law {
         /// Range ρ.
         rho: f64,
     },
+    /// Lennard-Jones 9–3 with the wall at the equilibrium separation ε: with h = g + ε,
+    /// p(g) = −(8γ/3ε)[(ε/h)³ − (ε/h)⁹], zero at the wall; potential
+    /// V(g) = −(8γ/3)[(ε/h)²/2 − (ε/h)⁸/8] (V(0) = −γ).
+    LennardJones {
+        /// Work of adhesion γ.
+        gamma: f64,
+        /// Equilibrium separation ε.
+        eps: f64,
+    },
     /// p = −σ0 for 0 < g < h0, 0 beyond (γ = σ0 h0); hard wall at g = 0.
     Dugdale {
         /// Cohesive stress σ0.
@@ -48,7 +57,7 @@ impl Law {
     pub fn gamma(&self) -> f64 {
         match *self {
             Law::None => 0.0,
-            Law::Exponential { gamma, .. } => gamma,
+            Law::Exponential { gamma, .. } | Law::LennardJones { gamma, .. } => gamma,
             Law::Dugdale { sigma0, h0 } => sigma0 * h0,
         }
     }
@@ -57,6 +66,7 @@ impl Law {
         match *self {
             Law::None => 0.0,
             Law::Exponential { gamma, rho } => -gamma / rho,
+            Law::LennardJones { .. } => 0.0,
             Law::Dugdale { sigma0, .. } => -sigma0,
         }
     }
@@ -65,6 +75,10 @@ impl Law {
         match *self {
             Law::None => 0.0,
             Law::Exponential { gamma, rho } => -gamma / rho * (-g.max(0.0) / rho).exp(),
+            Law::LennardJones { gamma, eps } => {
+                let t = eps / (g.max(0.0) + eps);
+                -(8.0 * gamma / (3.0 * eps)) * (t.powi(3) - t.powi(9))
+            }
             Law::Dugdale { sigma0, h0 } => {
                 if g < h0 {
                     -sigma0
@@ -78,6 +92,12 @@ impl Law {
     fn dp(&self, g: f64) -> f64 {
         match *self {
             Law::Exponential { gamma, rho } => gamma / (rho * rho) * (-g.max(0.0) / rho).exp(),
+            Law::LennardJones { gamma, eps } => {
+                // p = −A(t³ − t⁹), t = ε/h, dt/dh = −t/h: dp/dh = (3A/h)(t³ − 3t⁹).
+                let h = g.max(0.0) + eps;
+                let t = eps / h;
+                (8.0 * gamma / (eps * h)) * (t.powi(3) - 3.0 * t.powi(9))
+            }
             _ => 0.0,
         }
     }
@@ -86,14 +106,20 @@ impl Law {
         match *self {
             Law::None => 0.0,
             Law::Exponential { gamma, rho } => -gamma * (-g.max(0.0) / rho).exp(),
+            Law::LennardJones { gamma, eps } => {
+                let t = eps / (g.max(0.0) + eps);
+                -(8.0 * gamma / 3.0) * (0.5 * t.powi(2) - 0.125 * t.powi(8))
+            }
             Law::Dugdale { sigma0, h0 } => -sigma0 * (h0 - g).max(0.0),
         }
     }
     /// Gap beyond which an exponential traction is below 1e-11 of the wall value (not an
-    /// unknown of Newton's method: set explicitly from the gap).
+    /// unknown of Newton's method: set explicitly from the gap); the Lennard-Jones tail is
+    /// algebraic, so every free ring stays an unknown.
     fn cut(&self) -> f64 {
         match *self {
             Law::Exponential { rho, .. } => 25.0 * rho,
+            Law::LennardJones { .. } => f64::INFINITY,
             _ => 0.0,
         }
     }
@@ -372,7 +398,11 @@ impl Reference {
 
     fn p_scale(&self) -> f64 {
         let m = self.p.iter().fold(0.0_f64, |m, p| m.max(p.abs()));
-        m.max(-self.law.wall()).max(1e-300)
+        let peak = match self.law {
+            Law::LennardJones { gamma, eps } => 16.0 * gamma / (9.0 * 3f64.sqrt() * eps),
+            _ => -self.law.wall(),
+        };
+        m.max(peak).max(1e-300)
     }
 
     /// Traction of free ring j given all gaps, and its non-zero derivatives dp_j/dg_k. The
@@ -383,7 +413,7 @@ impl Reference {
         der.clear();
         match self.law {
             Law::None => 0.0,
-            Law::Exponential { .. } => {
+            Law::Exponential { .. } | Law::LennardJones { .. } => {
                 if g[j] < self.law.cut() {
                     der.push((j, self.law.dp(g[j])));
                 }
