@@ -47,6 +47,22 @@ fn reference(rho: f64, approaches: &[f64]) -> Vec<axisym::Point> {
     approaches.iter().map(|&d| r.step(d)).collect()
 }
 
+/// A path's pull-off `F`, the reference's `F_ref` (both the least force over the path) and the
+/// curve's error: the largest force difference away from the reference's jumps, relative to
+/// `|F_ref|`.
+fn against(result: &PathResult, refs: &[axisym::Point]) -> (f64, f64, f64) {
+    let f_ref = refs.iter().map(|p| p.force).fold(f64::INFINITY, f64::min);
+    let worst = result
+        .records
+        .iter()
+        .zip(refs)
+        .filter(|(_, p)| p.converged && !p.jumped)
+        .map(|(r, p)| (r.force - p.force).abs())
+        .fold(0.0f64, f64::max)
+        / f_ref.abs();
+    (result.pull_off_force(), f_ref, worst)
+}
+
 /// Lennard-Jones 9–3 at Tabor μ = 1 (ε = 1): the pull-off and both branches against the ring
 /// solution of the same law, on a domain of half-width 12 (the law's algebraic tail beyond it
 /// carries about 3e-4 of the pull-off in both; a half-width of 6 would leave 0.5%).
@@ -69,16 +85,7 @@ fn lennard_jones_sphere_follows_the_ring_solution() {
             let mut r = axisym::Reference::with_edges(1.0, 1.0, law, edges);
             refs = approaches.iter().map(|&d| r.step(d)).collect();
         }
-        let f_ref = refs.iter().map(|p| p.force).fold(f64::INFINITY, f64::min);
-        let f = result.pull_off_force();
-        let worst = result
-            .records
-            .iter()
-            .zip(&refs)
-            .filter(|(_, p)| p.converged && !p.jumped)
-            .map(|(r, p)| (r.force - p.force).abs())
-            .fold(0.0f64, f64::max)
-            / f_ref.abs();
+        let (f, f_ref, worst) = against(&result, &refs);
         eprintln!(
             "n = {n}, dx = {dx}: F/(πγR) = {:.5} (ring {:.5}), error {:+.3}%, curve {:.3}%, {secs:.2} s, converged {}",
             f / -PI,
@@ -169,17 +176,7 @@ fn exponential_sphere_follows_the_ring_solution() {
             refs = reference(rho, &approaches);
         }
         assert_eq!(refs.len(), approaches.len(), "the same path at every n");
-        let f_ref = refs.iter().map(|p| p.force).fold(f64::INFINITY, f64::min);
-        let f = result.pull_off_force();
-        // The curve: the largest force difference away from the jumps, relative to |F_ref|.
-        let worst = result
-            .records
-            .iter()
-            .zip(&refs)
-            .filter(|(_, p)| p.converged && !p.jumped)
-            .map(|(r, p)| (r.force - p.force).abs())
-            .fold(0.0f64, f64::max)
-            / f_ref.abs();
+        let (f, f_ref, worst) = against(&result, &refs);
         let zone = 8.0 / (3.0 * PI) * rho * rho / dx;
         eprintln!(
             "n = {n}, dx = {dx}: zone/dx = {zone:.2}, F/(πγR) = {:.5} (ring {:.5}), error {:+.3}%, curve {:.3}%, {secs:.2} s",
