@@ -32,10 +32,10 @@
 //! unstable states and converges to a stable one, the new branch. Newton then finishes from
 //! there. Under the exponential law Newton also hands over to the flow when its residual is
 //! beyond [`NEWTON_REACH`] of the peak (a predictor across a hop of the front), where it would
-//! wander. The flow is the
-//! energy's gradient descent in the metric of `K⁻¹` (the energy's gradient is `K(p − P(g))`);
-//! Nesterov's momentum accelerates it, restarted whenever a step turns against the flow or the
-//! contact set changes, so it stays a descent towards a stable state. On free half-space grids
+//! wander. The flow is the energy's gradient descent in the metric of `K⁻¹` (the energy's
+//! gradient is `K(p − P(g))`); Nesterov's momentum accelerates it, restarted whenever a step
+//! turns against the flow or the contact set changes, so it stays a descent towards a stable
+//! state. On free half-space grids
 //! a landing runs on the window of the contact and the law's reach, the pressure outside held
 //! (its displacement enters once), and Newton finishes on the grid. Every loop is capped; a
 //! step that meets a cap reports `converged = false`.
@@ -278,10 +278,10 @@ impl AdhesiveSolver {
         let b = &mut self.base;
         b.op.apply(b.pressure.view(), b.work.disp.view_mut());
         b.update_gap(d);
-        let t = self.smooth.as_ref().expect("a smooth law").traction;
+        let weights = self.weights();
         let m = merit_of(
-            &t,
-            &self.weights(),
+            &self.traction(),
+            |i| weights.at(i),
             self.base.pressure.as_slice().expect("contiguous"),
             self.base.gap.as_slice().expect("contiguous"),
             k,
@@ -292,7 +292,7 @@ impl AdhesiveSolver {
 
     /// The bonded (contact) set from the complementarity rule at the current state.
     fn contact_from_ncp(&mut self, k: f64) {
-        let t = self.smooth.as_ref().expect("a smooth law").traction;
+        let t = self.traction();
         let w = self.weights();
         let p = self.base.pressure.as_slice().expect("contiguous");
         let g = self.base.gap.as_slice().expect("contiguous");
@@ -425,7 +425,7 @@ impl AdhesiveSolver {
         }
         merit_of(
             &s.traction,
-            &weights,
+            |i| weights.at(i),
             s.trial.as_slice().expect("contiguous"),
             &s.v,
             k,
@@ -715,26 +715,17 @@ fn relax(
             tally.cg += 1;
         }
         crate::base::gap_of(gap.view_mut(), heights, work.disp.view(), d);
-        // Contact membership: leave under tension beyond the law's, join on penetration.
-        let mut changed = false;
-        Zip::indexed(&mut *bonded)
-            .and(&*pressure)
-            .and(&*gap)
-            .for_each(|(i, j), b, &p, &g| {
-                let wall = weight(i, j) * t.pressure(0.0);
-                if *b && p < wall {
-                    *b = false;
-                    changed = true;
-                } else if !*b && g < 0.0 {
-                    *b = true;
-                    changed = true;
-                }
-            });
-        if changed {
+        if update_membership(bonded, pressure, gap, |i, j| weight(i, j) * t.pressure(0.0)) {
             fresh = true;
             continue;
         }
-        let m = merit_with(t, |i| weight(i / shape.1, i % shape.1), pressure, gap, k);
+        let m = merit_of(
+            t,
+            |i| weight(i / shape.1, i % shape.1),
+            pressure.as_slice().expect("contiguous"),
+            gap.as_slice().expect("contiguous"),
+            k,
+        );
         if m.worst <= target * peak {
             return true;
         }
@@ -783,28 +774,8 @@ pub(crate) struct Merit {
     worst: f64,
 }
 
-fn merit_of(t: &Traction, w: &Weights, p: &[f64], g: &[f64], k: f64) -> Merit {
-    let (mut sum, mut worst) = (0.0, 0.0f64);
-    for i in 0..p.len() {
-        let (phi, _) = ncp(t, w.at(i), p[i], g[i], k);
-        sum += phi * phi;
-        worst = worst.max(phi.abs());
-    }
-    Merit { sum, worst }
-}
-
-/// [`merit_of`] on a patch's arrays, with its weights by row-major index.
-fn merit_with(
-    t: &Traction,
-    w: impl Fn(usize) -> f64,
-    p: &Array2<f64>,
-    g: &Array2<f64>,
-    k: f64,
-) -> Merit {
-    let (p, g) = (
-        p.as_slice().expect("contiguous"),
-        g.as_slice().expect("contiguous"),
-    );
+/// The [`Merit`] of pressures `p` and gaps `g` (row-major), with each element's weight `w(i)`.
+fn merit_of(t: &Traction, w: impl Fn(usize) -> f64, p: &[f64], g: &[f64], k: f64) -> Merit {
     let (mut sum, mut worst) = (0.0, 0.0f64);
     for i in 0..p.len() {
         let (phi, _) = ncp(t, w(i), p[i], g[i], k);
@@ -812,6 +783,30 @@ fn merit_with(
         worst = worst.max(phi.abs());
     }
     Merit { sum, worst }
+}
+
+/// A landing's contact membership: an element leaves under tension beyond its law's at the
+/// wall (`wall(i, j)`), and joins on penetration; returns whether any element changed.
+fn update_membership(
+    bonded: &mut Array2<bool>,
+    pressure: &Array2<f64>,
+    gap: &Array2<f64>,
+    wall: impl Fn(usize, usize) -> f64,
+) -> bool {
+    let mut changed = false;
+    Zip::indexed(bonded)
+        .and(pressure)
+        .and(gap)
+        .for_each(|(i, j), b, &p, &g| {
+            if *b && p < wall(i, j) {
+                *b = false;
+                changed = true;
+            } else if !*b && g < 0.0 {
+                *b = true;
+                changed = true;
+            }
+        });
+    changed
 }
 
 /// A symmetric operator with a symmetric positive definite preconditioner, for [`Minres`].

@@ -70,6 +70,14 @@ impl Law {
             Law::Dugdale { sigma0, .. } => -sigma0,
         }
     }
+    /// Greatest tension of the law: at the wall, except for Lennard-Jones (zero at the wall,
+    /// 16γ/(9√3ε) at h = 3^(1/6)ε).
+    fn peak(&self) -> f64 {
+        match *self {
+            Law::LennardJones { gamma, eps } => 16.0 * gamma / (9.0 * 3f64.sqrt() * eps),
+            _ => -self.wall(),
+        }
+    }
     /// Pressure at gap g > 0 (for Dugdale the single-valued version, 0 at g ≥ h0).
     fn p(&self, g: f64) -> f64 {
         match *self {
@@ -398,11 +406,7 @@ impl Reference {
 
     fn p_scale(&self) -> f64 {
         let m = self.p.iter().fold(0.0_f64, |m, p| m.max(p.abs()));
-        let peak = match self.law {
-            Law::LennardJones { gamma, eps } => 16.0 * gamma / (9.0 * 3f64.sqrt() * eps),
-            _ => -self.law.wall(),
-        };
-        m.max(peak).max(1e-300)
+        m.max(self.law.peak()).max(1e-300)
     }
 
     /// Traction of free ring j given all gaps, and its non-zero derivatives dp_j/dg_k. The
