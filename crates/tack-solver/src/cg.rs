@@ -109,6 +109,7 @@ pub(crate) fn pcg(
         heights,
         bonded,
         None,
+        None,
         d,
         pressure,
         w,
@@ -120,13 +121,16 @@ pub(crate) fn pcg(
 
 /// [`pcg`] with the pressure of the `held` elements off the bonded set kept as it is (the
 /// Dugdale law's cohesive zone): the solve is then `K_CC p_C = (d − f − K_CH p_H)_C` and
-/// `work.disp = K p` includes the held pressure.
+/// `work.disp = K p` includes the held pressure. With `diagonal` (`c ≥ 0` per element) the
+/// matrix on the set is `K_CC + diag(c)` (still symmetric positive definite): a smooth law's
+/// landing solves its stiff elements' linearised law `u_i + c_i p_i = d − f_i` with the set.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn pcg_holding(
     op: &mut dyn ElasticOperator,
     heights: ArrayView2<f64>,
     bonded: ArrayView2<bool>,
     held: Option<ArrayView2<bool>>,
+    diagonal: Option<ArrayView2<f64>>,
     d: f64,
     mut pressure: ArrayViewMut2<f64>,
     w: &mut Work,
@@ -151,12 +155,15 @@ pub(crate) fn pcg_holding(
         .max(f64::MIN_POSITIVE);
     let target = (options.tolerance * scale).powi(2) * n_c as f64;
     let max_it = options.max_iterations;
+    let diag = diagonal
+        .as_ref()
+        .map(|c| c.as_slice().expect("contiguous diagonal"));
     let mut it = 0;
     // The true residual is recomputed from `K p` at every (re)start; inside the loop `disp` is
     // carried along (`disp += α K s`), so a converged solve needs no further product.
     op.apply(pressure.view(), w.disp.view_mut());
     loop {
-        let rr = bonded_residual(f, c, d, &w.disp, &mut pw.resid);
+        let rr = bonded_residual(f, c, diag, d, &pressure, &w.disp, &mut pw.resid);
         let residual = (rr / n_c as f64).sqrt() / scale;
         if rr <= target || it >= max_it {
             return Convergence {
@@ -171,8 +178,8 @@ pub(crate) fn pcg_holding(
         while it < max_it {
             it += 1;
             op.apply(w.dir.view(), w.kdir.view_mut());
-            let alpha = rz / curvature(c, w);
-            let rr_new = advance(alpha, c, pressure.view_mut(), &mut pw.resid, w);
+            let alpha = rz / curvature(c, diag, w);
+            let rr_new = advance(alpha, c, diag, pressure.view_mut(), &mut pw.resid, w);
             if rr_new <= target {
                 break;
             }
@@ -248,32 +255,39 @@ fn clear_off_set(f: &[f64], c: &[bool], h: Option<&[bool]>, d: f64, p: &mut [f64
     total
 }
 
-/// The residual `r = d − f − u` on the bonded set `c` (0 off it) into `resid`, from the
-/// displacement `disp`; returns Σ r².
+/// The residual `r = d − f − u` (`− c p` with a diagonal) on the bonded set `c` (0 off it) into
+/// `resid`, from the displacement `disp`; returns Σ r².
 fn bonded_residual(
     f: &[f64],
     c: &[bool],
+    diag: Option<&[f64]>,
     d: f64,
+    pressure: &ArrayViewMut2<f64>,
     disp: &Array2<f64>,
     resid: &mut Array2<f64>,
 ) -> f64 {
     let u = disp.as_slice().expect("contiguous");
+    let p = pressure.as_slice().expect("contiguous pressure");
     let resid = resid.as_slice_mut().expect("contiguous");
     chunked_mut(resid, |k, r| {
         let base = k * CHUNK;
         let mut s = 0.0;
         for (i, r) in r.iter_mut().enumerate() {
             let e = base + i;
-            *r = if c[e] { d - f[e] - u[e] } else { 0.0 };
+            *r = match (c[e], diag) {
+                (false, _) => 0.0,
+                (true, None) => d - f[e] - u[e],
+                (true, Some(cd)) => d - f[e] - u[e] - cd[e] * p[e],
+            };
             s += *r * *r;
         }
         s
     })
 }
 
-/// The curvature `sᵀ K s` of the search direction `w.dir` over the bonded set `c`, from its
-/// image `w.kdir`.
-fn curvature(c: &[bool], w: &Work) -> f64 {
+/// The curvature `sᵀ K s` (`+ sᵀ diag(c) s` with a diagonal) of the search direction `w.dir`
+/// over the bonded set `c`, from its image `w.kdir`.
+fn curvature(c: &[bool], diag: Option<&[f64]>, w: &Work) -> f64 {
     let (s, q) = (
         w.dir.as_slice().expect("contiguous"),
         w.kdir.as_slice().expect("contiguous"),
@@ -282,7 +296,10 @@ fn curvature(c: &[bool], w: &Work) -> f64 {
         let mut acc = 0.0;
         for e in r {
             if c[e] {
-                acc += s[e] * q[e];
+                acc += match diag {
+                    None => s[e] * q[e],
+                    Some(cd) => s[e] * (q[e] + cd[e] * s[e]),
+                };
             }
         }
         acc
@@ -294,6 +311,7 @@ fn curvature(c: &[bool], w: &Work) -> f64 {
 fn advance(
     alpha: f64,
     c: &[bool],
+    diag: Option<&[f64]>,
     mut pressure: ArrayViewMut2<f64>,
     resid: &mut Array2<f64>,
     w: &mut Work,
@@ -314,7 +332,10 @@ fn advance(
             u[i] += alpha * q[e];
             if c[e] {
                 p[i] += alpha * s[e];
-                r[i] -= alpha * q[e];
+                r[i] -= match diag {
+                    None => alpha * q[e],
+                    Some(cd) => alpha * (q[e] + cd[e] * s[e]),
+                };
                 acc += r[i] * r[i];
             }
         }
@@ -478,6 +499,7 @@ fn solve_with_zone(
             heights,
             bonded,
             Some(zone),
+            None,
             d,
             pressure.view_mut(),
             work,

@@ -35,7 +35,9 @@
 //! wander. The flow is the energy's gradient descent in the metric of `K⁻¹` (the energy's
 //! gradient is `K(p − P(g))`); Nesterov's momentum accelerates it, restarted whenever a step
 //! turns against the flow or the contact set changes, so it stays a descent towards a stable
-//! state. On free half-space grids
+//! state. Where a law stiffens beyond the body (the Lennard-Jones wall, `s k < −1`) an explicit
+//! step would overshoot: the landing solves those elements' linearised law with the contact set,
+//! a diagonal `1/|s|` added to the contact solve's matrix. On free half-space grids
 //! a landing runs on the window of the contact and the law's reach, the pressure outside held
 //! (its displacement enters once), and Newton finishes on the grid. Every loop is capped; a
 //! step that meets a cap reports `converged = false`.
@@ -636,6 +638,7 @@ fn relax(
     let mut level = LANDING_CG;
     let shape = bonded.dim();
     let mut held = Array2::from_elem(shape, false);
+    let mut wall = t.stiffens().then(|| StiffWall::new(heights));
     // `x`: the last map value off the contact set; `clock`: the momentum's (1 after a restart).
     let mut x = Array2::<f64>::zeros(shape);
     let mut map = Array2::<f64>::zeros(shape);
@@ -646,11 +649,13 @@ fn relax(
     for _ in 0..RELAX_CAP {
         tally.rounds += 1;
         Zip::from(&mut held).and(&*bonded).for_each(|h, &b| *h = !b);
-        // Off the contact set every element takes its law's pressure `m`; where the law
-        // stiffens (`s < 0`, the Lennard-Jones law next to its wall) the plain update would
-        // overshoot by `|s|k` and diverge, so it is damped to the element's own Newton step
-        // `1/(1 + |s|k)`. The restart tests `(y − m)·(m − x) > 0`: the last step turned
-        // against the flow.
+        if let Some(wall) = &mut wall {
+            wall.mark(&mut held, heights, gap, weight, t, k);
+        }
+        // Off the contact set every other element takes its law's pressure `m`; where the law
+        // stiffens less than the body (`−1 ≤ s k < 0`) the plain update would overshoot by
+        // `|s|k`, so it is damped to the element's own Newton step `1/(1 + |s|k)`. The restart
+        // tests `(y − m)·(m − x) > 0`: the last step turned against the flow.
         let mut turn = 0.0;
         Zip::indexed(&mut map)
             .and(&*pressure)
@@ -692,16 +697,21 @@ fn relax(
                     *x = m;
                 }
             });
-        if bonded.iter().any(|&b| b) {
+        let (solved, f, c) = match &wall {
+            Some(w) => (w.set.view(), w.shifted.view(), Some(w.diag.view())),
+            None => (bonded.view(), heights, None),
+        };
+        if solved.iter().any(|&b| b) {
             let opts = SolverOptions {
                 tolerance: level,
                 ..options
             };
             let c = crate::cg::pcg_holding(
                 &mut *op,
-                heights,
-                bonded.view(),
+                f,
+                solved,
                 Some(held.view()),
+                c,
                 d,
                 pressure.view_mut(),
                 work,
@@ -749,6 +759,65 @@ fn relax(
         level = (1e-2 * m.worst / peak).clamp(1e-10, LANDING_CG);
     }
     false
+}
+
+/// A landing's elements where the law is stiffer than the body (`s k < −1`, the Lennard-Jones
+/// law next to its wall), solved with the contact set: their linearised law
+/// `p = P(g) + s (g' − g)` is `u_i + c_i p_i = d − f'_i` with `c = 1/|s|` and
+/// `f' = f − g − c P(g)`, so the contact solve's matrix gains `diag(c)` and stays symmetric
+/// positive definite. An explicit step there would overshoot by `|s| k`.
+struct StiffWall {
+    /// The contact set and the stiff elements: the solve's set.
+    set: Array2<bool>,
+    /// `c = 1/|s|` on the stiff elements, 0 elsewhere.
+    diag: Array2<f64>,
+    /// The heights `f'`, shifted on the stiff elements.
+    shifted: Array2<f64>,
+}
+
+impl StiffWall {
+    fn new(heights: ndarray::ArrayView2<f64>) -> Self {
+        let shape = heights.dim();
+        Self {
+            set: Array2::from_elem(shape, false),
+            diag: Array2::zeros(shape),
+            shifted: heights.to_owned(),
+        }
+    }
+
+    /// Takes the stiff elements out of `held` (the elements off the contact set) into the
+    /// solve's set, linearised at their gaps `gap`.
+    fn mark(
+        &mut self,
+        held: &mut Array2<bool>,
+        heights: ndarray::ArrayView2<f64>,
+        gap: &Array2<f64>,
+        weight: impl Fn(usize, usize) -> f64,
+        t: &Traction,
+        k: f64,
+    ) {
+        Zip::indexed(&mut *held)
+            .and(&mut self.diag)
+            .and(&mut self.shifted)
+            .and(heights)
+            .and(gap)
+            .for_each(|(i, j), h, c, fs, &f, &g| {
+                let w = weight(i, j);
+                let g = g.max(0.0);
+                let s = w * t.stiffness(g);
+                if *h && s * k < -1.0 {
+                    *h = false;
+                    *c = -1.0 / s;
+                    *fs = f - g - *c * w * t.pressure(g);
+                } else {
+                    *c = 0.0;
+                    *fs = f;
+                }
+            });
+        Zip::from(&mut self.set)
+            .and(&*held)
+            .for_each(|c, &h| *c = !h);
+    }
 }
 
 /// Each element's share `w = γ_ij/γ` of the law, in row-major order (`None`: 1 everywhere),
