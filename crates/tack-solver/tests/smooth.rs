@@ -318,6 +318,34 @@ fn same_bits_on_one_and_two_threads() {
     }
 }
 
+/// The same for the Lennard-Jones law at μ = 3 (ε = 1/3), whose landings solve the stiff wall
+/// with the contact set (the contact CG with a diagonal): 64² elements of 0.16.
+#[test]
+fn lennard_jones_same_bits_on_one_and_two_threads() {
+    let run_on = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            run(
+                AdhesionLaw::LennardJones { range: 1.0 / 3.0 },
+                64,
+                0.16,
+                (-1.0, 0.5, 0.1, -1.2),
+            )
+        })
+    };
+    let (one, two) = (run_on(1), run_on(2));
+    assert!(one.all_converged());
+    assert_eq!(one.records.len(), two.records.len());
+    for (a, b) in one.records.iter().zip(&two.records) {
+        assert_eq!(a.force.to_bits(), b.force.to_bits());
+        assert_eq!(a.n_bonded, b.n_bonded);
+        assert_eq!(a.cg_iterations, b.cg_iterations);
+    }
+}
+
 /// Johnson (1995) as the range shrinks: the 1D periodic waviness h[1 − cos(2πx/λ)] (λ = 1,
 /// h = 0.01, E* = 1, γ = 5e-5: α = 0.318) under the exponential law; the most tensile mean
 /// pressure of the retraction against the least of Johnson's p̄/p* = sin²ψ − α√tanψ on the
