@@ -655,7 +655,8 @@ fn relax(
         tally.rounds += 1;
         Zip::from(&mut held).and(&*bonded).for_each(|h, &b| *h = !b);
         if let Some(wall) = &mut wall {
-            wall.mark(&mut held, heights, gap, weight, t, k);
+            // A change of the stiff set restarts the momentum, as a change of the contact set.
+            fresh |= wall.mark(&mut held, heights, gap, weight, t, k);
         }
         // Off the contact set every other element takes its law's pressure `m`; where the law
         // stiffens less than the body (`−1 ≤ s k < 0`) the plain update would overshoot by
@@ -787,7 +788,7 @@ impl StiffWall {
     }
 
     /// Takes the stiff elements out of `held` (the elements off the contact set) into the
-    /// solve's set, linearised at their gaps `gap`.
+    /// solve's set, linearised at their gaps `gap`; returns whether the stiff set changed.
     fn mark(
         &mut self,
         held: &mut Array2<bool>,
@@ -796,7 +797,8 @@ impl StiffWall {
         weight: impl Fn(usize, usize) -> f64,
         t: &Traction,
         k: f64,
-    ) {
+    ) -> bool {
+        let mut changed = false;
         Zip::indexed(&mut *held)
             .and(&mut self.diag)
             .and(&mut self.shifted)
@@ -806,6 +808,7 @@ impl StiffWall {
                 let w = weight(i, j);
                 let g = g.max(0.0);
                 let s = w * t.stiffness(g);
+                let was = *c > 0.0;
                 if *h && s * k < -1.0 {
                     *h = false;
                     *c = -1.0 / s;
@@ -814,10 +817,12 @@ impl StiffWall {
                     *c = 0.0;
                     *fs = f;
                 }
+                changed |= was != (*c > 0.0);
             });
         Zip::from(&mut self.set)
             .and(&*held)
             .for_each(|c, &h| *c = !h);
+        changed
     }
 }
 
