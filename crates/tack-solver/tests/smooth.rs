@@ -293,23 +293,16 @@ fn lennard_jones_at_tabor_3_converges_on_coarse_grids() {
     assert!(order > 2.0, "{errors:?}");
 }
 
-/// Same inputs, same bits, on one thread and on two: the whole curve of the μ = 1 sphere on a
-/// grid whose vectors the operator splits over threads (96² elements, padded 192²).
-#[test]
-fn same_bits_on_one_and_two_threads() {
+/// Runs `law` on `n` elements of `dx` along `path` (as [`run`]) in a pool of one thread and in
+/// one of two, asserts the same force bits, set sizes and products at every step, and returns
+/// the one-thread result.
+fn assert_same_bits(law: AdhesionLaw, n: usize, dx: f64, path: (f64, f64, f64, f64)) -> PathResult {
     let run_on = |threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()
             .unwrap();
-        pool.install(|| {
-            run(
-                AdhesionLaw::Exponential { range: 1.0 },
-                96,
-                0.125,
-                (-3.0, 1.0, 0.25, -2.0),
-            )
-        })
+        pool.install(|| run(law, n, dx, path))
     };
     let (one, two) = (run_on(1), run_on(2));
     assert_eq!(one.records.len(), two.records.len());
@@ -318,34 +311,24 @@ fn same_bits_on_one_and_two_threads() {
         assert_eq!((a.n_bonded, a.n_cohesive), (b.n_bonded, b.n_cohesive));
         assert_eq!(a.cg_iterations, b.cg_iterations);
     }
+    one
+}
+
+/// Same inputs, same bits, on one thread and on two: the whole curve of the μ = 1 sphere on a
+/// grid whose vectors the operator splits over threads (96² elements, padded 192²).
+#[test]
+fn same_bits_on_one_and_two_threads() {
+    let law = AdhesionLaw::Exponential { range: 1.0 };
+    assert_same_bits(law, 96, 0.125, (-3.0, 1.0, 0.25, -2.0));
 }
 
 /// The same for the Lennard-Jones law at μ = 3 (ε = 1/3), whose landings solve the stiff wall
 /// with the contact set (the contact CG with a diagonal): 64² elements of 0.16.
 #[test]
 fn lennard_jones_same_bits_on_one_and_two_threads() {
-    let run_on = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
-            run(
-                AdhesionLaw::LennardJones { range: 1.0 / 3.0 },
-                64,
-                0.16,
-                (-1.0, 0.5, 0.1, -1.2),
-            )
-        })
-    };
-    let (one, two) = (run_on(1), run_on(2));
+    let law = AdhesionLaw::LennardJones { range: 1.0 / 3.0 };
+    let one = assert_same_bits(law, 64, 0.16, (-1.0, 0.5, 0.1, -1.2));
     assert!(one.all_converged());
-    assert_eq!(one.records.len(), two.records.len());
-    for (a, b) in one.records.iter().zip(&two.records) {
-        assert_eq!(a.force.to_bits(), b.force.to_bits());
-        assert_eq!(a.n_bonded, b.n_bonded);
-        assert_eq!(a.cg_iterations, b.cg_iterations);
-    }
 }
 
 /// Johnson (1995) as the range shrinks: the 1D periodic waviness h[1 − cos(2πx/λ)] (λ = 1,
