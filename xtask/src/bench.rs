@@ -1064,7 +1064,7 @@ const DUGDALE_LAMBDA: f64 = 3.0 * 1.16;
 fn dugdale_sphere(n: usize, run: DugdaleRun) -> Result<(f64, usize, usize, usize, f64)> {
     use tack_geometry::{Sphere, Surface};
     use tack_solver::{
-        AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, SnapshotRequest,
+        AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, Dugdale, SnapshotRequest,
     };
     let lambda = DUGDALE_LAMBDA;
     let sigma0 = lambda / tack_analytics::maugis_lambda(1.0, 1.0, 1.0, 1.0);
@@ -1072,7 +1072,7 @@ fn dugdale_sphere(n: usize, run: DugdaleRun) -> Result<(f64, usize, usize, usize
     let surface = Surface::from_shape(grid, &Sphere::new(1.0)?);
     let t = Instant::now();
     let op = operator_for(grid, 1.0)?;
-    let law = AdhesionLaw::Dugdale { sigma0 };
+    let law = AdhesionLaw::Dugdale(Dugdale { sigma0 });
     let mut solver = AdhesiveSolver::with_law(op, &surface, 1.0, law, AdhesiveOptions::default())?;
     let step = 0.02;
     let path = if run == DugdaleRun::Cycle {

@@ -23,7 +23,8 @@ use std::time::Instant;
 use tack_geometry::{Boundary, Grid, Sphere, Surface};
 use tack_kernels::operator_for;
 use tack_solver::{
-    AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, KAPPA, SnapshotRequest,
+    AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, Dugdale, Exponential, JkrLimit,
+    KAPPA, LennardJones, SnapshotRequest,
 };
 
 use crate::bench::{Row, median_time};
@@ -71,18 +72,22 @@ fn laws() -> Vec<(&'static str, AdhesionLaw, Option<f64>)> {
     vec![
         (
             "exponential",
-            AdhesionLaw::Exponential { range },
+            AdhesionLaw::Exponential(Exponential { range }),
             Some(EXPONENTIAL_REFERENCE),
         ),
         (
             "lennard_jones",
-            AdhesionLaw::LennardJones { range },
+            AdhesionLaw::LennardJones(LennardJones { range }),
             Some(LENNARD_JONES_REFERENCE),
         ),
-        ("dugdale", AdhesionLaw::Dugdale { sigma0 }, Some(maugis)),
+        (
+            "dugdale",
+            AdhesionLaw::Dugdale(Dugdale { sigma0 }),
+            Some(maugis),
+        ),
         (
             "jkr_limit",
-            AdhesionLaw::JkrLimit { kappa: KAPPA },
+            AdhesionLaw::JkrLimit(JkrLimit { kappa: KAPPA }),
             Some(1.5),
         ),
     ]

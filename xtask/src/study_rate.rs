@@ -131,7 +131,7 @@ fn speeds(n: usize, s: &mut String) -> Result<()> {
     // Persson–Brener's toughening at the front's speed at pull-off, with their fixed cut-off the
     // exponential law's process zone at E0, times the elastic E0 pull-off: the quasi-static
     // reading F ∝ G(v).
-    let law = tack::solver::AdhesionLaw::Exponential { range: base.range };
+    let law = tack::solver::AdhesionLaw::from(tack::solver::Exponential { range: base.range });
     let cutoff = law.zone_length(1.0, base.gamma).unwrap_or(f64::NAN);
     writeln!(
         s,

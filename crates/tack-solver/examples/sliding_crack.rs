@@ -11,7 +11,7 @@ use std::time::Instant;
 use tack_analytics::{greenwood_johnson_toughening, persson_brener_toughening};
 use tack_geometry::{Boundary, Grid, Surface};
 use tack_kernels::operator_for;
-use tack_solver::{AdhesionLaw, AdhesiveOptions, AdhesiveSolver, Prony, Rates};
+use tack_solver::{AdhesionLaw, AdhesiveOptions, AdhesiveSolver, Dugdale, Prony, Rates};
 
 /// The wave `A(1 − cos 2π(x − shift))` on the strip of period 1.
 fn wave(grid: Grid, amplitude: f64, shift: f64) -> Result<Surface, Box<dyn std::error::Error>> {
@@ -49,7 +49,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let t = Instant::now();
         let speed = v_over * c0 / tau_r;
         let op = operator_for(grid, e0)?;
-        let law = AdhesionLaw::Dugdale { sigma0 };
+        let law = AdhesionLaw::Dugdale(Dugdale { sigma0 });
         let options = AdhesiveOptions::default();
         let mut s =
             AdhesiveSolver::with_law(op, &wave(grid, amplitude, 0.0)?, gamma, law, options)?;

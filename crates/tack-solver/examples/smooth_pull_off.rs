@@ -7,7 +7,10 @@ use std::f64::consts::PI;
 use std::time::Instant;
 use tack_geometry::{Boundary, Grid, Sphere, Surface};
 use tack_kernels::operator_for;
-use tack_solver::{AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, SnapshotRequest};
+use tack_solver::{
+    AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, Exponential, LennardJones,
+    SnapshotRequest,
+};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
@@ -23,8 +26,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let (radius, e_star, gamma, side) = (1.0, 1.0, 1e-3, 1.0);
     let range = (radius * gamma * gamma / (e_star * e_star * mu * mu * mu)).cbrt();
     let law = match law_name {
-        "lj" => AdhesionLaw::LennardJones { range },
-        _ => AdhesionLaw::Exponential { range },
+        "lj" => AdhesionLaw::LennardJones(LennardJones { range }),
+        _ => AdhesionLaw::Exponential(Exponential { range }),
     };
     let dx = side / n as f64;
     let grid = Grid::square(n, dx, boundary)?;

@@ -10,7 +10,8 @@ use std::time::Instant;
 use tack_geometry::{Boundary, Grid, Sphere, Surface};
 use tack_kernels::operator_for;
 use tack_solver::{
-    AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, Prony, Rates, SnapshotRequest,
+    AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, Exponential, Prony, Rates,
+    SnapshotRequest,
 };
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -18,7 +19,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let n: usize = args.get(1).map_or(Ok(48), |s| s.parse())?;
     let per_decade: usize = args.get(2).map_or(Ok(1), |s| s.parse())?;
     let (radius, gamma, range, side) = (1.0, 1e-3, 0.01, 1.2);
-    let law = AdhesionLaw::Exponential { range };
+    let law = AdhesionLaw::Exponential(Exponential { range });
     let grid = Grid::square(n, side / n as f64, Boundary::Free)?;
     let surface = Surface::from_shape(grid, &Sphere::new(radius)?);
     let solver = |e_star: f64| -> Result<AdhesiveSolver, Box<dyn std::error::Error>> {

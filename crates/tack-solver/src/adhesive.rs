@@ -12,7 +12,7 @@ use crate::cg::{PcgWork, assign};
 use crate::clusters::count_clusters;
 use crate::criterion::Criterion;
 use crate::dugdale::Dugdale;
-use crate::law::Cohesive;
+use crate::law::{Cohesive, Family, JkrLimit, Traction};
 use crate::relax::Relaxation;
 use crate::rounds::{Round, Rounds, SetRules, Tally};
 use crate::smooth::SmoothState;
@@ -147,7 +147,13 @@ impl AdhesiveSolver {
         kappa: f64,
         options: AdhesiveOptions,
     ) -> Result<Self, SolverError> {
-        Self::with_law(op, surface, gamma, AdhesionLaw::JkrLimit { kappa }, options)
+        Self::with_law(
+            op,
+            surface,
+            gamma,
+            AdhesionLaw::JkrLimit(JkrLimit { kappa }),
+            options,
+        )
     }
 
     /// A solver for `surface` against `op` with work of adhesion `gamma` under `law`: the
@@ -160,8 +166,8 @@ impl AdhesiveSolver {
         law: AdhesionLaw,
         options: AdhesiveOptions,
     ) -> Result<Self, SolverError> {
-        let kappa = match law {
-            AdhesionLaw::JkrLimit { kappa } => kappa,
+        let kappa = match law.family() {
+            Family::Criterion { kappa } => kappa,
             _ => KAPPA,
         };
         validate::adhesion(gamma, kappa, &options)?;
@@ -179,14 +185,14 @@ impl AdhesiveSolver {
         let shape = base.grid().shape();
         let (base_dx, e_star) = (base.grid().dx(), base.op.e_star());
         let sigma_c = law.peak_tension(gamma, e_star, base_dx);
-        let (cohesive, smooth) = match law {
-            AdhesionLaw::JkrLimit { .. } => (None, None),
-            AdhesionLaw::Dugdale { sigma0 } => {
+        let (cohesive, smooth) = match law.family() {
+            Family::Criterion { .. } => (None, None),
+            Family::Cohesive { sigma0 } => {
                 (Some(Cohesive::new(gamma, sigma0, surface, shape)?), None)
             }
-            AdhesionLaw::Exponential { .. } | AdhesionLaw::LennardJones { .. } => {
+            Family::Smooth(_) => {
                 law.check(gamma, surface)?;
-                let traction = law.traction(gamma).expect("a smooth law");
+                let traction = Traction::new(law, gamma).expect("a smooth law");
                 (None, Some(SmoothState::new(traction, shape)))
             }
         };

@@ -182,7 +182,13 @@ impl SmoothState {
 /// and whether the element is in the contact set (the first term is the smaller).
 #[inline]
 fn ncp(t: &Traction, w: f64, p: f64, g: f64, k: f64) -> (f64, bool) {
-    let q = p - w * t.pressure(g.max(0.0));
+    ncp_of(w * t.pressure(g.max(0.0)), p, g, k)
+}
+
+/// [`ncp`] with the element's law pressure `law = w·P(max(g, 0))` given.
+#[inline]
+fn ncp_of(law: f64, p: f64, g: f64, k: f64) -> (f64, bool) {
+    let q = p - law;
     let a = g / k;
     if a <= q { (a, true) } else { (q, false) }
 }
@@ -320,12 +326,13 @@ impl AdhesiveSolver {
         let s_floor = 1e-8 / k;
         for i in 0..p.len() {
             let w = weights.at(i);
-            let (phi, contact) = ncp(&t, w, p[i], g[i], k);
+            let (law, slope) = t.pressure_and_stiffness(g[i].max(0.0));
+            let (phi, contact) = ncp_of(w * law, p[i], g[i], k);
             if contact {
                 s.c[i] = 0.0;
                 s.b[i] = -phi * k;
             } else {
-                let mut st = w * t.stiffness(g[i].max(0.0));
+                let mut st = w * slope;
                 if st.abs() < s_floor {
                     st = if st < 0.0 { -s_floor } else { s_floor };
                 }

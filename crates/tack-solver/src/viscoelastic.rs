@@ -273,7 +273,7 @@ impl crate::AdhesiveSolver {
                 allowed: "the operator's modulus: the relaxed modulus E0 of the Prony series",
             });
         }
-        if matches!(self.law(), crate::AdhesionLaw::JkrLimit { .. }) && self.sigma_c > 0.0 {
+        if matches!(self.law(), crate::AdhesionLaw::JkrLimit(_)) && self.sigma_c > 0.0 {
             return Err(SolverError::Refused {
                 field: fields::ADHESION_MODEL,
                 reason: concat!(

@@ -12,7 +12,8 @@ use tack_analytics::{MaugisBranch, maugis_force_at, maugis_lambda, maugis_pull_o
 use tack_geometry::{Boundary, Grid, Sphere, Surface};
 use tack_kernels::operator_for;
 use tack_solver::{
-    AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, PathResult, Phase, SnapshotRequest,
+    AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, Dugdale, PathResult, Phase,
+    SnapshotRequest,
 };
 
 /// σ0 of Maugis parameter `lambda` for R = E* = γ = 1.
@@ -29,7 +30,7 @@ fn cycle(lambda: f64, dx: f64, half: f64, step: f64) -> PathResult {
     let grid = Grid::square(n, dx, Boundary::Free).unwrap();
     let surface = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
     let op = operator_for(grid, 1.0).unwrap();
-    let law = AdhesionLaw::Dugdale { sigma0 };
+    let law = AdhesionLaw::Dugdale(Dugdale { sigma0 });
     let mut solver =
         AdhesiveSolver::with_law(op, &surface, 1.0, law, AdhesiveOptions::default()).unwrap();
     let path = ApproachPath {
@@ -241,7 +242,7 @@ fn wavy_cycle(alpha: f64, lambda_w: f64, nx: usize) -> (f64, f64, usize) {
         ndarray::Array2::from_shape_fn((nx, 1), |(i, _)| h * (1.0 - (2.0 * PI * grid.x(i)).cos()));
     let surface = Surface::new(grid, heights).unwrap();
     let op = operator_for(grid, e_star).unwrap();
-    let law = AdhesionLaw::Dugdale { sigma0 };
+    let law = AdhesionLaw::Dugdale(Dugdale { sigma0 });
     let mut solver =
         AdhesiveSolver::with_law(op, &surface, gamma, law, AdhesiveOptions::default()).unwrap();
     let step = h / 200.0;

@@ -8,7 +8,8 @@ use ndarray::Array2;
 use tack_geometry::{Boundary, Grid, Shape, Sphere, Surface, Waviness2d};
 use tack_kernels::operator_for;
 use tack_solver::{
-    AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, KAPPA, SnapshotRequest,
+    AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, Dugdale, JkrLimit, KAPPA,
+    SnapshotRequest,
 };
 
 /// FNV-1a over 64-bit words: a fingerprint that does not depend on the standard library's
@@ -83,8 +84,8 @@ fn the_criterion_and_the_dugdale_law_keep_their_bits() {
     let wavy = Waviness2d::new(0.02, 1.0).unwrap();
     let free = Boundary::Free;
     let periodic = Boundary::Periodic;
-    let dugdale = AdhesionLaw::Dugdale { sigma0: 2.0 };
-    let criterion = AdhesionLaw::JkrLimit { kappa: KAPPA };
+    let dugdale = AdhesionLaw::Dugdale(Dugdale { sigma0: 2.0 });
+    let criterion = AdhesionLaw::JkrLimit(JkrLimit { kappa: KAPPA });
     let cases: [(&str, (u64, usize)); 6] = [
         (
             "criterion, sphere, free",

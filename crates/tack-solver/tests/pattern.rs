@@ -224,11 +224,11 @@ fn a_uniform_map_gives_the_equilibria_of_the_uniform_solver() {
 
 #[test]
 fn a_uniform_map_keeps_the_bits_of_the_dugdale_law() {
-    use tack_solver::AdhesionLaw;
+    use tack_solver::{AdhesionLaw, Dugdale};
     let grid = Grid::square(41, 0.05, Boundary::Free).unwrap();
     let surface = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
     let path = ApproachPath::load_retract(-0.05, 0.2, 0.02, 0.01).unwrap();
-    let law = AdhesionLaw::Dugdale { sigma0: 0.5 };
+    let law = AdhesionLaw::Dugdale(Dugdale { sigma0: 0.5 });
     let mut results = Vec::new();
     for with_map in [false, true] {
         let op = operator_for(grid, 1.0).unwrap();
@@ -248,13 +248,13 @@ fn a_uniform_map_keeps_the_bits_of_the_dugdale_law() {
 fn a_dugdale_map_scales_the_tension_at_one_range() {
     // γ_ij = 2γ everywhere at reference γ and σ0 is the uniform law of 2γ and 2σ0 (the same
     // range γ/σ0): the map's tensions σ0·γ_ij/γ must carry the whole physics.
-    use tack_solver::AdhesionLaw;
+    use tack_solver::{AdhesionLaw, Dugdale};
     let grid = Grid::square(41, 0.05, Boundary::Free).unwrap();
     let surface = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
     let path = ApproachPath::load_retract(-0.05, 0.2, 0.02, 0.01).unwrap();
     let run = |gamma: f64, sigma0: f64, map: Option<f64>| {
         let op = operator_for(grid, 1.0).unwrap();
-        let law = AdhesionLaw::Dugdale { sigma0 };
+        let law = AdhesionLaw::Dugdale(Dugdale { sigma0 });
         let mut s =
             AdhesiveSolver::with_law(op, &surface, gamma, law, AdhesiveOptions::default()).unwrap();
         if let Some(g) = map {

@@ -11,7 +11,8 @@ use std::f64::consts::PI;
 use tack_geometry::{Boundary, Grid, Sphere, Surface};
 use tack_kernels::operator_for;
 use tack_solver::{
-    AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, PathResult, SnapshotRequest,
+    AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, Exponential, LennardJones,
+    PathResult, SnapshotRequest,
 };
 
 /// A sphere R = 1 on E* = 1 with γ = 1 under `law`, on a free grid of `n` elements of `dx`,
@@ -69,7 +70,7 @@ fn against(result: &PathResult, refs: &[axisym::Point]) -> (f64, f64, f64) {
 #[test]
 fn lennard_jones_sphere_follows_the_ring_solution() {
     let eps = 1.0;
-    let law = AdhesionLaw::LennardJones { range: eps };
+    let law = AdhesionLaw::LennardJones(LennardJones { range: eps });
     let path = (-3.0, 1.5, 0.1, -3.0);
     let mut rows = Vec::new();
     let mut refs = Vec::new();
@@ -129,7 +130,7 @@ fn loop_integral(points: impl Iterator<Item = (f64, f64)>) -> f64 {
 #[test]
 fn exponential_dissipation_follows_the_ring_solution() {
     let rho = 0.5;
-    let law = AdhesionLaw::Exponential { range: rho };
+    let law = AdhesionLaw::Exponential(Exponential { range: rho });
     let mut errors = Vec::new();
     let mut refs = Vec::new();
     for (n, dx) in [(32, 0.25), (64, 0.125), (128, 0.0625)] {
@@ -162,7 +163,7 @@ fn exponential_dissipation_follows_the_ring_solution() {
 #[test]
 fn exponential_sphere_follows_the_ring_solution() {
     let rho = 1.0;
-    let law = AdhesionLaw::Exponential { range: rho };
+    let law = AdhesionLaw::Exponential(Exponential { range: rho });
     let path = (-3.0, 1.5, 0.1, -3.0);
     let mut rows = Vec::new();
     let mut refs = Vec::new();
@@ -215,7 +216,7 @@ fn small_tabor_parameter_approaches_dmt() {
     // the law's stiff part, so 24² elements of 1 resolve it).
     let rho = 10.0;
     let result = run(
-        AdhesionLaw::Exponential { range: rho },
+        AdhesionLaw::Exponential(Exponential { range: rho }),
         40,
         1.0,
         (-30.0, 2.0, 0.5, -30.0),
@@ -254,7 +255,7 @@ fn small_tabor_parameter_approaches_dmt() {
 fn lennard_jones_at_tabor_3_converges_on_coarse_grids() {
     let (gamma, mu): (f64, f64) = (1e-3, 3.0);
     let eps = (gamma * gamma / (mu * mu * mu)).cbrt();
-    let law = AdhesionLaw::LennardJones { range: eps };
+    let law = AdhesionLaw::LennardJones(LennardJones { range: eps });
     let d_c = 0.75 * (PI * PI * gamma * gamma).cbrt();
     let path = ApproachPath {
         start: -law.reach(gamma).unwrap() - d_c / 2.0,
@@ -318,7 +319,7 @@ fn assert_same_bits(law: AdhesionLaw, n: usize, dx: f64, path: (f64, f64, f64, f
 /// grid whose vectors the operator splits over threads (96² elements, padded 192²).
 #[test]
 fn same_bits_on_one_and_two_threads() {
-    let law = AdhesionLaw::Exponential { range: 1.0 };
+    let law = AdhesionLaw::Exponential(Exponential { range: 1.0 });
     assert_same_bits(law, 96, 0.125, (-3.0, 1.0, 0.25, -2.0));
 }
 
@@ -326,7 +327,7 @@ fn same_bits_on_one_and_two_threads() {
 /// with the contact set (the contact CG with a diagonal): 64² elements of 0.16.
 #[test]
 fn lennard_jones_same_bits_on_one_and_two_threads() {
-    let law = AdhesionLaw::LennardJones { range: 1.0 / 3.0 };
+    let law = AdhesionLaw::LennardJones(LennardJones { range: 1.0 / 3.0 });
     let one = assert_same_bits(law, 64, 0.16, (-1.0, 0.5, 0.1, -1.2));
     assert!(one.all_converged());
 }
@@ -354,7 +355,7 @@ fn wavy_1d_approaches_johnson_as_the_range_shrinks() {
         });
         let surface = Surface::new(grid, heights).unwrap();
         let op = operator_for(grid, 1.0).unwrap();
-        let law = AdhesionLaw::Exponential { range: rho };
+        let law = AdhesionLaw::Exponential(Exponential { range: rho });
         let mut solver =
             AdhesiveSolver::with_law(op, &surface, gamma, law, AdhesiveOptions::default()).unwrap();
         let path = ApproachPath {

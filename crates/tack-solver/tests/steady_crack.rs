@@ -13,7 +13,7 @@ use ndarray::Array2;
 use tack_analytics::{greenwood_johnson_toughening, persson_brener_toughening};
 use tack_geometry::{Boundary, Grid, Surface};
 use tack_kernels::operator_for;
-use tack_solver::{AdhesionLaw, AdhesiveOptions, AdhesiveSolver, Prony, Rates};
+use tack_solver::{AdhesionLaw, AdhesiveOptions, AdhesiveSolver, Dugdale, Prony, Rates};
 
 /// The wave `A(1 − cos(2π(x − shift)))` on the strip.
 fn wave(grid: Grid, amplitude: f64, shift: f64) -> Surface {
@@ -70,9 +70,9 @@ impl Strip {
     fn solver(&self) -> (Grid, AdhesiveSolver) {
         let grid = Grid::new(self.n, 1, 1.0 / self.n as f64, Boundary::Periodic).unwrap();
         let op = operator_for(grid, 1.0).unwrap();
-        let law = AdhesionLaw::Dugdale {
+        let law = AdhesionLaw::Dugdale(Dugdale {
             sigma0: self.sigma0,
-        };
+        });
         let surface = wave(grid, AMPLITUDE, 0.0);
         let options = AdhesiveOptions::default();
         let s = AdhesiveSolver::with_law(op, &surface, GAMMA, law, options).unwrap();

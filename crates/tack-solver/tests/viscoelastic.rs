@@ -11,8 +11,8 @@
 use tack_geometry::{Boundary, FlatPunch, Grid, Shape, Sphere, Surface};
 use tack_kernels::operator_for;
 use tack_solver::{
-    AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, KAPPA, PathResult, Prony, Rates,
-    SnapshotRequest,
+    AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, Dugdale, Exponential, JkrLimit,
+    KAPPA, PathResult, Prony, Rates, SnapshotRequest,
 };
 
 /// The standard linear solid of the tests: E0 = 1, one arm E1 = 9, τ = 1.
@@ -82,7 +82,7 @@ fn a_sphere_pressed_at_constant_speed_follows_lee_and_radok() {
     let sphere = Sphere::new(1.0).unwrap();
     let (n, side, depth) = (64, 0.6, 0.02);
     let speed = 0.01; // the load lasts 2τ
-    let none = AdhesionLaw::JkrLimit { kappa: KAPPA };
+    let none = AdhesionLaw::JkrLimit(JkrLimit { kappa: KAPPA });
     // The same grid's elastic force at unit modulus, finely sampled: the discrete problem's own
     // hereditary integral (Lee–Radok holds for it exactly while the contact grows).
     let fine = 800;
@@ -181,7 +181,7 @@ fn curve_gap(a: &PathResult, b: &PathResult) -> f64 {
 fn very_slow_and_very_fast_paths_are_elastic_at_the_relaxed_and_the_instantaneous_modulus() {
     let sphere = Sphere::new(1.0).unwrap();
     let (n, side, gamma, sigma0) = (48, 1.2, 1e-3, 0.1);
-    let law = AdhesionLaw::Dugdale { sigma0 };
+    let law = AdhesionLaw::Dugdale(Dugdale { sigma0 });
     let path = cycle(0.02, 0.001, gamma / sigma0);
     let relaxed = run(&mut solver(&sphere, n, side, 1.0, gamma, law), &path);
     let glassy = run(&mut solver(&sphere, n, side, 10.0, gamma, law), &path);
@@ -217,7 +217,7 @@ fn very_slow_and_very_fast_paths_are_elastic_at_the_relaxed_and_the_instantaneou
 fn a_punch_relaxed_under_load_and_pulled_fast_lies_between_its_elastic_pull_offs() {
     let punch = FlatPunch::circular(0.2).unwrap();
     let (n, side, gamma, sigma0) = (48, 0.6, 1e-3, 0.3);
-    let law = AdhesionLaw::Dugdale { sigma0 };
+    let law = AdhesionLaw::Dugdale(Dugdale { sigma0 });
     let range = gamma / sigma0;
     let path = cycle(0.001, 2e-4, range);
     let mut pulls = Vec::new();
@@ -258,7 +258,7 @@ fn a_smooth_law_pull_off_converges_in_the_time_step_and_keeps_its_bits_on_two_th
     let sphere = Sphere::new(1.0).unwrap();
     // Tabor's μ = 1 at E0, 0.22 at E∞; the process zone spans 3.4 elements at E0.
     let (n, side, gamma, range) = (48, 1.2, 1e-3, 0.01);
-    let law = AdhesionLaw::Exponential { range };
+    let law = AdhesionLaw::Exponential(Exponential { range });
     let mut pulls = Vec::new();
     for k in [1usize, 2, 4] {
         let step = 0.002 / k as f64;
@@ -314,13 +314,13 @@ fn a_smooth_law_pull_off_converges_in_the_time_step_and_keeps_its_bits_on_two_th
 #[test]
 fn what_a_viscoelastic_solver_refuses_is_named() {
     let sphere = Sphere::new(1.0).unwrap();
-    let law = AdhesionLaw::Exponential { range: 0.01 };
+    let law = AdhesionLaw::Exponential(Exponential { range: 0.01 });
     let message = |e: tack_solver::SolverError| e.to_string();
     // Another modulus than the operator's, the criterion with adhesion, bad rates.
     let mut s = solver(&sphere, 16, 1.2, 2.0, 1e-3, law);
     let e = message(s.set_viscoelastic(sls(), rates(1.0, 1.0)).unwrap_err());
     assert!(e.starts_with("material.e_star = 1 is invalid"), "{e}");
-    let criterion = AdhesionLaw::JkrLimit { kappa: KAPPA };
+    let criterion = AdhesionLaw::JkrLimit(JkrLimit { kappa: KAPPA });
     let mut s = solver(&sphere, 16, 1.2, 1.0, 1e-3, criterion);
     let e = message(s.set_viscoelastic(sls(), rates(1.0, 1.0)).unwrap_err());
     assert!(

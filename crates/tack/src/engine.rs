@@ -168,7 +168,7 @@ pub fn execute(
         let dx_over_a_c = problem
             .references
             .pull_off_radius
-            .filter(|_| matches!(problem.law, tack_solver::AdhesionLaw::JkrLimit { .. }))
+            .filter(|_| matches!(problem.law, tack_solver::AdhesionLaw::JkrLimit(_)))
             .map(|a| problem.grid.dx() / a);
         extra.insert(
             "pull_off_error_estimate".into(),

@@ -371,7 +371,7 @@ mod tests {
             max_approach: Some(0.02),
             load_step: Some(0.002),
             adhesion: AdhesionSpec {
-                model: crate::AdhesionModel::Exponential,
+                model: crate::AdhesionModel::from_name("exponential").unwrap(),
                 range: Some(0.01),
                 ..AdhesionSpec::default()
             },

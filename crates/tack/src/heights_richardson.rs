@@ -24,7 +24,7 @@ use ndarray::Array2;
 use crate::Error;
 use crate::engine::{RunOptions, RunOutcome};
 use crate::heights::{PullOffSpec, pull_off, pull_off_scene};
-use crate::scene::{AdhesionModel, SceneError};
+use crate::scene::SceneError;
 
 /// Largest share of the rms of the heights' residual (about their best quadratic) above the
 /// coarse Nyquist wave ([`aliased_rms`]) with which the coarse array is taken as the same body.
@@ -219,7 +219,7 @@ pub fn pull_off_richardson(
     let fine_f = outcome.pull_off_force();
     let extrapolated = tack_solver::richardson_first_order(fine_f, coarse_f);
     let dx_over_a_c = match (plan.radius, spec.adhesion.model) {
-        (Some(r), AdhesionModel::JkrLimit) => {
+        (Some(r), m) if m.is_zero_range() => {
             Some(spec.dx / tack_analytics::jkr_pull_off_radius(spec.e_star, spec.gamma, r))
         }
         _ => None,

@@ -130,7 +130,7 @@ pub(crate) fn film_warnings(
         ));
     }
     if gamma > 0.0
-        && matches!(law, tack_solver::AdhesionLaw::JkrLimit { .. })
+        && matches!(law, tack_solver::AdhesionLaw::JkrLimit(_))
         && layer.thickness < MIN_ADHESIVE_THICKNESS_PER_DX * dx
     {
         warnings.push(format!(

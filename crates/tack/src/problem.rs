@@ -15,13 +15,13 @@ use tack_geometry::{
     Boundary, Grid, RoughSpec, Shape, Surface, Waviness1d, Waviness2d, Window, rough_surface,
 };
 use tack_solver::{
-    AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, KAPPA, Prony, Rates,
+    AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, Family, KAPPA, Prony, Rates,
     SnapshotRequest, contact_window,
 };
 
 use crate::scene::{
-    AdhesionModel, BoundaryKind, DEFAULT_MAX_STEPS, GridSpec, Protocol, Roughness, Scene,
-    SceneError, SceneSchema, num,
+    BoundaryKind, DEFAULT_MAX_STEPS, GridSpec, Protocol, Roughness, Scene, SceneError, SceneSchema,
+    num,
 };
 
 pub use crate::map_file::DX_MATCH_TOLERANCE;
@@ -266,7 +266,7 @@ impl Problem {
         ));
         let options = solver_options(&f.solver)?;
         let viscoelastic = viscoelastic(f, law, layer.is_some())?;
-        if let AdhesionLaw::Dugdale { sigma0 } = law {
+        if let Family::Cohesive { sigma0 } = law.family() {
             dugdale_references(&mut references, e_star, gamma, sigma0);
         }
         if law.is_smooth() {
@@ -591,7 +591,7 @@ fn viscoelastic(
             fields::BODY_KIND
         ));
     }
-    if matches!(law, AdhesionLaw::JkrLimit { .. }) && f.material.gamma > 0.0 {
+    if matches!(law, AdhesionLaw::JkrLimit(_)) && f.material.gamma > 0.0 {
         return refuse(format!(
             "{prony_field} with adhesion needs a finite-range law: the zero-range criterion has \
              no rate-consistent form; set {} = \"dugdale\", \"exponential\" or \
@@ -646,68 +646,47 @@ fn smooth_references(references: &mut References, law: AdhesionLaw, e_star: f64,
     }
 }
 
-/// The adhesion law of `[adhesion]`, checked: each law's parameter only with, and always with,
-/// its model (`sigma0` with `"dugdale"`, `range` with the smooth laws); `solver.kappa` only with
-/// the zero-range criterion; γ > 0 and a range above the round-off of the heights for the
-/// finite-range laws (the solver's own check).
+/// The adhesion law of `[adhesion]`, checked: each law's parameter (`Law::parameter`) only
+/// with, and always with, its model (`sigma0` with `"dugdale"`, `range` with the smooth laws,
+/// `solver.kappa`, defaulted, with the zero-range criterion); γ > 0 and the law's own checks
+/// (`Law::check`) for the finite-range laws. Every law of the solver is read the same way.
 fn adhesion_law(f: &SceneSchema, kappa: f64, surface: &Surface) -> Result<AdhesionLaw, SceneError> {
     let model_field = fields::ADHESION_MODEL;
-    let model = f.adhesion.model;
-    let name = model.name();
-    let misplaced = |field: &str, value: f64, reader: &str| {
-        SceneError::Inconsistent(format!(
-            "{field} = {} is read by {reader}: {model_field} = \"{name}\" does not read it; \
+    let name = f.adhesion.model.name();
+    let given = [
+        (fields::ADHESION_SIGMA0, f.adhesion.sigma0),
+        (fields::ADHESION_RANGE, f.adhesion.range),
+        (fields::SOLVER_KAPPA, f.solver.kappa),
+    ];
+    // The law's own field, from a probe of the model (its value is set below).
+    let probe = AdhesionLaw::from_model(name, 1.0).ok_or_else(|| {
+        SceneError::Inconsistent(format!("{model_field} = \"{name}\" names no law"))
+    })?;
+    let own = probe.parameter().0;
+    for (field, value) in given {
+        let Some(value) = value.filter(|_| field != own) else {
+            continue;
+        };
+        return Err(SceneError::Inconsistent(format!(
+            "{field} = {} is read by {model_field} = {} only: \"{name}\" does not read it; \
              leave it out or set {model_field}",
             num(value),
-        ))
-    };
-    if let (Some(s), false) = (f.adhesion.sigma0, model == AdhesionModel::Dugdale) {
-        return Err(misplaced(
-            fields::ADHESION_SIGMA0,
-            s,
-            "the Dugdale law only (model = \"dugdale\")",
-        ));
+            readers(field),
+        )));
     }
-    if let (Some(r), false) = (f.adhesion.range, model.is_smooth()) {
-        return Err(misplaced(
-            fields::ADHESION_RANGE,
-            r,
-            "the smooth laws only (model = \"exponential\" or \"lennard_jones\")",
-        ));
-    }
-    let law = match model {
-        AdhesionModel::JkrLimit => return Ok(AdhesionLaw::JkrLimit { kappa }),
-        AdhesionModel::Dugdale => AdhesionLaw::Dugdale {
-            sigma0: f.adhesion.sigma0.ok_or_else(|| {
-                SceneError::Inconsistent(format!(
-                    "{sigma0} is required with {model_field} = \"dugdale\": the cohesive \
-                     tension σ0 > 0 (the range is {gamma}/σ0)",
-                    sigma0 = fields::ADHESION_SIGMA0,
-                    gamma = fields::MATERIAL_GAMMA,
-                ))
-            })?,
-        },
-        AdhesionModel::Exponential | AdhesionModel::LennardJones => {
-            let range = f.adhesion.range.ok_or_else(|| {
-                SceneError::Inconsistent(format!(
-                    "{range} is required with {model_field} = \"{name}\": the law's length \
-                     (ρ of the exponential law, ε of the Lennard-Jones law) > 0",
-                    range = fields::ADHESION_RANGE,
-                ))
-            })?;
-            if model == AdhesionModel::Exponential {
-                AdhesionLaw::Exponential { range }
-            } else {
-                AdhesionLaw::LennardJones { range }
-            }
+    let value = match given.iter().find(|g| g.0 == own).and_then(|g| g.1) {
+        Some(v) => v,
+        None if own == fields::SOLVER_KAPPA => kappa,
+        None => {
+            return Err(SceneError::Inconsistent(format!(
+                "{own} is required with {model_field} = \"{name}\": {}",
+                probe.meaning(),
+            )));
         }
     };
-    if f.solver.kappa.is_some() {
-        return Err(SceneError::Inconsistent(format!(
-            "{kappa_field} is the zero-range criterion's constant; {model_field} = \"{name}\" \
-             does not read it: leave it out",
-            kappa_field = fields::SOLVER_KAPPA,
-        )));
+    let law = AdhesionLaw::from_model(name, value).expect("a model the probe found");
+    if own == fields::SOLVER_KAPPA {
+        return Ok(law);
     }
     let gamma = f.material.gamma;
     if gamma <= 0.0 {
@@ -721,6 +700,16 @@ fn adhesion_law(f: &SceneSchema, kappa: f64, surface: &Surface) -> Result<Adhesi
     // Positive, finite parameters and a range above the round-off of the heights.
     law.check(gamma, surface)?;
     Ok(law)
+}
+
+/// The models whose parameter is `field`, quoted and joined: `"dugdale"`, or
+/// `"exponential" or "lennard_jones"`.
+fn readers(field: &str) -> String {
+    let quoted: Vec<String> = AdhesionLaw::models()
+        .filter(|m| AdhesionLaw::from_model(m, 1.0).is_some_and(|l| l.parameter().0 == field))
+        .map(|m| format!("{m:?}"))
+        .collect();
+    quoted.join(" or ")
 }
 
 /// A rigid body given as heights in memory, added to a scene's body (`crate::heights::problem`,
@@ -1197,7 +1186,7 @@ fn loading_history_warning(
     path: &tack_solver::ApproachPath,
     first_touch: f64,
 ) -> Option<String> {
-    let zero_range = matches!(law, AdhesionLaw::JkrLimit { .. });
+    let zero_range = matches!(law, AdhesionLaw::JkrLimit(_));
     let stepped = loaded_steps(path, first_touch, 2) > 1;
     (zero_range && gamma > 0.0 && random && stepped && !path.is_indentation())
         .then(|| {

@@ -195,60 +195,72 @@ pub enum InterfaceKind {
     Frictionless,
 }
 
-/// `adhesion.model`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum AdhesionModel {
-    /// The zero-range limit: the Pohrt–Popov detachment criterion (the paper's model).
-    #[default]
-    JkrLimit,
-    /// A Dugdale cohesive zone of tension σ0 and range γ/σ0 (Maugis 1992).
-    Dugdale,
-    /// The exponential law `p = −(γ/ρ) e^(−g/ρ)` with a hard wall (range `adhesion.range`).
-    Exponential,
-    /// The Lennard-Jones 9–3 law with a hard wall at its equilibrium separation
-    /// (`adhesion.range`).
-    LennardJones,
+/// `adhesion.model`: the scene name of one of the solver's laws
+/// ([`tack_solver::AdhesionLaw::models`]: `"jkr_limit"`, the default and the paper's model,
+/// `"dugdale"`, `"exponential"`, `"lennard_jones"`). The list is the solver's: a new law is
+/// named here without an edit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct AdhesionModel(&'static str);
+
+impl Default for AdhesionModel {
+    /// The zero-range limit, the paper's model.
+    fn default() -> Self {
+        Self::of(&tack_solver::AdhesionLaw::from(tack_solver::JkrLimit {
+            kappa: tack_solver::KAPPA,
+        }))
+    }
+}
+
+impl<'de> Deserialize<'de> for AdhesionModel {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let name = String::deserialize(d)?;
+        Self::from_name(&name).ok_or_else(|| {
+            serde::de::Error::custom(format!(
+                "unknown model {name:?}: expected {}",
+                Self::names()
+            ))
+        })
+    }
+}
+
+impl Serialize for AdhesionModel {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.0)
+    }
 }
 
 impl AdhesionModel {
-    /// Every model, in the order the docs list them.
-    pub const ALL: [AdhesionModel; 4] = [
-        Self::JkrLimit,
-        Self::Dugdale,
-        Self::Exponential,
-        Self::LennardJones,
-    ];
-
     /// The model of a scene file's name (`None`: no such model).
     pub fn from_name(name: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|m| m.name() == name)
+        tack_solver::AdhesionLaw::models()
+            .find(|&m| m == name)
+            .map(AdhesionModel)
+    }
+
+    /// The model that names `law`.
+    pub fn of(law: &tack_solver::AdhesionLaw) -> Self {
+        AdhesionModel(law.name())
     }
 
     /// The names, quoted and joined for messages: `"jkr_limit", "dugdale", … or "…"`.
     pub fn names() -> String {
-        let quoted: Vec<String> = Self::ALL
-            .iter()
-            .map(|m| format!("{:?}", m.name()))
+        let quoted: Vec<String> = tack_solver::AdhesionLaw::models()
+            .map(|m| format!("{m:?}"))
             .collect();
-        let (last, rest) = quoted.split_last().expect("four models");
-        format!("{} or {last}", rest.join(", "))
-    }
-
-    /// The name in scene files and results: `"jkr_limit"`, `"dugdale"`, `"exponential"` or
-    /// `"lennard_jones"`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::JkrLimit => "jkr_limit",
-            Self::Dugdale => "dugdale",
-            Self::Exponential => "exponential",
-            Self::LennardJones => "lennard_jones",
+        match quoted.split_last() {
+            Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
+            _ => quoted.concat(),
         }
     }
 
-    /// Whether the model is a smooth law that reads `adhesion.range`.
-    pub fn is_smooth(self) -> bool {
-        matches!(self, Self::Exponential | Self::LennardJones)
+    /// The name in scene files and results.
+    pub fn name(self) -> &'static str {
+        self.0
+    }
+
+    /// Whether the model is the zero-range criterion (the default).
+    pub fn is_zero_range(self) -> bool {
+        self == Self::default()
     }
 }
 

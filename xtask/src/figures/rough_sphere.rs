@@ -525,16 +525,17 @@ mod tests {
     fn fig7_dugdale_spec_is_fig7_at_maugis_lambda_one() {
         let (adhesion, gamma, law) = fig7_variant("dugdale");
         let tack::scene::AdhesionSpec {
-            model: tack::scene::AdhesionModel::Dugdale,
+            model,
             sigma0: Some(sigma0),
             ..
         } = adhesion
         else {
             panic!("{adhesion:?}")
         };
+        assert_eq!(model.name(), "dugdale");
         let lambda = tack_analytics::maugis_lambda(1.0, gamma, 1.0, sigma0);
         assert!((lambda - 1.0).abs() < 1e-4, "λ = {lambda}");
-        assert!(matches!(law, tack_solver::AdhesionLaw::Dugdale { .. }));
+        assert!(matches!(law, tack_solver::AdhesionLaw::Dugdale(_)));
     }
 
     /// The exponential variant of Figure 7 (`data/figures/exponential/fig7.toml`) is Figure 7's
@@ -543,16 +544,17 @@ mod tests {
     fn fig7_exponential_spec_is_fig7_at_tabor_one() {
         let (adhesion, gamma, law) = fig7_variant("exponential");
         let tack::scene::AdhesionSpec {
-            model: tack::scene::AdhesionModel::Exponential,
+            model,
             range: Some(range),
             ..
         } = adhesion
         else {
             panic!("{adhesion:?}")
         };
+        assert_eq!(model.name(), "exponential");
         let mu = (gamma * gamma / range.powi(3)).cbrt();
         assert!((mu - 1.0).abs() < 1e-4, "μ = {mu}");
-        assert!(matches!(law, tack_solver::AdhesionLaw::Exponential { .. }));
+        assert!(matches!(law, tack_solver::AdhesionLaw::Exponential(_)));
     }
 
     /// Figure 7's roughness in both modes: every (H, α*) gets the rms height of Eq. 11 inverted

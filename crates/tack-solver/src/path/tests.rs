@@ -252,7 +252,7 @@ fn a_state_restores_only_into_a_solver_of_its_grid_and_law() {
     let grid = Grid::square(19, 0.38, Boundary::Free).unwrap();
     let surface = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
     let op = tack_kernels::operator_for(grid, 1.0).unwrap();
-    let law = crate::AdhesionLaw::Dugdale { sigma0: 1.0 };
+    let law = crate::AdhesionLaw::from(crate::Dugdale { sigma0: 1.0 });
     let mut b =
         AdhesiveSolver::with_law(op, &surface, 1.0, law, AdhesiveOptions::default()).unwrap();
     let e = b.restore_state(&saved).unwrap_err().to_string();

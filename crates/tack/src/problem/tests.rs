@@ -3,6 +3,7 @@
 use super::*;
 use std::f64::consts::PI;
 use tack_geometry::Sphere;
+use tack_solver::{Dugdale, Exponential, JkrLimit, LennardJones};
 
 const SPHERE: &str = r#"
 version = 1
@@ -620,14 +621,17 @@ mod adhesion_tests {
     fn the_smooth_laws_are_read_and_their_inputs_are_checked() {
         let exp = ["adhesion.model=\"exponential\"", "adhesion.range=0.05"];
         let p = build(&exp).unwrap();
-        assert_eq!(p.law, AdhesionLaw::Exponential { range: 0.05 });
+        assert_eq!(p.law, AdhesionLaw::Exponential(Exponential { range: 0.05 }));
         // Tabor's μ of the sphere R = 1 (E* = 1, γ = 0.1): (Rγ²/(E*²ρ³))^(1/3) = 0.1^(2/3)/0.05.
         let mu = p.references.tabor_mu.unwrap();
         assert!((mu - 0.1f64.powf(2.0 / 3.0) / 0.05).abs() < 1e-12, "{mu}");
         // The default path starts out of reach (18.4 ρ before the first touch).
         assert!(p.path.start < -18.0 * 0.05, "{}", p.path.start);
         let lj = build(&["adhesion.model=\"lennard_jones\"", "adhesion.range=0.05"]).unwrap();
-        assert_eq!(lj.law, AdhesionLaw::LennardJones { range: 0.05 });
+        assert_eq!(
+            lj.law,
+            AdhesionLaw::LennardJones(LennardJones { range: 0.05 })
+        );
         assert!(err(&["adhesion.model=\"exponential\""]).contains("adhesion.range is required"));
         for bad in ["0.0", "-1.0", "nan", "inf"] {
             let message = err(&[
@@ -644,7 +648,7 @@ mod adhesion_tests {
         );
         assert!(
             err(&[exp[0], exp[1], "adhesion.sigma0=1"])
-                .contains("adhesion.sigma0 = 1 is read by the Dugdale law only")
+                .contains("adhesion.sigma0 = 1 is read by adhesion.model = \"dugdale\" only")
         );
         assert!(
             err(&[
@@ -652,12 +656,15 @@ mod adhesion_tests {
                 "adhesion.sigma0=1",
                 "adhesion.range=0.1"
             ])
-            .contains("adhesion.range = 0.1 is read by the smooth laws only")
+            .contains(
+                "adhesion.range = 0.1 is read by adhesion.model = \"exponential\" or \
+                 \"lennard_jones\" only"
+            )
         );
-        assert!(err(&["adhesion.range=0.1"]).contains("is read by the smooth laws only"));
+        assert!(err(&["adhesion.range=0.1"]).contains("\"jkr_limit\" does not read it"));
         assert!(
             err(&[exp[0], exp[1], "solver.kappa=0.5"])
-                .contains("solver.kappa is the zero-range criterion's constant")
+                .contains("solver.kappa = 0.5 is read by adhesion.model = \"jkr_limit\" only")
         );
         assert!(err(&[exp[0], exp[1], "material.gamma=0"]).contains("needs material.gamma > 0"));
     }
@@ -771,16 +778,16 @@ mod adhesion_tests {
     #[test]
     fn the_dugdale_law_is_read_and_its_inputs_are_checked() {
         let p = build(&["adhesion.model=\"dugdale\"", "adhesion.sigma0=1.0"]).unwrap();
-        assert_eq!(p.law, AdhesionLaw::Dugdale { sigma0: 1.0 });
+        assert_eq!(p.law, AdhesionLaw::Dugdale(Dugdale { sigma0: 1.0 }));
         // The default path approaches from out of range (h0 = γ/σ0 = 0.1) in its fine step.
         assert!(p.path.start < -0.1 && p.path.load_step == p.path.unload_step);
         let lambda = p.references.maugis_lambda.unwrap();
         assert!((lambda - tack_analytics::maugis_lambda(1.0, 0.1, 1.0, 1.0)).abs() < 1e-12);
         assert!(p.references.f_maugis.unwrap() < 0.0);
-        assert!(build(&[]).unwrap().law == AdhesionLaw::JkrLimit { kappa: KAPPA });
+        assert!(build(&[]).unwrap().law == AdhesionLaw::JkrLimit(JkrLimit { kappa: KAPPA }));
         assert!(
             err(&["adhesion.sigma0=1.0"])
-                .contains("adhesion.sigma0 = 1 is read by the Dugdale law only")
+                .contains("adhesion.sigma0 = 1 is read by adhesion.model = \"dugdale\" only")
         );
         assert!(err(&["adhesion.model=\"dugdale\""]).contains("adhesion.sigma0 is required with"));
         for bad in ["0.0", "-1.0", "nan", "inf"] {
@@ -801,7 +808,7 @@ mod adhesion_tests {
                 "adhesion.sigma0=1",
                 "solver.kappa=0.5"
             ])
-            .contains("solver.kappa is the zero-range criterion's constant")
+            .contains("solver.kappa = 0.5 is read by adhesion.model = \"jkr_limit\" only")
         );
         assert!(
             err(&[

@@ -1,0 +1,441 @@
+//! The adhesion laws an [`AdhesiveSolver`](crate::AdhesiveSolver) can run: one type per law
+//! (its own file here) behind one interface, [`Law`], and the smooth laws' traction–gap
+//! curves behind [`Curve`]; [`AdhesionLaw`] is the closed set a scene, the solver and the
+//! results name.
+//!
+//! A law states its parameter and checks, its range, reach and peak tension, the mesh rule it
+//! needs and the warning when a mesh breaks it, its summary entries and its one-line
+//! description, and which of the solver's three algorithms runs it ([`Family`]): the
+//! zero-range criterion (`criterion.rs`), the Dugdale cohesive zone (`dugdale.rs`, with the
+//! [`Cohesive`] state kept here) or a smooth curve (`smooth.rs`). A new smooth law is one type
+//! implementing [`Curve`] (every [`Law`] fact follows from it), one variant of
+//! [`AdhesionLaw`], its docs and its tests.
+
+mod dugdale;
+mod exponential;
+mod jkr_limit;
+mod lennard_jones;
+
+use ndarray::Array2;
+use tack_fields as fields;
+use tack_geometry::Surface;
+
+use crate::SolverError;
+
+pub use dugdale::Dugdale;
+pub use exponential::Exponential;
+pub use jkr_limit::JkrLimit;
+pub use lennard_jones::LennardJones;
+
+/// Least length of a Dugdale cohesive zone, in elements, below which a result is flagged: the
+/// zone's tension is then carried by a ring of elements too thin to shape it.
+pub const MIN_COHESIVE_ZONE_ELEMENTS: f64 = 2.0;
+
+/// Least width of a smooth law's process zone, in elements, below which a result is flagged:
+/// an element's own stiffness `E*/(κ₀Δx)` then no longer holds the law's steepest softening,
+/// the front advances element by element and the forces depend on the mesh.
+pub const MIN_PROCESS_ZONE_ELEMENTS: f64 = 1.0;
+
+/// A smooth law's reach ([`Law::reach`]) is where its tension falls to this fraction of the
+/// peak: what a crop leaves out is a tension below it.
+pub const REACH_FRACTION: f64 = 1e-8;
+
+/// The smallest range allowed, relative to the largest height: below it the gap test
+/// `g < h0` is decided by the round-off of `f − d + u`.
+pub const RANGE_ROUND_OFF: f64 = 1e-12;
+
+/// Which of the solver's algorithms runs a law.
+#[derive(Debug, Clone, Copy)]
+pub enum Family<'a> {
+    /// The zero-range detachment criterion of constant κ (`criterion.rs`).
+    Criterion {
+        /// The Pohrt–Popov constant κ.
+        kappa: f64,
+    },
+    /// A Dugdale cohesive zone of tension σ0 (`dugdale.rs`).
+    Cohesive {
+        /// The cohesive tension σ0.
+        sigma0: f64,
+    },
+    /// A smooth traction–gap curve with a hard wall (`smooth.rs`).
+    Smooth(&'a dyn Curve),
+}
+
+/// What an adhesion law states about itself; every method takes the work of adhesion `gamma`
+/// (and the modulus `e_star` and element `dx` where they enter) because a law is set by its
+/// own parameter and scaled by γ.
+pub trait Law: std::fmt::Debug + Send + Sync {
+    /// The name in scene files and results (`adhesion.model`).
+    fn name(&self) -> &'static str;
+    /// The scene field of the law's parameter and its value (`solver.kappa`,
+    /// `adhesion.sigma0` or `adhesion.range`).
+    fn parameter(&self) -> (&'static str, f64);
+    /// What the parameter is and its allowed range, for a message that asks for it.
+    fn meaning(&self) -> &'static str;
+    /// The algorithm that runs the law.
+    fn family(&self) -> Family<'_>;
+    /// The law's length: the Dugdale range `γ/σ0`, ρ, ε; `None` for the zero-range criterion.
+    fn range(&self, gamma: f64) -> Option<f64>;
+    /// The gap beyond which the law's tension is negligible, for cropping and for where a
+    /// path starts (a smooth law's is where its tension falls to [`REACH_FRACTION`] of the
+    /// peak); `None` for the zero-range criterion.
+    fn reach(&self, gamma: f64) -> Option<f64>;
+    /// The greatest tension an element of size `dx` carries.
+    fn peak_tension(&self, gamma: f64, e_star: f64, dx: f64) -> f64;
+    /// The greatest tension of an element of work of adhesion `gamma` when the law was set for
+    /// the `reference` work (a γ map, [`crate::AdhesiveSolver::set_gamma_map`]).
+    fn element_tension(&self, gamma: f64, reference: f64, e_star: f64, dx: f64) -> f64;
+    /// The length the mesh must resolve (`None`: the contact's own size, checked with the
+    /// body).
+    fn zone_length(&self, e_star: f64, gamma: f64) -> Option<f64>;
+    /// The least number of elements across [`Law::zone_length`] below which a result is
+    /// flagged.
+    fn min_zone_elements(&self) -> f64;
+    /// The warning of a mesh of element `dx` that does not resolve the law's zone, naming the
+    /// fields that mend it; `None` when it does.
+    fn mesh_warning(&self, e_star: f64, gamma: f64, dx: f64) -> Option<String>;
+    /// The law's own entries of a result's summary.
+    fn summary_entries(&self, gamma: f64, e_star: f64, dx: f64) -> Vec<(&'static str, f64)>;
+    /// One line naming the law and its parameters for a run's report.
+    fn describe(&self, gamma: f64, e_star: f64, dx: f64) -> String;
+    /// Checks the law's own inputs for work of adhesion `gamma` on `surface`; errors name the
+    /// field.
+    fn check(&self, gamma: f64, surface: &Surface) -> Result<(), SolverError>;
+}
+
+/// A smooth law: every element carries the pressure of its own gap, `p(g)` for `g > 0`, with a
+/// hard wall at `g = 0`. Implementing it makes the type a [`Law`]: its range, reach, peak
+/// tension, process zone, mesh rule, summary and checks follow from the curve.
+pub trait Curve: std::fmt::Debug + Send + Sync {
+    /// The name in scene files and results.
+    fn name(&self) -> &'static str;
+    /// The name in reports, with the symbol of its range, e.g. `exponential, range rho`.
+    fn label(&self) -> &'static str;
+    /// The law's length ρ (ε): the scene's `adhesion.range`.
+    fn length(&self) -> f64;
+    /// What the length is, for a message that asks for it (e.g. `the range ρ > 0 of …`).
+    fn meaning(&self) -> &'static str;
+    /// The pressure at gap `g ≥ 0` for work of adhesion `gamma` (negative: tension).
+    fn pressure(&self, gamma: f64, g: f64) -> f64;
+    /// `dp/dg` at gap `g ≥ 0`: positive where the law softens (destabilises).
+    fn stiffness(&self, gamma: f64, g: f64) -> f64;
+    /// [`Curve::pressure`] and [`Curve::stiffness`] at one gap, for a curve that shares work
+    /// between them (the same bits as the two calls).
+    #[inline]
+    fn pressure_and_stiffness(&self, gamma: f64, g: f64) -> (f64, f64) {
+        (self.pressure(gamma, g), self.stiffness(gamma, g))
+    }
+    /// Whether the law stiffens anywhere (`dp/dg < 0`: the Lennard-Jones law next to its
+    /// wall), where the landing solves the stiff elements with the contact set.
+    fn stiffens(&self) -> bool;
+    /// The greatest tension of the law.
+    fn peak(&self, gamma: f64) -> f64;
+    /// The gap where the tension falls to [`REACH_FRACTION`] of the peak.
+    fn reach(&self) -> f64;
+}
+
+impl<C: Curve> Law for C {
+    fn name(&self) -> &'static str {
+        Curve::name(self)
+    }
+
+    fn parameter(&self) -> (&'static str, f64) {
+        (fields::ADHESION_RANGE, self.length())
+    }
+
+    fn meaning(&self) -> &'static str {
+        Curve::meaning(self)
+    }
+
+    fn family(&self) -> Family<'_> {
+        Family::Smooth(self)
+    }
+
+    fn range(&self, _gamma: f64) -> Option<f64> {
+        Some(self.length())
+    }
+
+    fn reach(&self, _gamma: f64) -> Option<f64> {
+        Some(Curve::reach(self))
+    }
+
+    fn peak_tension(&self, gamma: f64, _e_star: f64, _dx: f64) -> f64 {
+        self.peak(gamma)
+    }
+
+    /// A smooth law keeps its range and scales its peak by `γ/γ_ref`.
+    fn element_tension(&self, gamma: f64, reference: f64, _e_star: f64, _dx: f64) -> f64 {
+        self.peak(reference) * (gamma / reference)
+    }
+
+    /// The process zone `(8/3π)E*ℓ²/γ` (ℓ the range: the length over which the exponential
+    /// law's tension acts ahead of a crack; other smooth laws' is of the same order).
+    fn zone_length(&self, e_star: f64, gamma: f64) -> Option<f64> {
+        let l = self.length();
+        Some(8.0 / (3.0 * std::f64::consts::PI) * e_star * l * l / gamma)
+    }
+
+    fn min_zone_elements(&self) -> f64 {
+        MIN_PROCESS_ZONE_ELEMENTS
+    }
+
+    fn mesh_warning(&self, e_star: f64, gamma: f64, dx: f64) -> Option<String> {
+        let zone = self.zone_length(e_star, gamma)?;
+        let shown = under_resolved(zone / dx, self.min_zone_elements())?;
+        Some(format!(
+            "under-resolved process zone: its width (8/3π)E*ρ²/γ = {} spans {shown} elements \
+             (at least {} needed); the front then moves element by element and the forces \
+             depend on the mesh (refine {} or raise {})",
+            fields::rounded(zone),
+            self.min_zone_elements(),
+            fields::GRID_DX,
+            fields::ADHESION_RANGE,
+        ))
+    }
+
+    fn summary_entries(&self, gamma: f64, e_star: f64, dx: f64) -> Vec<(&'static str, f64)> {
+        vec![
+            ("range", self.length()),
+            ("peak_tension", self.peak(gamma)),
+            (
+                "process_zone_elements",
+                self.zone_length(e_star, gamma).unwrap_or(0.0) / dx,
+            ),
+        ]
+    }
+
+    fn describe(&self, gamma: f64, _e_star: f64, _dx: f64) -> String {
+        format!(
+            "{} = {}, peak tension = {}",
+            self.label(),
+            fields::rounded(self.length()),
+            fields::rounded(self.peak(gamma))
+        )
+    }
+
+    /// γ > 0 and a range ρ (ε) > 0 above the round-off of the heights.
+    fn check(&self, gamma: f64, surface: &Surface) -> Result<(), SolverError> {
+        let range = self.length();
+        crate::validate::positive(fields::ADHESION_RANGE, range)?;
+        if gamma <= 0.0 || !gamma.is_finite() {
+            return Err(SolverError::OutOfRange {
+                field: fields::MATERIAL_GAMMA,
+                value: gamma,
+                allowed: "a finite number > 0 under a smooth law (exponential, lennard_jones)",
+            });
+        }
+        if range <= RANGE_ROUND_OFF * largest_height(surface) {
+            return Err(SolverError::OutOfRange {
+                field: fields::ADHESION_RANGE,
+                value: range,
+                allowed: "above 1e-12 of the largest height (below it the law acts on round-off)",
+            });
+        }
+        Ok(())
+    }
+}
+
+/// The elements across a zone, rounded to two decimals for a warning, when fewer than `least`.
+fn under_resolved(elements: f64, least: f64) -> Option<String> {
+    (elements < least).then(|| fields::num((elements * 100.0).round() / 100.0))
+}
+
+/// The largest `|f|` of the heights: the scale of their round-off.
+fn largest_height(surface: &Surface) -> f64 {
+    surface
+        .heights()
+        .iter()
+        .fold(0.0f64, |m, &f| m.max(f.abs()))
+}
+
+/// The adhesion law of an [`AdhesiveSolver`](crate::AdhesiveSolver): one of the law types.
+/// It dereferences to its law's [`Law`] interface (`law.name()`, `law.reach(γ)`, …); build
+/// one from a law type with `From` (`AdhesionLaw::from(Exponential { range })`) or by its
+/// scene name with [`AdhesionLaw::from_model`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum AdhesionLaw {
+    /// The zero-range (JKR) limit, the paper's model.
+    JkrLimit(JkrLimit),
+    /// A Dugdale cohesive zone.
+    Dugdale(Dugdale),
+    /// The exponential law `p = −(γ/ρ) e^(−g/ρ)`.
+    Exponential(Exponential),
+    /// The Lennard-Jones 9–3 law.
+    LennardJones(LennardJones),
+}
+
+/// How a law is made from its parameter.
+type Make = fn(f64) -> AdhesionLaw;
+
+/// Each law of [`AdhesionLaw`]: its scene name and how it is made from its parameter (the
+/// order of the docs).
+const MODELS: [(&str, Make); 4] = [
+    (jkr_limit::NAME, |kappa| JkrLimit { kappa }.into()),
+    (dugdale::NAME, |sigma0| Dugdale { sigma0 }.into()),
+    (exponential::NAME, |range| Exponential { range }.into()),
+    (lennard_jones::NAME, |range| LennardJones { range }.into()),
+];
+
+impl AdhesionLaw {
+    /// The law's interface.
+    pub fn law(&self) -> &(dyn Law + 'static) {
+        match self {
+            AdhesionLaw::JkrLimit(l) => l,
+            AdhesionLaw::Dugdale(l) => l,
+            AdhesionLaw::Exponential(l) => l,
+            AdhesionLaw::LennardJones(l) => l,
+        }
+    }
+
+    /// The scene names of every law, in the order of the docs.
+    pub fn models() -> impl Iterator<Item = &'static str> {
+        MODELS.iter().map(|m| m.0)
+    }
+
+    /// The law a scene names by `model` with its parameter `value` (κ, σ0 or the range;
+    /// [`Law::parameter`] says which); `None` for a name no law has. The value is checked by
+    /// [`Law::check`], not here.
+    pub fn from_model(model: &str, value: f64) -> Option<AdhesionLaw> {
+        MODELS
+            .iter()
+            .find(|m| m.0 == model)
+            .map(|(_, make)| make(value))
+    }
+
+    /// Whether every element carries the traction of its own gap (a smooth law).
+    pub fn is_smooth(&self) -> bool {
+        self.curve().is_some()
+    }
+
+    /// The smooth law's curve (`None` for the criterion and the Dugdale law).
+    pub fn curve(&self) -> Option<&dyn Curve> {
+        match self.family() {
+            Family::Smooth(c) => Some(c),
+            _ => None,
+        }
+    }
+
+    /// Tabor's parameter `μ = (Rγ²/(E*²ℓ³))^(1/3)` of a sphere of `radius` with the law's
+    /// length ℓ ([`Law::range`]); `None` for the zero-range criterion (μ = ∞).
+    pub fn tabor(&self, e_star: f64, gamma: f64, radius: f64) -> Option<f64> {
+        let l = self.range(gamma)?;
+        Some((radius * gamma * gamma / (e_star * e_star * l * l * l)).cbrt())
+    }
+}
+
+impl std::ops::Deref for AdhesionLaw {
+    type Target = dyn Law;
+
+    fn deref(&self) -> &(dyn Law + 'static) {
+        self.law()
+    }
+}
+
+impl From<JkrLimit> for AdhesionLaw {
+    fn from(l: JkrLimit) -> Self {
+        AdhesionLaw::JkrLimit(l)
+    }
+}
+
+impl From<Dugdale> for AdhesionLaw {
+    fn from(l: Dugdale) -> Self {
+        AdhesionLaw::Dugdale(l)
+    }
+}
+
+impl From<Exponential> for AdhesionLaw {
+    fn from(l: Exponential) -> Self {
+        AdhesionLaw::Exponential(l)
+    }
+}
+
+impl From<LennardJones> for AdhesionLaw {
+    fn from(l: LennardJones) -> Self {
+        AdhesionLaw::LennardJones(l)
+    }
+}
+
+/// Calls `$body` with `$c` bound to the traction's curve: by its own type for the built-in
+/// curves, through [`Curve`] for any other.
+macro_rules! on_curve {
+    ($t:expr, $c:ident => $body:expr) => {
+        match &$t.law {
+            AdhesionLaw::Exponential($c) => $body,
+            AdhesionLaw::LennardJones($c) => $body,
+            other => {
+                let $c = other.curve().expect("a traction holds a smooth law");
+                $body
+            }
+        }
+    };
+}
+
+/// A smooth law's traction–gap curve for work of adhesion `gamma` (the solver's handle: the
+/// law and the γ that scales it).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Traction {
+    pub(crate) law: AdhesionLaw,
+    pub(crate) gamma: f64,
+}
+
+impl Traction {
+    /// The curve of a smooth law (`None` for the others).
+    pub(crate) fn new(law: AdhesionLaw, gamma: f64) -> Option<Self> {
+        law.is_smooth().then_some(Self { law, gamma })
+    }
+
+    /// The pressure at gap `g ≥ 0` (negative: tension), called on the built-in curves by
+    /// their own type so the hot loops inline it (a dynamic call costs them 3% of their
+    /// instructions and the sharing of `exp` between pressure and slope).
+    #[inline]
+    pub(crate) fn pressure(&self, g: f64) -> f64 {
+        on_curve!(self, c => c.pressure(self.gamma, g))
+    }
+
+    /// `dp/dg` at gap `g ≥ 0`: positive where the law softens (destabilises).
+    #[inline]
+    pub(crate) fn stiffness(&self, g: f64) -> f64 {
+        on_curve!(self, c => c.stiffness(self.gamma, g))
+    }
+
+    /// The pressure and its slope at gap `g ≥ 0` ([`Curve::pressure_and_stiffness`]).
+    #[inline]
+    pub(crate) fn pressure_and_stiffness(&self, g: f64) -> (f64, f64) {
+        on_curve!(self, c => c.pressure_and_stiffness(self.gamma, g))
+    }
+
+    /// Whether the law stiffens anywhere ([`Curve::stiffens`]).
+    pub(crate) fn stiffens(&self) -> bool {
+        on_curve!(self, c => c.stiffens())
+    }
+}
+
+/// The Dugdale law's state on the solver's grid: σ0, the range and the cohesive zone.
+pub(crate) struct Cohesive {
+    pub(crate) sigma0: f64,
+    pub(crate) range: f64,
+    pub(crate) zone: Array2<bool>,
+    /// Contact or zone: the loaded elements that fix the sub-grid.
+    pub(crate) loaded: Array2<bool>,
+}
+
+impl Cohesive {
+    /// Checks the law ([`Law::check`]) and makes the empty zone.
+    pub(crate) fn new(
+        gamma: f64,
+        sigma0: f64,
+        surface: &Surface,
+        shape: (usize, usize),
+    ) -> Result<Self, SolverError> {
+        Dugdale { sigma0 }.check(gamma, surface)?;
+        Ok(Self {
+            sigma0,
+            range: gamma / sigma0,
+            zone: Array2::from_elem(shape, false),
+            loaded: Array2::from_elem(shape, false),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests;

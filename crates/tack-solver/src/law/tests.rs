@@ -1,0 +1,108 @@
+//! Every law against its own statements: the registry round-trips and matches the scene
+//! field, and each smooth curve's work, slope, peak and reach against quadrature, differences
+//! and sampling of its own pressure (so a new curve is checked without a new test).
+
+use super::*;
+
+/// Every smooth law of the registry, at a length of 2 (not 1, so a γ/ℓ mix-up shows).
+fn curves() -> Vec<AdhesionLaw> {
+    AdhesionLaw::models()
+        .filter_map(|m| AdhesionLaw::from_model(m, 2.0))
+        .filter(AdhesionLaw::is_smooth)
+        .collect()
+}
+
+#[test]
+fn every_model_round_trips_and_the_scene_field_lists_them() {
+    let models: Vec<&str> = AdhesionLaw::models().collect();
+    for (i, m) in models.iter().enumerate() {
+        assert!(!models[..i].contains(m), "{m} listed twice");
+        let law = AdhesionLaw::from_model(m, 0.25).expect("a listed model");
+        assert_eq!(law.name(), *m);
+        assert_eq!(law.parameter().1, 0.25, "{m}");
+        assert!(!law.meaning().is_empty(), "{m}");
+    }
+    assert_eq!(AdhesionLaw::from_model("morse", 1.0), None);
+    let field = fields::field(fields::ADHESION_MODEL).expect("the scene field");
+    let fields::Kind::Choice(choices) = field.kind else {
+        panic!("{:?}", field.kind)
+    };
+    assert_eq!(
+        choices,
+        &models[..],
+        "the scene field's choices are the registry's"
+    );
+    assert_eq!(curves().len(), 2, "the exponential and Lennard-Jones laws");
+}
+
+/// The work of separation `∫₀^∞ −p(g) dg` is γ: Simpson's rule in `u = ln(1 + g/ℓ)` up to
+/// `g = 10⁴ℓ` (the 9–3 law's tail beyond is `(4/3)γ(ℓ/g)² ≈ 1.3e-8 γ`), 2·10⁴ intervals:
+/// the rule's own error is below 1e-10, so 1e-7 is the tail's bound with a margin.
+#[test]
+fn every_smooth_law_does_the_work_of_adhesion() {
+    let gamma = 0.3;
+    for law in curves() {
+        let (c, l) = (law.curve().unwrap(), law.range(gamma).unwrap());
+        let (n, top) = (20_000, (1.0 + 1e4f64).ln());
+        let h = top / n as f64;
+        let f = |u: f64| -c.pressure(gamma, l * (u.exp() - 1.0)) * l * u.exp();
+        let mut sum = f(0.0) + f(top);
+        for i in 1..n {
+            sum += if i % 2 == 1 { 4.0 } else { 2.0 } * f(i as f64 * h);
+        }
+        let work = sum * h / 3.0;
+        assert!(
+            (work / gamma - 1.0).abs() < 1e-7,
+            "{}: work {work}",
+            law.name()
+        );
+    }
+}
+
+/// `stiffness` is `dp/dg` (central differences of step 1e-5ℓ: error ~1e-10 relative to the
+/// peak slope, 1e-7 allowed), `peak` the greatest tension (sampled every 1e-5ℓ to 20ℓ and
+/// refined: 1e-9), `reach` where the tension falls to [`REACH_FRACTION`] of it (1e-9), and
+/// `stiffens` says whether the slope is negative anywhere.
+#[test]
+fn every_smooth_law_states_its_own_slope_peak_and_reach() {
+    let gamma = 0.3;
+    for law in curves() {
+        let (c, l, name) = (law.curve().unwrap(), law.range(gamma).unwrap(), law.name());
+        let scale = c.peak(gamma) / l;
+        let mut negative = false;
+        let mut best = (0.0f64, 0.0f64);
+        for i in 0..2_000_000 {
+            let g = i as f64 * 1e-5 * l;
+            let t = -c.pressure(gamma, g);
+            if t > best.1 {
+                best = (g, t);
+            }
+            if i % 1000 == 1 {
+                let e = 1e-5 * l;
+                let slope = (c.pressure(gamma, g + e) - c.pressure(gamma, g - e)) / (2.0 * e);
+                let stated = c.stiffness(gamma, g);
+                assert!((slope - stated).abs() < 1e-7 * scale, "{name} at {g}");
+                negative |= stated < 0.0;
+            }
+        }
+        assert_eq!(negative, c.stiffens(), "{name}");
+        let peak = c.peak(gamma);
+        assert!(
+            best.1 <= peak * (1.0 + 1e-12),
+            "{name}: {} > {peak}",
+            best.1
+        );
+        assert!(
+            (best.1 / peak - 1.0).abs() < 1e-9,
+            "{name}: {} vs {peak}",
+            best.1
+        );
+        let reach = law.reach(gamma).unwrap();
+        let at = -c.pressure(gamma, reach) / peak;
+        assert!(
+            (at / REACH_FRACTION - 1.0).abs() < 1e-6,
+            "{name}: {at} at the reach"
+        );
+        assert_eq!(law.peak_tension(gamma, 1.0, 0.1), peak, "{name}");
+    }
+}
