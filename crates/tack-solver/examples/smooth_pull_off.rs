@@ -2,6 +2,8 @@
 //! a free 1 × 1 domain, Tabor μ = 3 (ρ = 3.33e-3); prints the pull-off against JKR and DMT.
 //!
 //! `cargo run --release -p tack-solver --example smooth_pull_off -- 128 3 [exp|lj] [fine] [free|periodic]`
+//! (`TOP=0` in the environment loads only to d = 0, as `cargo xtask bench-laws` does; the default
+//! is 2 d_c)
 
 use std::f64::consts::PI;
 use std::time::Instant;
@@ -23,6 +25,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         Some("periodic") => Boundary::Periodic,
         _ => Boundary::Free,
     };
+    // The deepest approach of the path, in units of d_c (default 2).
+    let top: f64 = std::env::var("TOP").map_or(Ok(2.0), |s| s.parse())?;
     let (radius, e_star, gamma, side) = (1.0, 1.0, 1e-3, 1.0);
     let range = (radius * gamma * gamma / (e_star * e_star * mu * mu * mu)).cbrt();
     let law = match law_name {
@@ -39,7 +43,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let d_c = 0.75 * (PI * PI * gamma * gamma * radius / (e_star * e_star)).cbrt();
     let path = ApproachPath {
         start: -3.0 * d_c,
-        max_approach: 2.0 * d_c,
+        max_approach: top * d_c,
         load_step: d_c / 2.0,
         unload_step: d_c / fine,
         coarse_unload_step: Some(d_c / 4.0),
