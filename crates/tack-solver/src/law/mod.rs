@@ -9,7 +9,9 @@
 //! zero-range criterion (`criterion.rs`), the Dugdale cohesive zone (`dugdale.rs`, with the
 //! [`Cohesive`] state kept here) or a smooth curve (`smooth.rs`). A new smooth law is one type
 //! implementing [`Curve`] (every [`Law`] fact follows from it), one variant of
-//! [`AdhesionLaw`], its docs and its tests.
+//! [`AdhesionLaw`] with its `From` and its line in the registry (`MODELS`), its name among the
+//! scene field's choices (`tack-fields`; a test checks that the two agree), its Python class,
+//! its docs and its tests; the solver's loops and the scene's reading need no edit.
 
 mod dugdale;
 mod exponential;
