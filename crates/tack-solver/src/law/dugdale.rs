@@ -17,6 +17,13 @@ pub struct Dugdale {
     pub sigma0: f64,
 }
 
+impl Dugdale {
+    /// The range `h0 = γ/σ0` for work of adhesion `gamma`: where the tension ends.
+    pub(crate) fn h0(&self, gamma: f64) -> f64 {
+        gamma / self.sigma0
+    }
+}
+
 impl Law for Dugdale {
     fn name(&self) -> &'static str {
         NAME
@@ -38,11 +45,12 @@ impl Law for Dugdale {
 
     /// The range `h0 = γ/σ0`.
     fn range(&self, gamma: f64) -> Option<f64> {
-        Some(gamma / self.sigma0)
+        Some(self.h0(gamma))
     }
 
+    /// The range: the tension ends there.
     fn reach(&self, gamma: f64) -> Option<f64> {
-        Some(gamma / self.sigma0)
+        Some(self.h0(gamma))
     }
 
     fn peak_tension(&self, _gamma: f64, _e_star: f64, _dx: f64) -> f64 {
@@ -82,7 +90,7 @@ impl Law for Dugdale {
     fn summary_entries(&self, gamma: f64, e_star: f64, dx: f64) -> Vec<(&'static str, f64)> {
         vec![
             ("sigma0", self.sigma0),
-            ("range", gamma / self.sigma0),
+            ("range", self.h0(gamma)),
             (
                 "cohesive_zone_elements",
                 self.zone_length(e_star, gamma).unwrap_or(0.0) / dx,
@@ -95,7 +103,7 @@ impl Law for Dugdale {
         format!(
             "Dugdale, sigma0 = {}, range = {}",
             r(self.sigma0),
-            r(gamma / self.sigma0)
+            r(self.h0(gamma))
         )
     }
 
@@ -111,7 +119,7 @@ impl Law for Dugdale {
                 allowed: "a finite number > 0 under the Dugdale law (the range is γ/σ0)",
             });
         }
-        let range = gamma / sigma0;
+        let range = self.h0(gamma);
         if range.is_nan() || range <= RANGE_ROUND_OFF * super::largest_height(surface) {
             return Err(SolverError::OutOfRange {
                 field: fields::ADHESION_SIGMA0,

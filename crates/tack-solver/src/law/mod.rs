@@ -429,10 +429,11 @@ impl Cohesive {
         surface: &Surface,
         shape: (usize, usize),
     ) -> Result<Self, SolverError> {
-        Dugdale { sigma0 }.check(gamma, surface)?;
+        let law = Dugdale { sigma0 };
+        law.check(gamma, surface)?;
         Ok(Self {
             sigma0,
-            range: gamma / sigma0,
+            range: law.h0(gamma),
             zone: Array2::from_elem(shape, false),
             loaded: Array2::from_elem(shape, false),
         })
