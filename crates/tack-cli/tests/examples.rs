@@ -151,9 +151,8 @@ example!(dugdale_sphere, |r, info| {
     assert!(s.extra["jump_in_force"] < 0.0 && s.extra["dissipated_energy"] > 0.0);
     assert!(
         r.curve
-            .n_cohesive
-            .as_ref()
-            .is_some_and(|z| z.iter().any(|&n| n > 0))
+            .law_column("n_cohesive")
+            .is_some_and(|z| z.values.iter().any(|&n| n > 0))
     );
 });
 
@@ -202,9 +201,8 @@ example!(exponential_sphere, |r, info| {
     assert!(s.extra["jump_in_force"] < 0.0 && s.extra["dissipated_energy"] > 0.0);
     assert!(
         r.curve
-            .n_cohesive
-            .as_ref()
-            .is_some_and(|z| z.iter().any(|&n| n > 0))
+            .law_column("n_cohesive")
+            .is_some_and(|z| z.values.iter().any(|&n| n > 0))
     );
 });
 

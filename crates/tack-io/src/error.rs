@@ -36,7 +36,7 @@ pub enum IoError {
         /// The file.
         path: PathBuf,
         /// The offending column.
-        column: &'static str,
+        column: String,
         /// Its length.
         len: usize,
         /// The length of `approach`.

@@ -60,7 +60,7 @@
 //!     converged: vec![true; 4],
 //!     mean_pressure: None,
 //!     full_contact: None,
-//!     n_cohesive: None,
+//!     law_columns: Vec::new(),
 //!     time: None,
 //! };
 //! let result = RunResult {
@@ -102,7 +102,7 @@ mod write;
 
 pub use error::IoError;
 pub use h5::MAX_DATASET_BYTES;
-pub use model::{Curve, Provenance, RunResult, Snapshot, Summary};
+pub use model::{Curve, LawColumn, Provenance, RunResult, Snapshot, Summary};
 pub use read::{describe, read_gamma_map_h5, read_height_map_h5, read_result};
 pub use sweep::{
     POINT_FAILED, POINT_INCOMPLETE, POINT_MISSING, POINT_OK, ParameterColumn, SweepTable,

@@ -64,15 +64,47 @@ pub struct Curve {
     /// least admissible ones (a bound), not a state's; `None` in files written before the
     /// column existed.
     pub full_contact: Option<Vec<bool>>,
-    /// Dugdale law: elements of the cohesive zone (out of contact, carrying the tension σ0);
-    /// `None` for the zero-range criterion and in files written before the column existed.
-    pub n_cohesive: Option<Vec<u64>>,
+    /// The per-step columns the run's adhesion law declares (the Dugdale law's cohesive zone
+    /// and a smooth law's process zone: `n_cohesive`); none for the zero-range criterion.
+    pub law_columns: Vec<LawColumn>,
     /// Viscoelastic solids: the time at the end of each step; `None` for elastic solids and in
     /// files written before the column existed.
     pub time: Option<Vec<f64>>,
 }
 
+/// A per-step count column declared by the run's adhesion law: `/curve/<name>`, with what it
+/// counts in its `law_column` attribute.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct LawColumn {
+    /// The column's name: lower-case letters, digits and `_`, not a fixed column's name.
+    pub name: String,
+    /// What it counts, in a sentence (empty in files written before columns carried it).
+    pub meaning: String,
+    /// One count per step.
+    pub values: Vec<u64>,
+}
+
+/// The columns every curve has, `approach` first.
+pub(crate) const FIXED_COLUMNS: [&str; 8] = [
+    "approach",
+    "force",
+    "area",
+    "n_bonded",
+    "n_clusters",
+    "iterations",
+    "active_set_iterations",
+    "converged",
+];
+
+/// The optional columns tack itself writes.
+pub(crate) const OPTIONAL_COLUMNS: [&str; 3] = ["mean_pressure", "full_contact", "time"];
+
 impl Curve {
+    /// The law's column `name`, if the curve has it.
+    pub fn law_column(&self, name: &str) -> Option<&LawColumn> {
+        self.law_columns.iter().find(|c| c.name == name)
+    }
+
     /// Number of steps (the length of `approach`).
     pub fn len(&self) -> usize {
         self.approach.len()
@@ -84,7 +116,7 @@ impl Curve {
     }
 
     /// Name and length of every present column, `approach` first.
-    pub(crate) fn column_lengths(&self) -> Vec<(&'static str, usize)> {
+    pub(crate) fn column_lengths(&self) -> Vec<(&str, usize)> {
         let mut cols = vec![
             ("approach", self.approach.len()),
             ("force", self.force.len()),
@@ -101,13 +133,38 @@ impl Curve {
         if let Some(f) = &self.full_contact {
             cols.push(("full_contact", f.len()));
         }
-        if let Some(z) = &self.n_cohesive {
-            cols.push(("n_cohesive", z.len()));
-        }
         if let Some(t) = &self.time {
             cols.push(("time", t.len()));
         }
+        for c in &self.law_columns {
+            cols.push((c.name.as_str(), c.values.len()));
+        }
         cols
+    }
+
+    /// Checks that every law column has a name of lower-case letters, digits and `_` that no
+    /// other column has.
+    pub(crate) fn check_law_columns(&self, path: &Path) -> Result<(), IoError> {
+        for (k, c) in self.law_columns.iter().enumerate() {
+            let well_formed = !c.name.is_empty()
+                && c.name
+                    .bytes()
+                    .all(|b| b.is_ascii_lowercase() || b.is_ascii_digit() || b == b'_');
+            let taken = FIXED_COLUMNS.contains(&c.name.as_str())
+                || OPTIONAL_COLUMNS.contains(&c.name.as_str())
+                || self.law_columns[..k].iter().any(|o| o.name == c.name);
+            if !well_formed || taken {
+                return Err(IoError::Invalid {
+                    path: path.to_owned(),
+                    what: format!(
+                        "law column `{}`: a name of lower-case letters, digits and `_` that no \
+                         other curve column has is required",
+                        c.name
+                    ),
+                });
+            }
+        }
+        Ok(())
     }
 
     /// Checks that every column has the length of `approach`.
@@ -120,7 +177,7 @@ impl Curve {
         {
             Some((column, len)) => Err(IoError::ColumnLength {
                 path: path.to_owned(),
-                column,
+                column: column.to_owned(),
                 len,
                 expected,
             }),

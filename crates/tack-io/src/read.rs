@@ -11,7 +11,8 @@ use crate::h5::{
     Budget, check_extent, declared_shape, dims, h5err, has_attr, open_dataset, open_group,
     read_attr, read_dataset, read_opt_attr, read_str_attr,
 };
-use crate::{Curve, IoError, Provenance, RunResult, Snapshot, Summary};
+use crate::model::{FIXED_COLUMNS, OPTIONAL_COLUMNS};
+use crate::{Curve, IoError, LawColumn, Provenance, RunResult, Snapshot, Summary};
 
 /// Reads a result file written by [`crate::write_result`]; snapshots come back sorted by step.
 ///
@@ -69,7 +70,7 @@ pub fn read_result(path: &Path) -> Result<RunResult, IoError> {
 }
 
 /// A human-readable account of a result file: provenance, curve (length, approach range,
-/// minimum force), surface, snapshots and summary attributes, numbers rounded to 6 significant
+/// minimum force, the law's columns and what they count), surface, snapshots and summary attributes, numbers rounded to 6 significant
 /// digits ([`tack_fields::rounded`]).
 pub fn describe(path: &Path) -> Result<String, IoError> {
     let r = read_result(path)?;
@@ -104,6 +105,15 @@ pub fn describe(path: &Path) -> Result<String, IoError> {
         }
         None => "curve: empty".to_owned(),
     });
+    for z in &c.law_columns {
+        let most = z.values.iter().max().copied().unwrap_or(0);
+        let meaning = if z.meaning.is_empty() {
+            String::new()
+        } else {
+            format!(" ({})", z.meaning)
+        };
+        lines.push(format!("  law column {}{meaning}: up to {most}", z.name));
+    }
     lines.push(match &r.surface {
         Some((h, dx)) => format!(
             "surface: {} x {} heights, dx = {}",
@@ -337,30 +347,59 @@ fn read_column<T: H5Type>(
         .0)
 }
 
-/// The columns of `/curve`, `approach` first, and whether each is optional.
-const CURVE_COLUMNS: [(&str, bool); 12] = [
-    ("approach", false),
-    ("force", false),
-    ("area", false),
-    ("n_bonded", false),
-    ("n_clusters", false),
-    ("iterations", false),
-    ("active_set_iterations", false),
-    ("converged", false),
-    ("mean_pressure", true),
-    ("full_contact", true),
-    ("n_cohesive", true),
-    ("time", true),
-];
+/// The attribute that marks a `/curve` dataset as a law's column ([`crate::LawColumn`]) and
+/// holds what it counts.
+pub(crate) const LAW_COLUMN_ATTR: &str = "law_column";
 
-/// Checks, before any is read, that `approach` fits the file (`budget`, not taken) and every
-/// curve column is 1D and declares its length.
-fn check_curve_shapes(g: &Group, path: &Path, budget: &Budget) -> Result<(), IoError> {
-    let mut expected = None;
-    for (column, optional) in CURVE_COLUMNS {
-        if optional && !g.link_exists(column) {
+/// The law columns' name in files written before law columns carried their meaning.
+const LEGACY_LAW_COLUMN: &str = "n_cohesive";
+
+/// The columns of a `/curve` group: every present column's name, `approach` first, and the
+/// law's columns with what each counts.
+type CurveColumns = (Vec<String>, Vec<(String, String)>);
+
+/// The columns of `/curve` present in `g`, `approach` first: the fixed ones, the optional
+/// ones tack writes, then the law's (a dataset with the [`LAW_COLUMN_ATTR`] attribute, or the
+/// legacy `n_cohesive`) with what each counts; other members are left alone.
+fn curve_columns(g: &Group, path: &Path) -> Result<CurveColumns, IoError> {
+    let mut present: Vec<String> = FIXED_COLUMNS.iter().map(|&c| c.to_owned()).collect();
+    for c in OPTIONAL_COLUMNS {
+        if g.link_exists(c) {
+            present.push(c.to_owned());
+        }
+    }
+    let mut law = Vec::new();
+    let names = g.member_names().map_err(h5err(path, "listing `/curve`"))?;
+    for name in names {
+        if FIXED_COLUMNS.contains(&name.as_str()) || OPTIONAL_COLUMNS.contains(&name.as_str()) {
             continue;
         }
+        let Ok(ds) = g.dataset(&name) else {
+            continue;
+        };
+        let meaning = if has_attr(&ds, LAW_COLUMN_ATTR, path)? {
+            read_str_attr(&ds, LAW_COLUMN_ATTR, path)?
+        } else if name == LEGACY_LAW_COLUMN {
+            String::new()
+        } else {
+            continue;
+        };
+        present.push(name.clone());
+        law.push((name, meaning));
+    }
+    Ok((present, law))
+}
+
+/// Checks, before any is read, that `approach` fits the file (`budget`, not taken) and every
+/// curve column in `columns` is 1D and declares its length.
+fn check_curve_shapes(
+    g: &Group,
+    columns: &[String],
+    path: &Path,
+    budget: &Budget,
+) -> Result<(), IoError> {
+    let mut expected = None;
+    for column in columns {
         let full = format!("/curve/{column}");
         let ds = open_dataset(g, column, path)?;
         let shape = declared_shape(&ds, &full, path)?;
@@ -382,7 +421,7 @@ fn check_curve_shapes(g: &Group, path: &Path, budget: &Budget) -> Result<(), IoE
             Some(expected) if len != expected => {
                 return Err(IoError::ColumnLength {
                     path: path.to_owned(),
-                    column,
+                    column: column.clone(),
                     len,
                     expected,
                 });
@@ -395,7 +434,17 @@ fn check_curve_shapes(g: &Group, path: &Path, budget: &Budget) -> Result<(), IoE
 
 fn read_curve(file: &File, path: &Path, budget: &mut Budget) -> Result<Curve, IoError> {
     let g = open_group(file, "curve", path)?;
-    check_curve_shapes(&g, path, budget)?;
+    let (columns, law) = curve_columns(&g, path)?;
+    check_curve_shapes(&g, &columns, path, budget)?;
+    let mut law_columns = Vec::with_capacity(law.len());
+    for (name, meaning) in law {
+        let values = read_column(&g, &name, path, budget)?;
+        law_columns.push(LawColumn {
+            name,
+            meaning,
+            values,
+        });
+    }
     let converged: Vec<u8> = read_column(&g, "converged", path, budget)?;
     let curve = Curve {
         approach: read_column(&g, "approach", path, budget)?,
@@ -417,16 +466,12 @@ fn read_curve(file: &File, path: &Path, budget: &mut Budget) -> Result<Curve, Io
         } else {
             None
         },
-        n_cohesive: if g.link_exists("n_cohesive") {
-            Some(read_column(&g, "n_cohesive", path, budget)?)
-        } else {
-            None
-        },
         time: if g.link_exists("time") {
             Some(read_column(&g, "time", path, budget)?)
         } else {
             None
         },
+        law_columns,
     };
     curve.check_lengths(path)?;
     Ok(curve)

@@ -9,7 +9,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use hdf5::{File, Group};
 
 use crate::h5::{create_group, h5err, write_attr, write_dataset, write_str_attr};
-use crate::read::check_dx;
+use crate::read::{LAW_COLUMN_ATTR, check_dx};
 use crate::{Curve, IoError, Provenance, RunResult, Snapshot, Summary};
 
 /// Distinguishes temporaries of concurrent writes from one process.
@@ -181,6 +181,7 @@ fn write_provenance(file: &File, p: &Provenance, path: &Path) -> Result<(), IoEr
 
 fn write_curve(file: &File, curve: &Curve, path: &Path) -> Result<(), IoError> {
     curve.check_lengths(path)?;
+    curve.check_law_columns(path)?;
     let group = create_group(file, "curve", path)?;
     let mean_pressure = curve.mean_pressure.as_ref().map(|p| ("mean_pressure", p));
     for (name, data) in [
@@ -206,11 +207,12 @@ fn write_curve(file: &File, curve: &Curve, path: &Path) -> Result<(), IoError> {
     if let Some(full) = &curve.full_contact {
         write_dataset(&group, "full_contact", (&flags(full)).into(), path)?;
     }
-    if let Some(zone) = &curve.n_cohesive {
-        write_dataset(&group, "n_cohesive", zone.into(), path)?;
-    }
     if let Some(time) = &curve.time {
         write_dataset(&group, "time", time.into(), path)?;
+    }
+    for c in &curve.law_columns {
+        let ds = write_dataset(&group, &c.name, (&c.values).into(), path)?;
+        write_str_attr(&ds, LAW_COLUMN_ATTR, &c.meaning, path)?;
     }
     Ok(())
 }

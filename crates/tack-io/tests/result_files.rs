@@ -8,8 +8,8 @@ use std::sync::{PoisonError, RwLock, RwLockReadGuard, RwLockWriteGuard};
 
 use ndarray::{Array1, Array2, array};
 use tack_io::{
-    Curve, IoError, Provenance, RunResult, Snapshot, Summary, describe, read_gamma_map_h5,
-    read_height_map_h5, read_result, write_result,
+    Curve, IoError, LawColumn, Provenance, RunResult, Snapshot, Summary, describe,
+    read_gamma_map_h5, read_height_map_h5, read_result, write_result,
 };
 
 /// HDF5 opens files without close-on-exec and holds a lock on them while open, so a child
@@ -97,7 +97,19 @@ fn sample() -> RunResult {
             ..Provenance::current("abc123", "2026-01-01T00:00:00Z")
         },
         curve: Curve {
-            n_cohesive: None,
+            // In name order, as they are read back.
+            law_columns: vec![
+                LawColumn {
+                    name: "n_cohesive".into(),
+                    meaning: "elements of the cohesive zone: out of contact, carrying σ0".into(),
+                    values: vec![0, 4, 9, 2, 0],
+                },
+                LawColumn {
+                    name: "n_other_2".into(),
+                    meaning: String::new(),
+                    values: vec![1, 2, 3, 4, u64::MAX],
+                },
+            ],
             time: None,
             force: vec![0.0, 1.5, -0.875, f64::MIN_POSITIVE, 2.0_f64.sqrt()],
             area: vec![0.0, 0.1, 0.2, 0.3, 0.0],
@@ -140,7 +152,7 @@ fn minimal() -> RunResult {
     RunResult {
         provenance: Provenance::current("unknown", "2026-01-01T00:00:00Z"),
         curve: Curve {
-            n_cohesive: None,
+            law_columns: Vec::new(),
             time: None,
             approach: vec![0.5],
             force: vec![1.0],
@@ -191,6 +203,59 @@ fn round_trip_without_optional_parts() {
     assert_eq!(read_result(&path).unwrap().curve, sample().curve);
 }
 
+/// A law's columns keep their name and meaning; a file written before columns carried their
+/// meaning reads `n_cohesive` as the law's column with an empty one; other datasets of
+/// `/curve` are left alone; a bad name or length is refused, naming the column.
+#[test]
+fn law_columns_round_trip_and_are_checked() {
+    let dir = TempDir::new("law-columns");
+    let path = dir.join("run.h5");
+    let read = {
+        write_result(&path, &minimal()).unwrap();
+        let file = hdf5::File::open_rw(&path).unwrap();
+        let curve = file.group("curve").unwrap();
+        curve
+            .new_dataset_builder()
+            .with_data(&[7u64])
+            .create("n_cohesive")
+            .unwrap();
+        curve
+            .new_dataset_builder()
+            .with_data(&[0.5f64])
+            .create("notes")
+            .unwrap();
+        drop(file);
+        read_result(&path).unwrap()
+    };
+    assert_eq!(
+        read.curve.law_columns,
+        [LawColumn {
+            name: "n_cohesive".into(),
+            meaning: String::new(),
+            values: vec![7],
+        }]
+    );
+    assert_eq!(read.curve.law_column("n_cohesive").unwrap().values, [7]);
+    assert!(read.curve.law_column("notes").is_none());
+
+    for bad in ["force", "time", "N_zone", "", "a b", "n_cohesive"] {
+        let mut r = sample();
+        r.curve.law_columns[1].name = bad.into();
+        let err = write_result(&path, &r).unwrap_err().to_string();
+        assert!(
+            err.contains(&format!("law column `{bad}`")) && err.contains("lower-case"),
+            "{bad}: {err}"
+        );
+    }
+    let mut r = sample();
+    r.curve.law_columns[0].values.pop();
+    let err = write_result(&path, &r).unwrap_err();
+    assert!(
+        matches!(&err, IoError::ColumnLength { column, len: 4, .. } if column == "n_cohesive"),
+        "{err:?}"
+    );
+}
+
 #[test]
 fn successful_write_leaves_no_temporary() {
     let dir = TempDir::new("no-temp");
@@ -206,13 +271,13 @@ fn failed_write_leaves_no_file() {
     bad.curve.n_clusters.pop();
     let err = write_result(&path, &bad).unwrap_err();
     assert!(matches!(
-        err,
+        &err,
         IoError::ColumnLength {
-            column: "n_clusters",
+            column,
             len: 4,
             expected: 5,
             ..
-        }
+        } if column == "n_clusters"
     ));
     let msg = err.to_string();
     assert!(
@@ -339,6 +404,9 @@ fn describe_summarises_file() {
         "tack 0.1.0 (git abc123), created 2026-01-01T00:00:00Z",
         "seed: 18446744073709551615; scene: 3 lines of TOML",
         "curve: 5 steps, approach 0 .. 0.5, min force -0.875 at step 2, 4/5 converged",
+        "  law column n_cohesive (elements of the cohesive zone: out of contact, carrying σ0): up \
+         to 9",
+        "  law column n_other_2: up to 18446744073709551615",
         "surface: 4 x 3 heights, dx = 0.125",
         "snapshots: 2 at steps 1, 3",
         "  pull_off_force = -0.875",

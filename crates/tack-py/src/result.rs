@@ -59,9 +59,10 @@ fn counts<'py>(py: Python<'py>, v: &[u64]) -> Bound<'py, PyArray1<i64>> {
 impl Result {
     /// The force–approach curve, one entry per step: a dict of 1-D arrays `approach`, `force`,
     /// `area`, `n_bonded`, `n_clusters`, `iterations`, `active_set_iterations` (int64),
-    /// `converged` (bool), and `mean_pressure`, `full_contact`, `n_cohesive` (finite-range laws:
-    /// the cohesive or process zone's elements) and `time` (viscoelastic solids: the time at the
-    /// end of each step) where the file has them.
+    /// `converged` (bool), and `mean_pressure`, `full_contact` and `time` (viscoelastic solids:
+    /// the time at the end of each step) where the file has them, then the columns the run's
+    /// adhesion law declares (int64; `n_cohesive` under the Dugdale and smooth laws: the
+    /// cohesive or process zone's elements; what each counts in [`Result::law_columns`]).
     #[getter]
     fn curve(&self, py: Python<'_>) -> PyResult<Py<PyDict>> {
         let dict = self.curve.get_or_try_init(py, || -> PyResult<Py<PyDict>> {
@@ -81,8 +82,8 @@ impl Result {
             if let Some(p) = &c.mean_pressure {
                 d.set_item("mean_pressure", p.clone().into_pyarray(py))?;
             }
-            if let Some(z) = &c.n_cohesive {
-                d.set_item("n_cohesive", counts(py, z))?;
+            for z in &c.law_columns {
+                d.set_item(&z.name, counts(py, &z.values))?;
             }
             if let Some(t) = &c.time {
                 d.set_item("time", t.clone().into_pyarray(py))?;
@@ -93,6 +94,19 @@ impl Result {
             Ok(d.unbind())
         })?;
         Ok(dict.clone_ref(py))
+    }
+
+    /// What each column the run's adhesion law adds to [`Result::curve`] counts: a dict
+    /// `{name: meaning}` (`{"n_cohesive": "elements of the cohesive zone: ..."}` under the
+    /// Dugdale law, empty under the zero-range criterion; the meaning is empty in files written
+    /// before columns carried it).
+    #[getter]
+    fn law_columns(&self, py: Python<'_>) -> PyResult<Py<PyDict>> {
+        let d = PyDict::new(py);
+        for z in &self.inner.curve.law_columns {
+            d.set_item(&z.name, &z.meaning)?;
+        }
+        Ok(d.unbind())
     }
 
     /// The scalar results: `pull_off_force`, `f_jkr`, `pull_off_ratio` (NaN where F_JKR does

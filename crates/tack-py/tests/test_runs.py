@@ -205,6 +205,9 @@ def test_pull_off_of_a_sphere_given_as_an_array(tmp_path):
                           gamma=0.125, radius=radius, snapshots="none")
     assert again.snapshots == {}
     assert again.pull_off_ratio == pytest.approx(result.pull_off_ratio, rel=0.02)
+    # The zero-range criterion adds no law column; the file keeps that too.
+    assert result.law_columns == {} and back.law_columns == {}
+    assert "n_cohesive" not in result.curve
 
 
 def test_refined_retraction_finds_the_fine_pull_off_in_fewer_steps():
@@ -340,7 +343,7 @@ def test_dugdale_pull_off_of_a_sphere_matches_maugis_and_has_both_branches():
     assert 1.0 < r.pull_off_force / s["f_maugis"] < 1.15
     # Both branches: the approach starts out of range and jumps in with tension.
     assert r.curve["force"][0] == 0 and s["jump_in_force"] < 0 and s["dissipated_energy"] > 0
-    assert "n_cohesive" in r.curve
+    assert "n_cohesive" in r.curve and "cohesive zone" in r.law_columns["n_cohesive"]
 
 
 def test_dugdale_arguments_are_checked():
@@ -377,6 +380,9 @@ def test_exponential_pull_off_lies_between_jkr_and_dmt():
     hat = r.pull_off_force / (-np.pi)
     assert 1.5 < hat < 2.0, hat
     assert all(r.curve["converged"])
+    # The law's column: its process zone, said so beside it.
+    assert "process zone" in r.law_columns["n_cohesive"]
+    assert r.curve["n_cohesive"].max() > 0
 
 
 def test_smooth_law_arguments_are_checked():

@@ -45,7 +45,7 @@
 use ndarray::{Array2, Zip};
 use tack_kernels::ElasticOperator;
 
-use crate::law::Traction;
+use crate::law::{Traction, ZONE_FRACTION};
 use crate::rounds::Tally;
 use crate::{AdhesiveSolver, SolverOptions, StepRecord};
 
@@ -131,10 +131,6 @@ impl WindowSystem {
         }
     }
 }
-
-/// Elements out of contact count as the cohesive zone (`n_cohesive`) when their tension exceeds
-/// this fraction of the peak tension.
-pub(crate) const ZONE_FRACTION: f64 = 0.01;
 
 /// The smooth law's state on the solver's grid: the traction law, the zone mask and the Newton
 /// and MINRES vectors (allocated once).

@@ -62,8 +62,10 @@ pub struct StepRecord {
     /// cut off by the domain (enlarge the grid or the crop). Under the Dugdale law a cohesive
     /// element there counts too.
     pub edge_contact: bool,
-    /// Dugdale law: elements of the cohesive zone (out of contact, carrying the tension σ0);
-    /// always 0 under the zero-range criterion.
+    /// Elements of the law's zone ahead of the contact, the values of its
+    /// [`Law::step_column`](crate::Law::step_column): the Dugdale law's cohesive zone (out of
+    /// contact, carrying σ0), a smooth law's process zone (out of contact, tension beyond 1% of
+    /// the peak); always 0 under the zero-range criterion.
     pub n_cohesive: usize,
     /// The time at the end of the step on a viscoelastic solid
     /// ([`AdhesiveSolver::set_viscoelastic`](crate::AdhesiveSolver::set_viscoelastic)), `None`

@@ -368,12 +368,19 @@ pub fn summary_quantity(summary: &tack_io::Summary, name: &str) -> f64 {
     }
 }
 
-/// The curve of a path, one entry per step.
-///
-/// The column `n_cohesive` is kept when some step has a cohesive zone (Dugdale law).
-pub fn curve(path: &PathResult) -> tack_io::Curve {
+/// The curve of a path run under `law`, one entry per step, with the column the law declares
+/// ([`tack_solver::Law::step_column`]: `n_cohesive` under the Dugdale and smooth laws).
+pub fn curve(path: &PathResult, law: &dyn tack_solver::Law) -> tack_io::Curve {
     let r = &path.records;
-    let cohesive = r.iter().any(|s| s.n_cohesive > 0);
+    let law_columns = law
+        .step_column()
+        .map(|c| tack_io::LawColumn {
+            name: c.name.to_owned(),
+            meaning: c.meaning,
+            values: r.iter().map(|s| s.n_cohesive as u64).collect(),
+        })
+        .into_iter()
+        .collect();
     tack_io::Curve {
         approach: r.iter().map(|s| s.approach).collect(),
         force: r.iter().map(|s| s.force).collect(),
@@ -385,12 +392,12 @@ pub fn curve(path: &PathResult) -> tack_io::Curve {
         converged: r.iter().map(|s| s.converged).collect(),
         mean_pressure: Some(r.iter().map(|s| s.mean_pressure).collect()),
         full_contact: Some(r.iter().map(|s| s.full_contact).collect()),
-        n_cohesive: cohesive.then(|| r.iter().map(|s| s.n_cohesive as u64).collect()),
         time: r
             .iter()
             .map(|s| s.time)
             .collect::<Option<Vec<f64>>>()
             .filter(|t| !t.is_empty()),
+        law_columns,
     }
 }
 
@@ -403,7 +410,7 @@ pub fn assemble_result(
 ) -> tack_io::RunResult {
     tack_io::RunResult {
         provenance,
-        curve: curve(path),
+        curve: curve(path, &*problem.law),
         surface: problem
             .store_surface
             .then(|| (problem.surface.heights().clone(), problem.grid.dx())),

@@ -291,7 +291,7 @@ pub fn write_figure(
             seed: None,
         },
         curve: tack_io::Curve {
-            n_cohesive: None,
+            law_columns: Vec::new(),
             time: None,
             approach: table.x.clone(),
             force: table.y.clone(),

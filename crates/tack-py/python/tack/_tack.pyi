@@ -31,8 +31,11 @@ class Result:
     @property
     def curve(self) -> Dict[str, npt.NDArray[Any]]:
         """1-D arrays per step: approach, force, area, n_bonded, n_clusters, iterations,
-        active_set_iterations, converged, mean_pressure, full_contact, n_cohesive, time (where
-        present)."""
+        active_set_iterations, converged, mean_pressure, full_contact, time (where present), then
+        the adhesion law's columns (n_cohesive under the Dugdale and smooth laws)."""
+    @property
+    def law_columns(self) -> Dict[str, str]:
+        """{name: what it counts} of the adhesion law's columns of ``curve``."""
     @property
     def summary(self) -> Dict[str, Any]:
         """pull_off_force, f_jkr, pull_off_ratio, johnson_alpha, alpha_star, then extras."""

@@ -3,7 +3,7 @@
 use tack_fields as fields;
 use tack_geometry::Surface;
 
-use super::{Family, Law, MIN_COHESIVE_ZONE_ELEMENTS, RANGE_ROUND_OFF};
+use super::{Family, Law, MIN_COHESIVE_ZONE_ELEMENTS, RANGE_ROUND_OFF, StepColumn, ZONE_COLUMN};
 use crate::SolverError;
 
 /// The scene name.
@@ -96,6 +96,15 @@ impl Law for Dugdale {
                 self.zone_length(e_star, gamma).unwrap_or(0.0) / dx,
             ),
         ]
+    }
+
+    /// The cohesive zone's elements: out of contact, carrying σ0.
+    fn step_column(&self) -> Option<StepColumn> {
+        Some(StepColumn {
+            name: ZONE_COLUMN,
+            meaning: "elements of the cohesive zone: out of contact, carrying the tension sigma0"
+                .to_owned(),
+        })
     }
 
     fn describe(&self, gamma: f64, _e_star: f64, _dx: f64) -> String {

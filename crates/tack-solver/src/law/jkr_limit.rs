@@ -3,7 +3,7 @@
 use tack_fields as fields;
 use tack_geometry::Surface;
 
-use super::{Family, Law};
+use super::{Family, Law, StepColumn};
 use crate::SolverError;
 
 /// The scene name.
@@ -72,6 +72,11 @@ impl Law for JkrLimit {
             ("sigma_c", self.peak_tension(gamma, e_star, dx)),
             ("kappa", self.kappa),
         ]
+    }
+
+    /// The criterion has bonded elements only: no zone ahead of the contact.
+    fn step_column(&self) -> Option<StepColumn> {
+        None
     }
 
     fn describe(&self, _gamma: f64, _e_star: f64, _dx: f64) -> String {

@@ -4,8 +4,8 @@
 //! results name.
 //!
 //! A law states its parameter and checks, its range, reach and peak tension, the mesh rule it
-//! needs and the warning when a mesh breaks it, its summary entries and its one-line
-//! description, and which of the solver's three algorithms runs it ([`Family`]): the
+//! needs and the warning when a mesh breaks it, its summary entries, the per-step column it
+//! adds to a result's curve ([`StepColumn`]) and its one-line description, and which of the solver's three algorithms runs it ([`Family`]): the
 //! zero-range criterion (`criterion.rs`), the Dugdale cohesive zone (`dugdale.rs`, with the
 //! [`Cohesive`] state kept here) or a smooth curve (`smooth.rs`). A new smooth law is one type
 //! implementing [`Curve`] (every [`Law`] fact follows from it), one variant of
@@ -45,6 +45,25 @@ pub const REACH_FRACTION: f64 = 1e-8;
 /// The smallest range allowed, relative to the largest height: below it the gap test
 /// `g < h0` is decided by the round-off of `f − d + u`.
 pub const RANGE_ROUND_OFF: f64 = 1e-12;
+
+/// The name of the per-step column of the laws with a zone ahead of the contact (the Dugdale
+/// law's cohesive zone, a smooth law's process zone): `/curve/n_cohesive` in results.
+pub const ZONE_COLUMN: &str = "n_cohesive";
+
+/// Under a smooth law, elements out of contact count as the process zone (the law's
+/// [`ZONE_COLUMN`]) when their tension exceeds this fraction of their peak tension.
+pub(crate) const ZONE_FRACTION: f64 = 0.01;
+
+/// A per-step column a law adds to a path's curve: its name in results (`/curve/<name>`) and
+/// what it counts, stored beside it; its values are each step's
+/// [`StepRecord::n_cohesive`](crate::StepRecord::n_cohesive).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct StepColumn {
+    /// The column's name.
+    pub name: &'static str,
+    /// What it counts, in a sentence.
+    pub meaning: String,
+}
 
 /// Which of the solver's algorithms runs a law.
 #[derive(Debug, Clone, Copy)]
@@ -98,6 +117,9 @@ pub trait Law: std::fmt::Debug + Send + Sync {
     fn mesh_warning(&self, e_star: f64, gamma: f64, dx: f64) -> Option<String>;
     /// The law's own entries of a result's summary.
     fn summary_entries(&self, gamma: f64, e_star: f64, dx: f64) -> Vec<(&'static str, f64)>;
+    /// The per-step column the law adds to a result's curve (`None`: none, the zero-range
+    /// criterion).
+    fn step_column(&self) -> Option<StepColumn>;
     /// One line naming the law and its parameters for a run's report.
     fn describe(&self, gamma: f64, e_star: f64, dx: f64) -> String;
     /// Checks the law's own inputs for work of adhesion `gamma` on `surface`; errors name the
@@ -204,6 +226,19 @@ impl<C: Curve> Law for C {
                 self.zone_length(e_star, gamma).unwrap_or(0.0) / dx,
             ),
         ]
+    }
+
+    /// The process zone's elements: out of contact with tension beyond
+    /// [`ZONE_FRACTION`] of their peak.
+    fn step_column(&self) -> Option<StepColumn> {
+        Some(StepColumn {
+            name: ZONE_COLUMN,
+            meaning: format!(
+                "elements of the process zone: out of contact, with a tension beyond {} of the \
+                 law's peak",
+                ZONE_FRACTION
+            ),
+        })
     }
 
     fn describe(&self, gamma: f64, _e_star: f64, _dx: f64) -> String {

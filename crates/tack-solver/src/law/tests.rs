@@ -106,3 +106,25 @@ fn every_smooth_law_states_its_own_slope_peak_and_reach() {
         assert_eq!(law.peak_tension(gamma, 1.0, 0.1), peak, "{name}");
     }
 }
+
+/// A law with a zone ahead of the contact declares its column (`n_cohesive`, saying what it
+/// counts); the zero-range criterion, which has none, declares no column.
+#[test]
+fn every_law_with_a_zone_declares_its_column() {
+    for m in AdhesionLaw::models() {
+        let law = AdhesionLaw::from_model(m, 0.25).expect("a listed model");
+        match (law.family(), law.step_column()) {
+            (Family::Criterion { .. }, None) => {}
+            (Family::Cohesive { .. }, Some(c)) => {
+                assert_eq!(c.name, ZONE_COLUMN);
+                assert!(c.meaning.contains("cohesive zone"), "{m}: {}", c.meaning);
+            }
+            (Family::Smooth(_), Some(c)) => {
+                assert_eq!(c.name, ZONE_COLUMN);
+                assert!(c.meaning.contains("process zone"), "{m}: {}", c.meaning);
+                assert!(c.meaning.contains("0.01"), "{m}: {}", c.meaning);
+            }
+            (f, c) => panic!("{m}: {f:?} declares {c:?}"),
+        }
+    }
+}
