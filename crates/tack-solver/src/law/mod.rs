@@ -234,9 +234,9 @@ impl<C: Curve> Law for C {
         Some(StepColumn {
             name: ZONE_COLUMN,
             meaning: format!(
-                "elements of the process zone: out of contact, with a tension beyond {} of the \
+                "elements of the process zone: out of contact, with a tension beyond {}% of the \
                  law's peak",
-                ZONE_FRACTION
+                ZONE_FRACTION * 100.0
             ),
         })
     }

@@ -122,7 +122,7 @@ fn every_law_with_a_zone_declares_its_column() {
             (Family::Smooth(_), Some(c)) => {
                 assert_eq!(c.name, ZONE_COLUMN);
                 assert!(c.meaning.contains("process zone"), "{m}: {}", c.meaning);
-                assert!(c.meaning.contains("0.01"), "{m}: {}", c.meaning);
+                assert!(c.meaning.contains("beyond 1% of"), "{m}: {}", c.meaning);
             }
             (f, c) => panic!("{m}: {f:?} declares {c:?}"),
         }
