@@ -11,6 +11,8 @@
 //! | `/curve/converged` | 1D u8, 0 or 1 |
 //! | `/curve/mean_pressure` | 1D f64, only when recorded |
 //! | `/curve/full_contact` | 1D u8, 1 where the step is in periodic full contact (its force and mean pressure are a bound, not a state's); only when recorded |
+//! | `/curve/time` | 1D f64, a viscoelastic solid's time at the end of each step; only then |
+//! | `/curve/<law column>` | 1D u64, the adhesion law's per-step column ([`LawColumn`]: `n_cohesive`, the Dugdale cohesive zone's or a smooth law's process zone's elements), with the string attribute `law_column` saying what it counts; none under the zero-range criterion |
 //! | `/surface/heights` | 2D f64 `(nx, ny)` with f64 attribute `dx`, only when asked for |
 //! | `/snapshots/<step>/{pressure, bonded}` | 2D f64 and 2D u8 (0/1); `<step>` is the index into the curve as a plain decimal (`0`, `17`, `250`), the group has the f64 attribute `approach` |
 //! | `/summary` attributes | f64 `pull_off_force`, `f_jkr`, `pull_off_ratio`; `johnson_alpha` and `alpha_star` when known; any extra named scalars |

@@ -70,8 +70,8 @@ pub fn read_result(path: &Path) -> Result<RunResult, IoError> {
 }
 
 /// A human-readable account of a result file: provenance, curve (length, approach range,
-/// minimum force, the law's columns and what they count), surface, snapshots and summary attributes, numbers rounded to 6 significant
-/// digits ([`tack_fields::rounded`]).
+/// minimum force, the law's columns and what they count), surface, snapshots and summary
+/// attributes, numbers rounded to 6 significant digits ([`tack_fields::rounded`]).
 pub fn describe(path: &Path) -> Result<String, IoError> {
     let r = read_result(path)?;
     let (p, c) = (&r.provenance, &r.curve);

@@ -5,9 +5,10 @@
 //!
 //! A law states its parameter and checks, its range, reach and peak tension, the mesh rule it
 //! needs and the warning when a mesh breaks it, its summary entries, the per-step column it
-//! adds to a result's curve ([`StepColumn`]) and its one-line description, and which of the solver's three algorithms runs it ([`Family`]): the
-//! zero-range criterion (`criterion.rs`), the Dugdale cohesive zone (`dugdale.rs`, with the
-//! [`Cohesive`] state kept here) or a smooth curve (`smooth.rs`). A new smooth law is one type
+//! adds to a result's curve ([`StepColumn`]), its one-line description, and which of the
+//! solver's three algorithms runs it ([`Family`]): the zero-range criterion (`criterion.rs`),
+//! the Dugdale cohesive zone (`dugdale.rs`, with the [`Cohesive`] state kept here) or a smooth
+//! curve (`smooth.rs`). A new smooth law is one type
 //! implementing [`Curve`] (every [`Law`] fact follows from it), one variant of
 //! [`AdhesionLaw`] with its `From` and its line in the registry (`MODELS`), its name among the
 //! scene field's choices (`tack-fields`; a test checks that the two agree), its Python class,
