@@ -230,7 +230,7 @@ impl<C: Curve> Law for C {
     }
 
     /// The process zone's elements: out of contact with tension beyond
-    /// [`ZONE_FRACTION`] of their peak.
+    /// 1% of their peak (`ZONE_FRACTION`).
     fn step_column(&self) -> Option<StepColumn> {
         Some(StepColumn {
             name: ZONE_COLUMN,
