@@ -243,6 +243,7 @@ impl Problem {
                 grid: &grid,
                 path: &path,
                 first_touch,
+                surface: &surface,
                 default_path: path_rule.is_some(),
                 film: layer.is_some(),
                 material,

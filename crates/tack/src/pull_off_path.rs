@@ -237,7 +237,7 @@ pub(crate) fn check_contact_fits(
     let depth = (max_approach - first_touch).max(0.0);
     let dx = grid.dx();
     let (needed, rule) =
-        sphere_contact_reach(radius, depth, dx, 1.0, material, (false, range.is_some()));
+        sphere_contact_reach(radius, depth, dx, 1.0, material, (None, range.is_some()));
     if range.is_none() {
         check_one_step_load(heights, grid, max_approach)?;
     }
@@ -329,7 +329,8 @@ pub struct Material {
 /// the rule that gives it, with what must stay free around it: the Hertz radius √(R·d) (times
 /// √2.5 on a film) with [`SPHERE_FIT_MARGIN`]; under a `finite_range` law (which attracts
 /// ahead of the contact) also the JKR contact radius a(d) plus one element; after a one-step
-/// load also the penetrated disc √(2R·d) plus one element (that step bonds all of it under
+/// load (`bonded`: how far the elements it bonds reach from the origin, √(2R·d) on a smooth
+/// sphere) also that reach plus one element (the step bonds every penetrated element under
 /// either law). The zero-range criterion loaded in steps bonds only what penetrates, so its
 /// contact stays near Hertz's.
 pub fn sphere_contact_reach(
@@ -338,7 +339,7 @@ pub fn sphere_contact_reach(
     dx: f64,
     reach: f64,
     material: Material,
-    (one_step, finite_range): (bool, bool),
+    (bonded, finite_range): (Option<f64>, bool),
 ) -> (f64, String) {
     let hertz = reach * (radius * depth).sqrt();
     let mut needed = SPHERE_FIT_MARGIN * hertz;
@@ -363,12 +364,14 @@ pub fn sphere_contact_reach(
             num(round4(reach * a))
         );
     }
-    let penetrated = (2.0 * radius * depth).sqrt();
-    if one_step && penetrated + dx > needed {
-        needed = penetrated + dx;
+    if let Some(bonded) = bonded
+        && bonded + dx > needed
+    {
+        needed = bonded + dx;
         rule = format!(
-            "the disc the one-step load bonds, sqrt(2·R·d) = {}, plus one element",
-            num(round4(penetrated))
+            "the elements the one-step load bonds (every one below the approach), reaching {} \
+             from the centre, plus one element",
+            num(round4(bonded))
         );
     }
     (needed, rule)

@@ -114,6 +114,8 @@ pub struct FitCheck<'a> {
     pub path: &'a ApproachPath,
     /// The approach of the first touch.
     pub first_touch: f64,
+    /// The body's surface (a one-step load bonds every element below the deepest approach).
+    pub surface: &'a Surface,
     /// The path is the default pull-off rule's (not given by `[protocol]`).
     pub default_path: bool,
     /// The body is a film on a rigid base (it bulges around the contact).
@@ -184,6 +186,21 @@ impl FitCheck<'_> {
     /// that step bonds every element the body penetrates.
     pub fn one_step_load(&self) -> bool {
         !self.path.is_indentation() && loaded_steps(self.path, self.first_touch, 2) <= 1
+    }
+
+    /// How far from the origin, along x or y, the elements a one-step load bonds reach: the
+    /// centres of those with a height below the deepest approach (0 when there are none). On a
+    /// smooth sphere this is the disc √(2R·d); on a rough one it is the penetrated set itself,
+    /// which the disc from the lowest height neither bounds nor is bounded by.
+    pub fn bonded_reach(&self) -> f64 {
+        let d = self.path.max_approach;
+        let grid = self.surface.grid();
+        self.surface
+            .heights()
+            .indexed_iter()
+            .filter(|&(_, &h)| h < d)
+            .map(|((i, j), _)| grid.x(i).abs().max(grid.y(j).abs()))
+            .fold(0.0, f64::max)
     }
 
     /// The error of an axisymmetric contact of radius `needed` around the origin that a free
@@ -327,7 +344,10 @@ impl SceneShape for SphereBody {
             fit.grid.dx(),
             fit.reach(),
             fit.material,
-            (fit.one_step_load(), fit.finite_range),
+            (
+                fit.one_step_load().then(|| fit.bonded_reach()),
+                fit.finite_range,
+            ),
         );
         fit.disc_fits(
             needed,
@@ -701,6 +721,64 @@ mod tests {
         assert!((e.shape().path_sphere().unwrap().0 - 4.0).abs() < 1e-12);
     }
 
+    /// The sphere's fit check after a one-step load holds the elements that load bonds (height
+    /// below the approach), not the disc √(2R·d) from the lowest height: a pit at the vertex
+    /// deepens that disc past the edge though the bonded elements keep well inside; a dip on
+    /// the outermost ring bonds an edge element the disc does not reach.
+    #[test]
+    fn a_one_step_load_is_checked_on_the_elements_it_bonds() {
+        let n = 64;
+        let grid = Grid::square(n, 1.0 / n as f64, Boundary::Free).unwrap();
+        let spec = GridSpec {
+            n: Some(n),
+            nx: None,
+            ny: None,
+            dx: Some(grid.dx()),
+            length: None,
+            boundary: crate::scene::BoundaryKind::Free,
+            crop: true,
+        };
+        let body = SphereBody { radius: 1.0 };
+        let max_approach = 0.05;
+        let path = ApproachPath::pull_off_only(max_approach, 1e-3, 1e-4).unwrap();
+        let check = |dip: (usize, usize, f64)| {
+            let mut surface = body.surface(grid).unwrap();
+            let mut h = surface.heights().clone();
+            h[[dip.0, dip.1]] = dip.2;
+            surface = Surface::new(grid, h).unwrap();
+            let fit = FitCheck {
+                spec: &spec,
+                grid: &grid,
+                path: &path,
+                first_touch: surface.min(),
+                surface: &surface,
+                default_path: false,
+                film: false,
+                material: Material {
+                    e_star: 1.0,
+                    gamma: 1e-6,
+                },
+                finite_range: false,
+            };
+            assert!(fit.one_step_load());
+            body.check_fit(&fit).map_err(|e| e.to_string())
+        };
+        // The smooth sphere: √(2·0.05) = 0.32 < 0.5.
+        assert!(check((n / 2, n / 2, 0.0)).is_ok());
+        // A pit of −0.09 at the vertex: from the lowest height d = 0.14, whose disc √(2Rd) =
+        // 0.53 passes the edge (while 1.3·√(Rd) = 0.49 fits), but what the load bonds is the
+        // same disc of 0.32 (and the pit).
+        assert!(check((n / 2, n / 2, -0.09)).is_ok());
+        // A dip on the outermost ring (x = −0.5) below the approach: refused, by that element.
+        let e = check((0, n / 2, 0.0)).unwrap_err();
+        assert!(
+            e.contains("one-step load bonds") && e.contains("reaching 0.5 from"),
+            "{e}"
+        );
+        // The same dip just above the approach bonds nothing there.
+        assert!(check((0, n / 2, max_approach + 1e-9)).is_ok());
+    }
+
     #[test]
     fn the_reach_of_a_one_step_load_is_the_penetrated_disc() {
         let m = Material {
@@ -708,14 +786,15 @@ mod tests {
             gamma: 1e-4,
         };
         // Deep load (d ≫ d_s): the penetrated disc √(2Rd) beats 1.3·√(Rd) after one step.
-        let (needed, rule) = sphere_contact_reach(1.0, 0.01, 1e-3, 1.0, m, (true, false));
+        let (needed, rule) =
+            sphere_contact_reach(1.0, 0.01, 1e-3, 1.0, m, (Some(0.02f64.sqrt()), false));
         assert!(
             (needed - ((0.02f64).sqrt() + 1e-3)).abs() < 1e-12,
             "{needed}"
         );
         assert!(rule.contains("one-step load"), "{rule}");
         // Loaded in steps under the zero-range law: the contact stays near Hertz.
-        let (needed, rule) = sphere_contact_reach(1.0, 0.01, 1e-3, 1.0, m, (false, false));
+        let (needed, rule) = sphere_contact_reach(1.0, 0.01, 1e-3, 1.0, m, (None, false));
         assert!((needed - 1.3 * 0.1).abs() < 1e-12, "{needed}");
         assert!(rule.contains("Hertz"), "{rule}");
         // Shallow under strong adhesion and a finite range: the JKR contact radius exceeds
@@ -724,11 +803,11 @@ mod tests {
             e_star: 1.0,
             gamma: 1e-2,
         };
-        let (needed, rule) = sphere_contact_reach(1.0, 1e-3, 1e-4, 1.0, strong, (false, true));
+        let (needed, rule) = sphere_contact_reach(1.0, 1e-3, 1e-4, 1.0, strong, (None, true));
         let a = tack_analytics::jkr_radius_from_approach(1.0, 1e-2, 1.0, 1e-3).unwrap();
         assert!((needed - (a + 1e-4)).abs() < 1e-12, "{needed} {a}");
         assert!(rule.contains("JKR"), "{rule}");
-        let (needed, _) = sphere_contact_reach(1.0, 1e-3, 1e-4, 1.0, strong, (false, false));
+        let (needed, _) = sphere_contact_reach(1.0, 1e-3, 1e-4, 1.0, strong, (None, false));
         assert!((needed - 1.3 * 1e-3f64.sqrt()).abs() < 1e-12, "{needed}");
     }
 

@@ -557,6 +557,36 @@ mod tests {
         assert!(matches!(law, tack_solver::AdhesionLaw::Exponential(_)));
     }
 
+    /// Figure 7's roughest corner in full mode (H = 0.9, α* = 0.1: the largest rms height,
+    /// the deepest one-step load): the grid check holds the elements that load bonds, so only
+    /// seed 11, whose load bonds elements on the grid's outermost ring (x = −0.5), is refused.
+    /// The disc √(2R·d) from the roughness' lowest point refused seeds 1, 6, 7, 9 and 12, whose
+    /// bonded elements keep off the edge, and let seed 11 through.
+    #[test]
+    fn fig7_full_roughest_points_are_refused_only_where_the_load_bonds_the_edge() {
+        let spec = crate::spec::FigureSpec::load(&crate::reproduce::default_specs(), 7, true)
+            .expect("fig7.toml");
+        let p: Fig7 = spec.params().expect("fig7 parameters");
+        let base = spec.scene().expect("fig7's scene");
+        let path = PullOff::for_mode(true);
+        let (hurst, a) = (0.9, 0.1);
+        assert!(p.hurst.contains(&hurst) && p.alpha_star.contains(&a));
+        let mut refused = Vec::new();
+        for &seed in &p.seeds {
+            let (file, _) = rough_scene(&base, &p, &path, hurst, a, seed).unwrap();
+            let scene = tack::Scene::from_file(file, ".").unwrap();
+            if let Err(e) = tack::problem::Problem::from_scene(&scene) {
+                let e = e.to_string();
+                assert!(
+                    e.contains("one-step load bonds") && e.contains("reaching 0.5 from"),
+                    "seed {seed}: {e}"
+                );
+                refused.push(seed);
+            }
+        }
+        assert_eq!(refused, [11]);
+    }
+
     /// Figure 7's roughness in both modes: every (H, α*) gets the rms height of Eq. 11 inverted
     /// on the paper's band of its grid (q0 = 2π/L, q1 = π/Δx), bit for bit (the datasets depend
     /// on it), which gives the α* back.
