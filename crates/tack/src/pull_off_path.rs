@@ -370,7 +370,7 @@ pub fn sphere_contact_reach(
         needed = bonded + dx;
         rule = format!(
             "the elements the one-step load bonds (every one below the approach), reaching {} \
-             from the centre, plus one element",
+             from the centre (the disc sqrt(2·R·d) where the grid cuts them), plus one element",
             num(round4(bonded))
         );
     }

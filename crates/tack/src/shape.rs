@@ -269,6 +269,21 @@ pub struct SphereBody {
     pub radius: f64,
 }
 
+impl SphereBody {
+    /// How far the elements a one-step load bonds reach ([`FitCheck::bonded_reach`]). Where
+    /// they reach the grid's outermost ring the grid cuts them (the check then fails), and the
+    /// disc √(2R·d) they would fill estimates the size the grid needs.
+    fn bonded_reach(&self, fit: &FitCheck<'_>) -> f64 {
+        let reach = fit.bonded_reach();
+        let grid = fit.grid;
+        if reach + grid.dx() > grid.lx().min(grid.ly()) / 2.0 {
+            reach.max((2.0 * self.radius * fit.depth()).sqrt())
+        } else {
+            reach
+        }
+    }
+}
+
 impl SceneShape for SphereBody {
     fn surface(&self, grid: Grid) -> Result<Surface, SceneError> {
         let sphere = Sphere::new(self.radius).map_err(rename(fields::GEOMETRY_RADIUS))?;
@@ -345,7 +360,7 @@ impl SceneShape for SphereBody {
             fit.reach(),
             fit.material,
             (
-                fit.one_step_load().then(|| fit.bonded_reach()),
+                fit.one_step_load().then(|| self.bonded_reach(fit)),
                 fit.finite_range,
             ),
         );
@@ -773,6 +788,30 @@ mod tests {
         let e = check((0, n / 2, 0.0)).unwrap_err();
         assert!(
             e.contains("one-step load bonds") && e.contains("reaching 0.5 from"),
+            "{e}"
+        );
+        // A load so deep that the grid cuts the bonded disc: the message asks for the grid the
+        // disc √(2R·d) needs, not the one the cut set would.
+        let deep = ApproachPath::pull_off_only(0.2, 1e-3, 1e-4).unwrap();
+        let surface = body.surface(grid).unwrap();
+        let fit = FitCheck {
+            spec: &spec,
+            grid: &grid,
+            path: &deep,
+            first_touch: surface.min(),
+            surface: &surface,
+            default_path: false,
+            film: false,
+            material: Material {
+                e_star: 1.0,
+                gamma: 1e-6,
+            },
+            finite_range: false,
+        };
+        let e = body.check_fit(&fit).unwrap_err().to_string();
+        let needed = ((2.0 * (0.4f64).sqrt() + 2.0 / n as f64) * n as f64).ceil();
+        assert!(
+            e.contains("reaching 0.6325") && e.contains(&format!("at least {needed} ×")),
             "{e}"
         );
         // The same dip just above the approach bonds nothing there.

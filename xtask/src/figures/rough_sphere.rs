@@ -578,7 +578,7 @@ mod tests {
             if let Err(e) = tack::problem::Problem::from_scene(&scene) {
                 let e = e.to_string();
                 assert!(
-                    e.contains("one-step load bonds") && e.contains("reaching 0.5 from"),
+                    e.contains("one-step load bonds") && e.contains("reaching 0.5"),
                     "seed {seed}: {e}"
                 );
                 refused.push(seed);
