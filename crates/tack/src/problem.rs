@@ -238,7 +238,7 @@ impl Problem {
             references.set_jkr(e_star, gamma, rule.radius);
         }
         if grid.boundary() == Boundary::Free {
-            shape.check_fit(&crate::shape::FitCheck {
+            let fit = crate::shape::FitCheck {
                 spec: &f.grid,
                 grid: &grid,
                 path: &path,
@@ -248,7 +248,9 @@ impl Problem {
                 film: layer.is_some(),
                 material,
                 finite_range: law.reach(gamma).is_some(),
-            })?;
+            };
+            shape.check_fit(&fit)?;
+            warnings.extend(fit.edge_warning());
         }
         check_memory(scene, &grid, Some(path.step_bound()), gamma_array)?;
         // Random roughness and height arrays (measured surfaces); not waviness, whose

@@ -281,12 +281,7 @@ fn check_one_step_load(
     max_approach: f64,
 ) -> Result<(), SceneError> {
     let (nx, ny) = heights.dim();
-    let on_edge = heights
-        .indexed_iter()
-        .filter(|&((i, j), &h)| {
-            (i == 0 || j == 0 || i + 1 == nx || j + 1 == ny) && h < max_approach
-        })
-        .count();
+    let on_edge = bonded_on_edge(heights, max_approach);
     if on_edge == 0 {
         return Ok(());
     }
@@ -302,6 +297,18 @@ fn check_one_step_load(
         tack_fields::num(round4(max_approach)),
         tack_fields::PROTOCOL_MAX_APPROACH,
     )))
+}
+
+/// How many elements on the array's outermost ring a one-step load to `max_approach` bonds
+/// (those with `h < max_approach`).
+pub(crate) fn bonded_on_edge(heights: &Array2<f64>, max_approach: f64) -> usize {
+    let (nx, ny) = heights.dim();
+    heights
+        .indexed_iter()
+        .filter(|&((i, j), &h)| {
+            (i == 0 || j == 0 || i + 1 == nx || j + 1 == ny) && h < max_approach
+        })
+        .count()
 }
 
 /// How the default path loads, as `(start, load_step)`: under the zero-range law one step from
@@ -329,9 +336,8 @@ pub struct Material {
 /// the rule that gives it, with what must stay free around it: the Hertz radius √(R·d) (times
 /// √2.5 on a film) with [`SPHERE_FIT_MARGIN`]; under a `finite_range` law (which attracts
 /// ahead of the contact) also the JKR contact radius a(d) plus one element; after a one-step
-/// load (`bonded`: how far the elements it bonds reach from the origin, √(2R·d) on a smooth
-/// sphere) also that reach plus one element (the step bonds every penetrated element under
-/// either law). The zero-range criterion loaded in steps bonds only what penetrates, so its
+/// load (`bonded`: the disc √(2R·d) it bonds) also that disc plus one element (the step bonds
+/// every penetrated element under either law). The zero-range criterion loaded in steps bonds only what penetrates, so its
 /// contact stays near Hertz's.
 pub fn sphere_contact_reach(
     radius: f64,
@@ -369,8 +375,8 @@ pub fn sphere_contact_reach(
     {
         needed = bonded + dx;
         rule = format!(
-            "the elements the one-step load bonds (every one below the approach), reaching {} \
-             from the centre (the disc sqrt(2·R·d) where the grid cuts them), plus one element",
+            "the disc the one-step load bonds, sqrt(2·R·d) = {} (d from the vertex), plus one \
+             element",
             num(round4(bonded))
         );
     }

@@ -188,19 +188,33 @@ impl FitCheck<'_> {
         !self.path.is_indentation() && loaded_steps(self.path, self.first_touch, 2) <= 1
     }
 
-    /// How far from the origin, along x or y, the elements a one-step load bonds reach: the
-    /// centres of those with a height below the deepest approach (0 when there are none). On a
-    /// smooth sphere this is the disc √(2R·d); on a rough one it is the penetrated set itself,
-    /// which the disc from the lowest height neither bounds nor is bounded by.
-    pub fn bonded_reach(&self) -> f64 {
-        let d = self.path.max_approach;
-        let grid = self.surface.grid();
-        self.surface
-            .heights()
-            .indexed_iter()
-            .filter(|&(_, &h)| h < d)
-            .map(|((i, j), _)| grid.x(i).abs().max(grid.y(j).abs()))
-            .fold(0.0, f64::max)
+    /// How many elements on the grid's outermost ring lie below the deepest approach: a
+    /// one-step load penetrates them, so they bond first (the rounds may release them). On a
+    /// rough body these come from the roughness as well as the shape.
+    pub fn edge_elements_below_approach(&self) -> usize {
+        crate::pull_off_path::bonded_on_edge(self.surface.heights(), self.path.max_approach)
+    }
+
+    /// The warning of a one-step load that penetrates elements on the grid's outermost ring
+    /// (a shape's own check has passed, so they come from the roughness): they bond first, and
+    /// whether the contact stays there only the run shows (it counts the steps with contact at
+    /// the edge).
+    pub fn edge_warning(&self) -> Option<String> {
+        if !self.one_step_load() {
+            return None;
+        }
+        let n = self.edge_elements_below_approach();
+        (n > 0).then(|| {
+            format!(
+                "the one-step load to {} = {} penetrates {n} elements on the free grid's \
+                 outermost ring (heights below the approach): they bond first, and where the \
+                 contact stays there the run reports contact at the edge (raise {} or {})",
+                self.depth_field(),
+                num(round4(self.path.max_approach)),
+                self.size_field(),
+                self.shallower()
+            )
+        })
     }
 
     /// The error of an axisymmetric contact of radius `needed` around the origin that a free
@@ -270,17 +284,13 @@ pub struct SphereBody {
 }
 
 impl SphereBody {
-    /// How far the elements a one-step load bonds reach ([`FitCheck::bonded_reach`]). Where
-    /// they reach the grid's outermost ring the grid cuts them (the check then fails), and the
-    /// disc √(2R·d) they would fill estimates the size the grid needs.
-    fn bonded_reach(&self, fit: &FitCheck<'_>) -> f64 {
-        let reach = fit.bonded_reach();
-        let grid = fit.grid;
-        if reach + grid.dx() > grid.lx().min(grid.ly()) / 2.0 {
-            reach.max((2.0 * self.radius * fit.depth()).sqrt())
-        } else {
-            reach
-        }
+    /// After a one-step load, the disc √(2R·d) the sphere itself bonds, with d the deepest
+    /// approach from its vertex (height 0): roughness on it does not move the shape's contact,
+    /// and the elements it adds at the edge get a warning of the builder instead (see
+    /// [`FitCheck::edge_elements_below_approach`]). `None` when the path loads in steps.
+    fn one_step_disc(&self, fit: &FitCheck<'_>) -> Option<f64> {
+        fit.one_step_load()
+            .then(|| (2.0 * self.radius * fit.path.max_approach.max(0.0)).sqrt())
     }
 }
 
@@ -359,10 +369,7 @@ impl SceneShape for SphereBody {
             fit.grid.dx(),
             fit.reach(),
             fit.material,
-            (
-                fit.one_step_load().then(|| self.bonded_reach(fit)),
-                fit.finite_range,
-            ),
+            (self.one_step_disc(fit), fit.finite_range),
         );
         fit.disc_fits(
             needed,
@@ -736,12 +743,12 @@ mod tests {
         assert!((e.shape().path_sphere().unwrap().0 - 4.0).abs() < 1e-12);
     }
 
-    /// The sphere's fit check after a one-step load holds the elements that load bonds (height
-    /// below the approach), not the disc √(2R·d) from the lowest height: a pit at the vertex
-    /// deepens that disc past the edge though the bonded elements keep well inside; a dip on
-    /// the outermost ring bonds an edge element the disc does not reach.
+    /// The sphere's fit check after a one-step load holds the disc √(2R·d) the sphere itself
+    /// bonds, d from its vertex, not from the lowest height: a pit at the vertex does not move
+    /// it. Roughness that puts elements of the grid's outermost ring below the approach gets a
+    /// warning (they bond first; the run shows whether contact stays there), on every side.
     #[test]
-    fn a_one_step_load_is_checked_on_the_elements_it_bonds() {
+    fn a_one_step_load_is_checked_on_the_sphere_and_warned_of_at_the_edge() {
         let n = 64;
         let grid = Grid::square(n, 1.0 / n as f64, Boundary::Free).unwrap();
         let spec = GridSpec {
@@ -755,12 +762,13 @@ mod tests {
         };
         let body = SphereBody { radius: 1.0 };
         let max_approach = 0.05;
-        let path = ApproachPath::pull_off_only(max_approach, 1e-3, 1e-4).unwrap();
-        let check = |dip: (usize, usize, f64)| {
-            let mut surface = body.surface(grid).unwrap();
-            let mut h = surface.heights().clone();
+        // The sphere with one element's height `dip.2` at (dip.0, dip.1), loaded in one step
+        // to `depth`: the check's error and the edge warning.
+        let check = |dip: (usize, usize, f64), depth: f64| {
+            let path = ApproachPath::pull_off_only(depth, 1e-3, 1e-4).unwrap();
+            let mut h = body.surface(grid).unwrap().heights().clone();
             h[[dip.0, dip.1]] = dip.2;
-            surface = Surface::new(grid, h).unwrap();
+            let surface = Surface::new(grid, h).unwrap();
             let fit = FitCheck {
                 spec: &spec,
                 grid: &grid,
@@ -776,46 +784,42 @@ mod tests {
                 finite_range: false,
             };
             assert!(fit.one_step_load());
-            body.check_fit(&fit).map_err(|e| e.to_string())
+            (
+                body.check_fit(&fit).map_err(|e| e.to_string()),
+                fit.edge_warning(),
+            )
         };
+        let centre = (n / 2, n / 2, 0.0);
         // The smooth sphere: √(2·0.05) = 0.32 < 0.5.
-        assert!(check((n / 2, n / 2, 0.0)).is_ok());
+        assert_eq!(check(centre, max_approach), (Ok(()), None));
         // A pit of −0.09 at the vertex: from the lowest height d = 0.14, whose disc √(2Rd) =
-        // 0.53 passes the edge (while 1.3·√(Rd) = 0.49 fits), but what the load bonds is the
+        // 0.53 would pass the edge (while 1.3·√(Rd) = 0.49 fits), but the sphere bonds the
         // same disc of 0.32 (and the pit).
-        assert!(check((n / 2, n / 2, -0.09)).is_ok());
-        // A dip on the outermost ring (x = −0.5) below the approach: refused, by that element.
-        let e = check((0, n / 2, 0.0)).unwrap_err();
-        assert!(
-            e.contains("one-step load bonds") && e.contains("reaching 0.5 from"),
-            "{e}"
-        );
-        // A load so deep that the grid cuts the bonded disc: the message asks for the grid the
-        // disc √(2R·d) needs, not the one the cut set would.
-        let deep = ApproachPath::pull_off_only(0.2, 1e-3, 1e-4).unwrap();
-        let surface = body.surface(grid).unwrap();
-        let fit = FitCheck {
-            spec: &spec,
-            grid: &grid,
-            path: &deep,
-            first_touch: surface.min(),
-            surface: &surface,
-            default_path: false,
-            film: false,
-            material: Material {
-                e_star: 1.0,
-                gamma: 1e-6,
-            },
-            finite_range: false,
-        };
-        let e = body.check_fit(&fit).unwrap_err().to_string();
+        assert_eq!(check((n / 2, n / 2, -0.09), max_approach), (Ok(()), None));
+        // A dip on the outermost ring below the approach: it runs, warned of, on every side
+        // (the even grid's positive side ends one element nearer the origin, at 0.5 − Δx).
+        for (i, j) in [(0, n / 2), (n - 1, n / 2), (n / 2, 0), (n / 2, n - 1)] {
+            let (fits, warning) = check((i, j, 0.0), max_approach);
+            assert_eq!(fits, Ok(()));
+            let w = warning.expect("an edge warning");
+            assert!(
+                w.contains("penetrates 1 elements") && w.contains("outermost ring"),
+                "{w}"
+            );
+        }
+        // One element inside the ring, or on it just above the approach: no warning.
+        assert_eq!(check((1, n / 2, 0.0), max_approach), (Ok(()), None));
+        assert_eq!(check((n - 2, n / 2, 0.0), max_approach), (Ok(()), None));
+        let above = (0, n / 2, max_approach + 1e-9);
+        assert_eq!(check(above, max_approach), (Ok(()), None));
+        // A load whose disc the grid cannot hold is refused, naming the size it needs.
+        let (fits, _) = check(centre, 0.2);
+        let e = fits.unwrap_err();
         let needed = ((2.0 * (0.4f64).sqrt() + 2.0 / n as f64) * n as f64).ceil();
         assert!(
-            e.contains("reaching 0.6325") && e.contains(&format!("at least {needed} ×")),
+            e.contains("sqrt(2·R·d) = 0.6325") && e.contains(&format!("at least {needed} ×")),
             "{e}"
         );
-        // The same dip just above the approach bonds nothing there.
-        assert!(check((0, n / 2, max_approach + 1e-9)).is_ok());
     }
 
     #[test]
