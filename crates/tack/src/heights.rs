@@ -77,9 +77,10 @@ pub fn run(
 /// the tensile part (a_c the JKR pull-off radius of R), until no element is
 /// bonded. The summary gets the JKR references of `R`. On a free grid the contact must fit the
 /// array: the Hertz radius `sqrt(R·d)` at that depth (from the first touch) plus 30% around the
-/// vertex, and every element the one-step load penetrates must keep off the array's edge (the
-/// rule is the scenes', applied by the problem builder). Each of `max_approach`, `unload_step`, `coarse_unload_step` can be given
-/// instead; a body with no radius (flat, wavy, a strip) needs `max_approach` and `unload_step`
+/// vertex (the scenes' rule, applied by the problem builder), and every element the one-step
+/// load penetrates must keep off the array's edge (the arrays' own rule: a scene is only
+/// warned of such elements). Each of `max_approach`, `unload_step`, `coarse_unload_step` can
+/// be given instead; a body with no radius (flat, wavy, a strip) needs `max_approach` and `unload_step`
 /// (the coarse step is then [`COARSE_PER_UNLOAD_STEP`] times the fine one).
 #[derive(Debug, Clone, PartialEq)]
 pub struct PullOffSpec {

@@ -337,8 +337,8 @@ pub struct Material {
 /// √2.5 on a film) with [`SPHERE_FIT_MARGIN`]; under a `finite_range` law (which attracts
 /// ahead of the contact) also the JKR contact radius a(d) plus one element; after a one-step
 /// load (`bonded`: the disc √(2R·d) it bonds) also that disc plus one element (the step bonds
-/// every penetrated element under either law). The zero-range criterion loaded in steps bonds only what penetrates, so its
-/// contact stays near Hertz's.
+/// every penetrated element under either law). The zero-range criterion loaded in steps bonds
+/// only what penetrates, so its contact stays near Hertz's.
 pub fn sphere_contact_reach(
     radius: f64,
     depth: f64,

@@ -195,23 +195,24 @@ impl FitCheck<'_> {
         crate::pull_off_path::bonded_on_edge(self.surface.heights(), self.path.max_approach)
     }
 
-    /// The warning of a one-step load that penetrates elements on the grid's outermost ring
-    /// (a shape's own check has passed, so they come from the roughness): they bond first, and
-    /// whether the contact stays there only the run shows (it counts the steps with contact at
-    /// the edge).
+    /// The warning of a one-step load that puts elements of the grid's outermost ring below
+    /// the approach where the shape's own check lets the scene run (roughness on a sphere, or
+    /// a shape whose check holds only its Hertz contact): the load step may put them in
+    /// contact, and whether contact stays there only the run shows (it counts the steps with
+    /// contact at the edge).
     pub fn edge_warning(&self) -> Option<String> {
         if !self.one_step_load() {
             return None;
         }
         let n = self.edge_elements_below_approach();
+        let elements = if n == 1 { "element" } else { "elements" };
         (n > 0).then(|| {
             format!(
-                "the one-step load to {} = {} penetrates {n} elements on the free grid's \
-                 outermost ring (heights below the approach): they bond first, and where the \
-                 contact stays there the run reports contact at the edge (raise {} or {})",
+                "the one-step load to {} = {} puts {n} {elements} of the free grid's outermost \
+                 ring below the approach: the load step may put them in contact, and where \
+                 contact stays there the run reports contact at the edge (a wider grid, or {})",
                 self.depth_field(),
                 num(round4(self.path.max_approach)),
-                self.size_field(),
                 self.shallower()
             )
         })
@@ -285,12 +286,17 @@ pub struct SphereBody {
 
 impl SphereBody {
     /// After a one-step load, the disc √(2R·d) the sphere itself bonds, with d the deepest
-    /// approach from its vertex (height 0): roughness on it does not move the shape's contact,
-    /// and the elements it adds at the edge get a warning of the builder instead (see
-    /// [`FitCheck::edge_elements_below_approach`]). `None` when the path loads in steps.
+    /// approach from its vertex lifted by the mean of the roughness on it (the surface's mean
+    /// less the sphere's: 0 for random roughness, the offset of a height map): the roughness'
+    /// lowest point does not move the shape's contact, and the elements it adds at the edge get
+    /// the builder's warning instead ([`FitCheck::edge_warning`]). `None` when the path loads
+    /// in steps.
     fn one_step_disc(&self, fit: &FitCheck<'_>) -> Option<f64> {
-        fit.one_step_load()
-            .then(|| (2.0 * self.radius * fit.path.max_approach.max(0.0)).sqrt())
+        fit.one_step_load().then(|| {
+            let sphere = Sphere::new(self.radius).map(|s| Surface::from_shape(*fit.grid, &s));
+            let offset = sphere.map_or(0.0, |s| fit.surface.mean() - s.mean());
+            (2.0 * self.radius * (fit.path.max_approach - offset).max(0.0)).sqrt()
+        })
     }
 }
 
@@ -803,7 +809,7 @@ mod tests {
             assert_eq!(fits, Ok(()));
             let w = warning.expect("an edge warning");
             assert!(
-                w.contains("penetrates 1 elements") && w.contains("outermost ring"),
+                w.contains("puts 1 element of") && w.contains("outermost ring"),
                 "{w}"
             );
         }
@@ -812,6 +818,11 @@ mod tests {
         assert_eq!(check((n - 2, n / 2, 0.0), max_approach), (Ok(()), None));
         let above = (0, n / 2, max_approach + 1e-9);
         assert_eq!(check(above, max_approach), (Ok(()), None));
+        // At the approach exactly it is not below it.
+        assert_eq!(
+            check((0, n / 2, max_approach), max_approach),
+            (Ok(()), None)
+        );
         // A load whose disc the grid cannot hold is refused, naming the size it needs.
         let (fits, _) = check(centre, 0.2);
         let e = fits.unwrap_err();
@@ -820,6 +831,34 @@ mod tests {
             e.contains("sqrt(2·R·d) = 0.6325") && e.contains(&format!("at least {needed} ×")),
             "{e}"
         );
+        // The same load on the sphere lifted by 0.1 (a height map's offset): d = 0.1 from the
+        // lifted vertex, a disc of 0.45, which fits; loaded in steps, no one-step rule.
+        let lifted = Surface::new(grid, body.surface(grid).unwrap().heights() + 0.1).unwrap();
+        for (path, one_step) in [
+            (ApproachPath::pull_off_only(0.2, 1e-3, 1e-4).unwrap(), true),
+            (
+                ApproachPath::load_retract(0.1, 0.2, 0.01, 1e-3).unwrap(),
+                false,
+            ),
+        ] {
+            let fit = FitCheck {
+                spec: &spec,
+                grid: &grid,
+                path: &path,
+                first_touch: lifted.min(),
+                surface: &lifted,
+                default_path: false,
+                film: false,
+                material: Material {
+                    e_star: 1.0,
+                    gamma: 1e-6,
+                },
+                finite_range: false,
+            };
+            assert_eq!(fit.one_step_load(), one_step);
+            assert_eq!(body.check_fit(&fit).map_err(|e| e.to_string()), Ok(()));
+            assert_eq!(fit.edge_warning(), None);
+        }
     }
 
     #[test]
