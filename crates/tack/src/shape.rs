@@ -768,19 +768,14 @@ mod tests {
         };
         let body = SphereBody { radius: 1.0 };
         let max_approach = 0.05;
-        // The sphere with one element's height `dip.2` at (dip.0, dip.1), loaded in one step
-        // to `depth`: the check's error and the edge warning.
-        let check = |dip: (usize, usize, f64), depth: f64| {
-            let path = ApproachPath::pull_off_only(depth, 1e-3, 1e-4).unwrap();
-            let mut h = body.surface(grid).unwrap().heights().clone();
-            h[[dip.0, dip.1]] = dip.2;
-            let surface = Surface::new(grid, h).unwrap();
+        // Whether `path` loads `surface` in one step, the sphere's check and the edge warning.
+        let judge = |surface: &Surface, path: &ApproachPath| {
             let fit = FitCheck {
                 spec: &spec,
                 grid: &grid,
-                path: &path,
+                path,
                 first_touch: surface.min(),
-                surface: &surface,
+                surface,
                 default_path: false,
                 film: false,
                 material: Material {
@@ -789,11 +784,21 @@ mod tests {
                 },
                 finite_range: false,
             };
-            assert!(fit.one_step_load());
             (
+                fit.one_step_load(),
                 body.check_fit(&fit).map_err(|e| e.to_string()),
                 fit.edge_warning(),
             )
+        };
+        // The sphere with one element's height `dip.2` at (dip.0, dip.1), loaded in one step
+        // to `depth`: the check's error and the edge warning.
+        let check = |dip: (usize, usize, f64), depth: f64| {
+            let path = ApproachPath::pull_off_only(depth, 1e-3, 1e-4).unwrap();
+            let mut h = body.surface(grid).unwrap().heights().clone();
+            h[[dip.0, dip.1]] = dip.2;
+            let (one_step, fits, warning) = judge(&Surface::new(grid, h).unwrap(), &path);
+            assert!(one_step);
+            (fits, warning)
         };
         let centre = (n / 2, n / 2, 0.0);
         // The smooth sphere: √(2·0.05) = 0.32 < 0.5.
@@ -841,23 +846,7 @@ mod tests {
                 false,
             ),
         ] {
-            let fit = FitCheck {
-                spec: &spec,
-                grid: &grid,
-                path: &path,
-                first_touch: lifted.min(),
-                surface: &lifted,
-                default_path: false,
-                film: false,
-                material: Material {
-                    e_star: 1.0,
-                    gamma: 1e-6,
-                },
-                finite_range: false,
-            };
-            assert_eq!(fit.one_step_load(), one_step);
-            assert_eq!(body.check_fit(&fit).map_err(|e| e.to_string()), Ok(()));
-            assert_eq!(fit.edge_warning(), None);
+            assert_eq!(judge(&lifted, &path), (one_step, Ok(()), None));
         }
     }
 
