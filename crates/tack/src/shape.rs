@@ -188,13 +188,6 @@ impl FitCheck<'_> {
         !self.path.is_indentation() && loaded_steps(self.path, self.first_touch, 2) <= 1
     }
 
-    /// How many elements on the grid's outermost ring lie below the deepest approach: a
-    /// one-step load penetrates them, so they bond first (the rounds may release them). On a
-    /// rough body these come from the roughness as well as the shape.
-    pub fn edge_elements_below_approach(&self) -> usize {
-        crate::pull_off_path::bonded_on_edge(self.surface.heights(), self.path.max_approach)
-    }
-
     /// The warning of a one-step load that puts elements of the grid's outermost ring below
     /// the approach where the shape's own check lets the scene run (roughness on a sphere, or
     /// a shape whose check holds only its Hertz contact): the load step may put them in
@@ -204,7 +197,10 @@ impl FitCheck<'_> {
         if !self.one_step_load() {
             return None;
         }
-        let n = self.edge_elements_below_approach();
+        // Below the deepest approach: a one-step load penetrates them (on a rough body the
+        // roughness' as well as the shape's).
+        let n =
+            crate::pull_off_path::bonded_on_edge(self.surface.heights(), self.path.max_approach);
         let elements = if n == 1 { "element" } else { "elements" };
         (n > 0).then(|| {
             format!(
@@ -293,8 +289,16 @@ impl SphereBody {
     /// in steps.
     fn one_step_disc(&self, fit: &FitCheck<'_>) -> Option<f64> {
         fit.one_step_load().then(|| {
-            let sphere = Sphere::new(self.radius).map(|s| Surface::from_shape(*fit.grid, &s));
-            let offset = sphere.map_or(0.0, |s| fit.surface.mean() - s.mean());
+            // The sphere's mean height on the grid, (mean x² + mean y²)/(2R): separable, so
+            // no second surface is built.
+            let grid = fit.grid;
+            let mean_square = |n: usize, at: &dyn Fn(usize) -> f64| {
+                (0..n).map(|i| at(i).powi(2)).sum::<f64>() / n as f64
+            };
+            let sphere_mean = (mean_square(grid.nx(), &|i| grid.x(i))
+                + mean_square(grid.ny(), &|j| grid.y(j)))
+                / (2.0 * self.radius);
+            let offset = fit.surface.mean() - sphere_mean;
             (2.0 * self.radius * (fit.path.max_approach - offset).max(0.0)).sqrt()
         })
     }
