@@ -499,9 +499,28 @@ fn rough_sphere_tables(full: bool, huge: bool, rows: &mut Vec<Row>) -> Result<()
         "   local relaxation ({}: each round's released tension relaxed on 16² windows",
         tack_fields::SOLVER_LOCAL_RELAXATION
     );
-    println!("   before the next solve) against none, the same scene and threads:");
+    println!("   before the next solve; off, so are the predicted releases) against none:");
+    let relaxation = Lever {
+        field: tack_fields::SOLVER_LOCAL_RELAXATION,
+        table: "local_relaxation",
+        without: "no relaxation",
+    };
     for (&n, default) in compared.iter().zip(&defaults) {
-        relaxed_vs_plain(n, default, threads, rows)?;
+        default_vs_without(n, default, threads, &relaxation, rows)?;
+    }
+    println!(
+        "   predicted releases ({}: what the relaxed tension puts past σ_c (1 + {}) released",
+        tack_fields::SOLVER_CASCADE,
+        tack_solver::CASCADE_MARGIN
+    );
+    println!("   before the next solve) against none, the same scene and threads:");
+    let cascade = Lever {
+        field: tack_fields::SOLVER_CASCADE,
+        table: "predicted_releases",
+        without: "no prediction",
+    };
+    for (&n, default) in compared.iter().zip(&defaults) {
+        default_vs_without(n, default, threads, &cascade, rows)?;
     }
     Ok(())
 }
@@ -851,43 +870,51 @@ fn refined_vs_fine(n: usize, fine: &PullOffRun, threads: usize, rows: &mut Vec<R
     Ok(())
 }
 
-/// The bench's rough-sphere pull-off at `n²` with the local relaxation (`relaxed`, the default
-/// run) and without it (`solver.local_relaxation = false`, the previous version's rounds).
-fn relaxed_vs_plain(
+/// A lever of the round loop that the default run has on, switched off by `field = false`:
+/// its `table` in `results/bench.json` and what the run without it is called.
+struct Lever {
+    field: &'static str,
+    table: &'static str,
+    without: &'static str,
+}
+
+/// The bench's rough-sphere pull-off at `n²` by the default run (`on`) and with `lever` off.
+fn default_vs_without(
     n: usize,
-    relaxed: &PullOffRun,
+    on: &PullOffRun,
     threads: usize,
+    lever: &Lever,
     rows: &mut Vec<Row>,
 ) -> Result<()> {
-    let set = format!("{}=false", tack_fields::SOLVER_LOCAL_RELAXATION);
-    let plain = rough_sphere_pull_off_with(n, threads, set)?;
-    let change = relaxed.force / plain.force - 1.0;
+    let off = rough_sphere_pull_off_with(n, threads, format!("{}=false", lever.field))?;
+    let change = on.force / off.force - 1.0;
     println!(
-        "   {n}²: none {:.2} s ({} CG, {} rounds), relaxed {:.2} s ({} CG, {} rounds): {:.2}× \
+        "   {n}²: {} {:.2} s ({} CG, {} rounds), default {:.2} s ({} CG, {} rounds): {:.2}× \
          faster, pull-off {:.7e} vs {:.7e} ({change:+.1e})",
-        plain.seconds,
-        plain.cg,
-        plain.rounds,
-        relaxed.seconds,
-        relaxed.cg,
-        relaxed.rounds,
-        plain.seconds / relaxed.seconds,
-        plain.force,
-        relaxed.force,
+        lever.without,
+        off.seconds,
+        off.cg,
+        off.rounds,
+        on.seconds,
+        on.cg,
+        on.rounds,
+        off.seconds / on.seconds,
+        off.force,
+        on.force,
     );
     rows.push(Row {
-        table: "local_relaxation",
+        table: lever.table,
         label: format!("{n}²"),
         fields: vec![
-            ("plain_seconds", plain.seconds),
-            ("relaxed_seconds", relaxed.seconds),
-            ("speed_up", plain.seconds / relaxed.seconds),
-            ("plain_cg", plain.cg as f64),
-            ("relaxed_cg", relaxed.cg as f64),
-            ("plain_rounds", plain.rounds as f64),
-            ("relaxed_rounds", relaxed.rounds as f64),
-            ("plain_pull_off", plain.force),
-            ("relaxed_pull_off", relaxed.force),
+            ("off_seconds", off.seconds),
+            ("on_seconds", on.seconds),
+            ("speed_up", off.seconds / on.seconds),
+            ("off_cg", off.cg as f64),
+            ("on_cg", on.cg as f64),
+            ("off_rounds", off.rounds as f64),
+            ("on_rounds", on.rounds as f64),
+            ("off_pull_off", off.force),
+            ("on_pull_off", on.force),
             ("relative_change", change),
         ],
     });

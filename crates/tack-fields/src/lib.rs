@@ -167,6 +167,7 @@ scene_fields! {
     SOLVER_MAX_ACTIVE_SET_ITERATIONS = solver.max_active_set_iterations,
     SOLVER_ROUND_TOLERANCE = solver.round_tolerance,
     SOLVER_LOCAL_RELAXATION = solver.local_relaxation,
+    SOLVER_CASCADE = solver.cascade,
     PROTOCOL_INDENT = protocol.indent,
     PROTOCOL_START = protocol.start,
     PROTOCOL_MAX_APPROACH = protocol.max_approach,
@@ -432,6 +433,11 @@ pub const FIELDS: &[Field] = &[
         "relax each round's released tension on small windows before the next solve",
     ),
     f(
+        SOLVER_CASCADE,
+        Kind::Bool,
+        "release what the relaxed tension puts clearly past the criterion before the next solve",
+    ),
+    f(
         PROTOCOL_INDENT,
         Kind::Number,
         "one step pressed in to this approach, no retraction",
@@ -570,7 +576,7 @@ mod tests {
             );
             assert!(!f.meaning.is_empty(), "{}", f.name);
         }
-        assert_eq!(FIELDS.len(), 64);
+        assert_eq!(FIELDS.len(), 65);
     }
 
     #[test]

@@ -80,6 +80,15 @@ pub struct AdhesiveOptions {
     /// (`round_tolerance`; without them the loop stays the exact one) on free grids of a
     /// half-space, where the windows' operator is exact.
     pub local_relaxation: bool,
+    /// Zero-range law with local relaxation: after an inexact round's detachments are relaxed,
+    /// the bonded elements in the relaxed windows whose relaxed tension exceeds
+    /// `σ_c (1 + CASCADE_MARGIN)` are released too, and theirs relaxed in turn, for up to
+    /// [`crate::CASCADE_GENERATIONS`] generations before the next solve: a front that recedes
+    /// by several elements in one step needs fewer rounds. A predicted release is not undone,
+    /// so the state reached may differ from the loop without prediction within the bound of
+    /// [`crate::CASCADE_MARGIN`] (docs/theory.md §3.4 has the measurements). Default on; only
+    /// with `local_relaxation`.
+    pub cascade: bool,
 }
 
 impl Default for AdhesiveOptions {
@@ -95,6 +104,7 @@ impl Default for AdhesiveOptions {
             round_tolerance: Some(1e-3),
             nested_start: true,
             local_relaxation: true,
+            cascade: true,
         }
     }
 }
@@ -179,7 +189,8 @@ impl AdhesiveSolver {
                 options.bonded_subgrid,
                 options.nested_start,
                 options.local_relaxation,
-            ) = (false, false, false);
+                options.cascade,
+            ) = (false, false, false, false);
         }
         let base = SolverBase::new(op, surface)?;
         let shape = base.grid().shape();

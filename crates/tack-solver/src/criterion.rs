@@ -13,6 +13,7 @@ use ndarray::Zip;
 use tack_geometry::Window;
 
 use crate::relax::{Released, take_released};
+use crate::rounds::{CASCADE_GENERATIONS, CASCADE_MARGIN};
 use crate::rounds::{
     LOOSE_ATTACH_MARGIN, LOOSE_DETACH_MARGIN, LOOSE_REFERENCE_TOLERANCE, Loaded, Round, SetRules,
     Tally, hash_masks_in, round_block,
@@ -24,6 +25,9 @@ use crate::{AdhesiveOptions, AdhesiveSolver, SolverError};
 /// solve ([`AdhesiveOptions::local_relaxation`]) and the elements the last round released.
 pub(crate) struct Criterion {
     relaxing: bool,
+    /// Whether inexact rounds predict further releases from the relaxed tension
+    /// ([`AdhesiveOptions::cascade`]).
+    cascading: bool,
     released: Vec<Released>,
 }
 
@@ -38,17 +42,72 @@ impl Criterion {
             && (s.sigma_c > 0.0 || s.patterned);
         Self {
             relaxing,
+            cascading: relaxing && o.cascade,
             released: Vec::new(),
         }
     }
 }
 
 /// What a criterion round's solve leaves its tests: detach where
-/// `p < −σ·(1 + detach) − detach_floor`, attach where `g < attach_below`.
+/// `p < −σ·(1 + detach) − detach_floor`, attach where `g < attach_below`; `predict`: an
+/// inexact round with adhesion, whose detachments may set off predicted ones.
 pub(crate) struct CriterionMargins {
     attach_below: f64,
     detach: f64,
     detach_floor: f64,
+    predict: bool,
+}
+
+impl Criterion {
+    /// Relaxes the tension of the elements in `released` (tiles anchored at `anchor`) and
+    /// empties it; returns the windows solved.
+    fn relax_released(&mut self, s: &mut AdhesiveSolver, anchor: (usize, usize)) -> Vec<Window> {
+        let windows = s.relaxation.relax(
+            &mut s.base.pressure,
+            &s.bonded,
+            anchor,
+            &mut self.released,
+            s.options.preconditioned,
+        );
+        self.released.clear();
+        windows
+    }
+
+    /// Predicted releases ([`AdhesiveOptions::cascade`]): relaxes the tension of the elements
+    /// the round released, releases every bonded element of the relaxed windows whose tension
+    /// then exceeds its `σ (1 + CASCADE_MARGIN) + floor`, and goes on with those, for up to
+    /// [`CASCADE_GENERATIONS`]. The last generation's elements stay in `released`, relaxed
+    /// before the next solve as usual. Tiles are anchored at the set's box as it was after the
+    /// round, and windows are scanned in tile order, so the bits depend neither on the crop
+    /// nor on the thread count.
+    fn cascade(&mut self, s: &mut AdhesiveSolver, fresh: Option<Window>, floor: f64) {
+        let (tight, _) = bounding_box(&s.bonded, fresh.as_ref());
+        let Some(t) = tight else { return };
+        for _ in 0..CASCADE_GENERATIONS {
+            if self.released.is_empty() {
+                return;
+            }
+            let windows = self.relax_released(s, (t.i0, t.j0));
+            let tension = s
+                .tension
+                .broadcast(s.bonded.dim())
+                .expect("a 1 × 1 array or the grid's shape");
+            for w in &windows {
+                for i in w.i0..w.i1 {
+                    for j in w.j0..w.j1 {
+                        let p = &mut s.base.pressure[[i, j]];
+                        if s.bonded[[i, j]]
+                            && *p < -tension[[i, j]] * (1.0 + CASCADE_MARGIN) - floor
+                        {
+                            s.bonded[[i, j]] = false;
+                            self.released.push(Released { i, j, pressure: *p });
+                            *p = 0.0;
+                        }
+                    }
+                }
+            }
+        }
+    }
 }
 
 impl SetRules for Criterion {
@@ -91,14 +150,8 @@ impl SetRules for Criterion {
 
     /// The tension the last round's detachments carried is relaxed over their neighbourhood.
     fn before_solve(&mut self, s: &mut AdhesiveSolver, tight: Option<Window>) {
-        if let Some(t) = tight.filter(|_| !self.released.is_empty()) {
-            s.relaxation.relax(
-                &mut s.base.pressure,
-                &s.bonded,
-                (t.i0, t.j0),
-                &mut self.released,
-                s.options.preconditioned,
-            );
+        if let Some(t) = tight {
+            self.relax_released(s, (t.i0, t.j0));
         }
         self.released.clear();
     }
@@ -117,6 +170,7 @@ impl SetRules for Criterion {
             attach_below: 0.0,
             detach: 0.0,
             detach_floor: 0.0,
+            predict: false,
         };
         let (d, extent) = (round.d, round.extent.as_ref());
         if round.loaded == 0 {
@@ -146,6 +200,7 @@ impl SetRules for Criterion {
             // margin, so elements of little γ keep one too.
             let floor = if s.patterned { sigma_c * margin } else { 0.0 };
             (margins.detach, margins.detach_floor) = (margin, floor);
+            margins.predict = true;
         }
         (fresh, margins)
     }
@@ -203,6 +258,15 @@ impl SetRules for Criterion {
                 s.bonded.slice(block),
                 origin,
             );
+            if self.cascading && margins.predict {
+                // On a map elements of little γ keep a floor of the reference's margin.
+                let floor = if s.patterned {
+                    s.sigma_c * CASCADE_MARGIN
+                } else {
+                    0.0
+                };
+                self.cascade(s, fresh, floor);
+            }
         }
         changed
     }

@@ -124,6 +124,6 @@ pub use options::{SolverError, SolverOptions};
 pub use path::{
     ApproachPath, Observer, PathResult, Phase, SnapshotRequest, StepFields, pull_off_step,
 };
-pub use rounds::{LOOSE_ATTACH_MARGIN, LOOSE_DETACH_MARGIN};
+pub use rounds::{CASCADE_GENERATIONS, CASCADE_MARGIN, LOOSE_ATTACH_MARGIN, LOOSE_DETACH_MARGIN};
 pub use state::{ContactState, StepRecord};
 pub use viscoelastic::{Prony, PronyArm, Rates};

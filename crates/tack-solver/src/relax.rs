@@ -12,6 +12,7 @@
 
 use ndarray::{Array2, ArrayView2, ArrayViewMut2, Axis, Zip, s};
 use rayon::prelude::*;
+use tack_geometry::Window;
 use tack_kernels::ElasticOperator;
 
 use crate::cg::{assign, pcg};
@@ -109,8 +110,8 @@ impl Relaxation {
     /// bonded set's bounding box), and a window reaching past the grid's edge is taken as free
     /// there, so the result does not move with the grid (a cropped grid gives the same). Each
     /// tile's correction is computed on its own and they are added in tile order, so the bits
-    /// depend neither on the order of `released` nor on the thread count. Returns the number of
-    /// windows solved.
+    /// depend neither on the order of `released` nor on the thread count. Returns the part on
+    /// the grid of each window solved, in tile order.
     pub(crate) fn relax(
         &mut self,
         pressure: &mut Array2<f64>,
@@ -118,9 +119,9 @@ impl Relaxation {
         anchor: (usize, usize),
         released: &mut [Released],
         preconditioned: bool,
-    ) -> usize {
+    ) -> Vec<Window> {
         if released.is_empty() {
-            return 0;
+            return Vec::new();
         }
         let (nx, ny) = bonded.dim();
         let (ai, aj) = (anchor.0 as isize, anchor.1 as isize);
@@ -207,14 +208,19 @@ impl Relaxation {
                 .flatten()
                 .collect()
         };
-        let mut solved = 0;
+        let mut solved = Vec::new();
         for (g, delta) in groups.iter().zip(corrections) {
             let Some(delta) = delta else { continue };
             let ((r0, r1, wr), (c0, c1, wc)) = place(g);
             Zip::from(pressure.slice_mut(s![r0..r1, c0..c1]))
                 .and(delta.slice(s![wr..wr + (r1 - r0), wc..wc + (c1 - c0)]))
                 .for_each(|p, &q| *p += q);
-            solved += 1;
+            solved.push(Window {
+                i0: r0,
+                i1: r1,
+                j0: c0,
+                j1: c1,
+            });
         }
         solved
     }
@@ -322,7 +328,7 @@ mod tests {
         let mut relax = Relaxation::new(1.0, 1.0);
         let windows = relax.relax(&mut p, &bonded, corner(&bonded), &mut released, true);
         let after = residual(&mut op, &bonded, &p);
-        assert!(windows > 0);
+        assert!(!windows.is_empty());
         assert!(after < 0.3 * before, "residual {before} -> {after}");
         // A released element's window reaches at most TILE − 1 + (WINDOW − TILE)/2 away.
         let reach = TILE - 1 + (WINDOW - TILE) / 2;

@@ -41,8 +41,13 @@ fn fingerprint(
     let grid = Grid::square(n, side / n as f64, boundary).unwrap();
     let surface = Surface::from_shape(grid, shape);
     let op = operator_for(grid, 1.0).unwrap();
-    let mut solver =
-        AdhesiveSolver::with_law(op, &surface, gamma, law, AdhesiveOptions::default()).unwrap();
+    // The predicted releases (`cascade`) came after that commit and move the criterion's
+    // rounds on purpose (docs/theory.md §3.4); without them the loop is the one fingerprinted.
+    let options = AdhesiveOptions {
+        cascade: false,
+        ..AdhesiveOptions::default()
+    };
+    let mut solver = AdhesiveSolver::with_law(op, &surface, gamma, law, options).unwrap();
     if map {
         // Stripes of half and full γ.
         let g = Array2::from_shape_fn(

@@ -502,6 +502,7 @@ fn solver_options(s: &crate::scene::SolverSpec) -> Result<AdhesiveOptions, Scene
             }
         },
         local_relaxation: s.local_relaxation.unwrap_or(defaults.local_relaxation),
+        cascade: s.cascade.unwrap_or(defaults.cascade),
         ..defaults
     };
     options.cg.validate()?;

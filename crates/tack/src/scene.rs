@@ -426,6 +426,11 @@ pub struct SolverSpec {
     /// `tack_solver::AdhesiveOptions::local_relaxation`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub local_relaxation: Option<bool>,
+    /// Release, before the next solve, the elements the relaxed tension of a round's
+    /// detachments puts clearly past σ_c (zero-range law, with `local_relaxation`); default
+    /// true. See `tack_solver::AdhesiveOptions::cascade`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cascade: Option<bool>,
 }
 
 /// `[protocol]`: the load–unload approach path (approach positive = pressing). Three forms:
