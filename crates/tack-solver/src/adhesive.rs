@@ -85,8 +85,8 @@ pub struct AdhesiveOptions {
     /// `σ_c (1 + CASCADE_MARGIN)` are released too, and theirs relaxed in turn, for up to
     /// [`crate::CASCADE_GENERATIONS`] generations before the next solve: a front that recedes
     /// by several elements in one step needs fewer rounds. A predicted release is not undone,
-    /// so the state reached may differ from the loop without prediction within the bound of
-    /// [`crate::CASCADE_MARGIN`] (docs/theory.md §3.4 has the measurements). Default on; only
+    /// so the state reached may differ from the loop without prediction ([`crate::CASCADE_MARGIN`]
+    /// and docs/theory.md §3.4 give how far the measured pull-offs moved). Default on; only
     /// with `local_relaxation`.
     pub cascade: bool,
 }
