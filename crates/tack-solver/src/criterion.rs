@@ -81,6 +81,10 @@ impl Criterion {
     /// round, and windows are scanned in tile order, so the bits depend neither on the crop
     /// nor on the thread count.
     fn cascade(&mut self, s: &mut AdhesiveSolver, fresh: Option<Window>, floor: f64) {
+        if self.released.is_empty() {
+            // The round only attached: nothing to relax, so no box to scan for.
+            return;
+        }
         let (tight, _) = bounding_box(&s.bonded, fresh.as_ref());
         let Some(t) = tight else { return };
         for _ in 0..CASCADE_GENERATIONS {
