@@ -6,8 +6,9 @@ use ndarray::Array2;
 use crate::{AdhesiveSolver, SolverError};
 
 /// Everything an [`AdhesiveSolver`] carries from one step to the next: the pressure, gap and
-/// displacement, the bonded set, the Dugdale law's cohesive zone and the secant predictor's
-/// previous step. Restoring it makes the next step exactly (bit for bit) what it would have
+/// displacement, the bonded set, the Dugdale law's cohesive zone, the secant predictor's
+/// previous step and, under a smooth law, whether the step landed (the next step's predictor
+/// and Newton's reach depend on it). Restoring it makes the next step exactly (bit for bit) what it would have
 /// been right after the step it was saved at; the solver's scratch (sub-grid operators, CG
 /// vectors) holds nothing a step reads before writing it.
 #[derive(Debug, Clone, PartialEq)]
@@ -19,6 +20,7 @@ pub struct SolverState {
     zone: Option<Array2<bool>>,
     history: Option<(Array2<f64>, f64)>,
     last_approach: Option<f64>,
+    landed: Option<bool>,
 }
 
 impl SolverState {
@@ -72,6 +74,7 @@ impl AdhesiveSolver {
             zone: self.cohesive.as_ref().map(|c| c.zone.clone()),
             history: self.history.clone(),
             last_approach: self.last_approach,
+            landed: self.smooth.as_ref().map(|s| s.landed),
         }
     }
 
@@ -93,11 +96,12 @@ impl AdhesiveSolver {
             (to, from) => *to = from.clone(),
         }
         state.last_approach = self.last_approach;
+        state.landed = self.smooth.as_ref().map(|s| s.landed);
     }
 
     /// Goes back to `state`, saved from this solver (or one built the same way). A state of
-    /// another grid shape or another law (a cohesive zone or none) is refused, and so is any
-    /// state on a viscoelastic solver (the state holds no arms).
+    /// another grid shape or another kind of law (a cohesive zone, a smooth law or neither) is
+    /// refused, and so is any state on a viscoelastic solver (the state holds no arms).
     pub fn restore_state(&mut self, state: &SolverState) -> Result<(), SolverError> {
         if self.visco.is_some() {
             return Err(SolverError::Refused {
@@ -106,17 +110,23 @@ impl AdhesiveSolver {
                          restored (build a new one and run its path again)",
             });
         }
-        let describe = |shape: (usize, usize), zone: bool| {
-            let law = if zone {
-                "a cohesive zone"
-            } else {
-                "zero range"
+        let describe = |shape: (usize, usize), (zone, smooth): (bool, bool)| {
+            let law = match (zone, smooth) {
+                (true, _) => "a cohesive zone",
+                (false, true) => "a smooth law",
+                (false, false) => "zero range",
             };
             format!("{} × {} grid, {law}", shape.0, shape.1)
         };
         let (mine, theirs) = (
-            (self.bonded.dim(), self.cohesive.is_some()),
-            (state.bonded.dim(), state.zone.is_some()),
+            (
+                self.bonded.dim(),
+                (self.cohesive.is_some(), self.smooth.is_some()),
+            ),
+            (
+                state.bonded.dim(),
+                (state.zone.is_some(), state.landed.is_some()),
+            ),
         );
         if mine != theirs {
             return Err(SolverError::StateMismatch {
@@ -133,6 +143,9 @@ impl AdhesiveSolver {
         }
         self.history.clone_from(&state.history);
         self.last_approach = state.last_approach;
+        if let (Some(s), Some(landed)) = (self.smooth.as_mut(), state.landed) {
+            s.landed = landed;
+        }
         Ok(())
     }
 }

@@ -139,7 +139,7 @@ pub(crate) struct SmoothState {
     /// Out of contact with tension beyond [`ZONE_FRACTION`] of the peak.
     pub(crate) zone: Array2<bool>,
     /// Whether the last step had to land on a new branch (the secant predictor restarts).
-    landed: bool,
+    pub(crate) landed: bool,
     /// Each element's share `γ_ij/γ` of the law on a γ map (`None`: 1 everywhere).
     pub(crate) weights: Option<std::sync::Arc<[f64]>>,
     v: Vec<f64>,

@@ -3,7 +3,7 @@
 //! the exponential law on a smooth sphere, the pull-off and both branches of the
 //! force–approach curve, and the order of convergence against elements per process zone; the
 //! same for the Lennard-Jones law, and that law at Tabor μ = 3 on coarse grids; the DMT limit of a small Tabor parameter; Johnson's 1D waviness as the range shrinks; the same
-//! bits on one and two threads.
+//! bits on one and two threads; a restored state retakes each step exactly.
 
 mod axisym;
 
@@ -394,4 +394,32 @@ fn wavy_1d_approaches_johnson_as_the_range_shrinks() {
         "{deviations:?}"
     );
     assert!(deviations[1].abs() < deviations[0].abs(), "{deviations:?}");
+}
+
+/// A saved state restores the step exactly under a smooth law too (the refined retraction
+/// retraces from it): along the peers' case at μ = 3 on 64², whose front hops on many steps
+/// (a landing, after which the secant predictor restarts), every step taken again from the
+/// state saved before it gives the same record, bit for bit. Before the state held whether the
+/// step landed, step 24 came out 1.3e-7 off in force, in 5 rounds against 2.
+#[test]
+fn a_restored_state_retakes_each_smooth_step_exactly() {
+    let (gamma, mu): (f64, f64) = (1e-3, 3.0);
+    let rho = (gamma * gamma / (mu * mu * mu)).cbrt();
+    let law = AdhesionLaw::Exponential(Exponential { range: rho });
+    let d_c = 0.75 * (PI * PI * gamma * gamma).cbrt();
+    let grid = Grid::square(64, 1.0 / 64.0, Boundary::Free).unwrap();
+    let surface = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
+    let op = operator_for(grid, 1.0).unwrap();
+    let mut solver =
+        AdhesiveSolver::with_law(op, &surface, gamma, law, AdhesiveOptions::default()).unwrap();
+    solver.step(0.0).unwrap();
+    let mut saved = solver.save_state();
+    for i in 1..=40 {
+        let d = -(i as f64) * d_c / 20.0;
+        let first = solver.step(d).unwrap();
+        solver.restore_state(&saved).unwrap();
+        let again = solver.step(d).unwrap();
+        assert_eq!(first, again, "step {i} at d = {d}");
+        solver.save_state_into(&mut saved);
+    }
 }

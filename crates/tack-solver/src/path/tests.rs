@@ -262,6 +262,26 @@ fn a_state_restores_only_into_a_solver_of_its_grid_and_law() {
         ),
         "{e}"
     );
+    let op = tack_kernels::operator_for(grid, 1.0).unwrap();
+    let law = crate::AdhesionLaw::from(crate::Exponential { range: 0.1 });
+    let mut smooth =
+        AdhesiveSolver::with_law(op, &surface, 1.0, law, AdhesiveOptions::default()).unwrap();
+    let e = smooth.restore_state(&saved).unwrap_err().to_string();
+    assert!(
+        e.contains(
+            "(19 × 19 grid, zero range) does not fit this solver (19 × 19 grid, a smooth law)"
+        ),
+        "{e}"
+    );
+    smooth.step(0.5).unwrap();
+    let e = a
+        .restore_state(&smooth.save_state())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("(19 × 19 grid, a smooth law) does not fit"),
+        "{e}"
+    );
     let small = Grid::square(7, 0.38, Boundary::Free).unwrap();
     let op = tack_kernels::operator_for(small, 1.0).unwrap();
     let s = Surface::from_shape(small, &Sphere::new(1.0).unwrap());
