@@ -14,14 +14,18 @@
 //! plan with the same arithmetic whatever band it falls in, so the result is bit-identical for
 //! any thread count; there are no reductions.
 //!
-//! Plans: every `Fft2` of the process takes its plans from one pair of planners ([`planned`]),
-//! as RustFFT advises, so operators of the same lengths (a run's free operator and its
-//! preconditioner, the sub-grid operators of many sizes, the runs of a sweep) share plans and
-//! twiddle tables instead of planning again. A planner's choice of algorithm depends on the
-//! length and the CPU's instruction set only, never on which thread asks first or when, and a
-//! shared plan is only read by `process_with_scratch` (the scratch is each lane's own), so
-//! sharing changes no bit.
+//! Plans: every `Fft2` of the process takes its plans from one table by length ([`planned`]), so
+//! operators of the same lengths (a run's free operator and its preconditioner, the sub-grid
+//! operators of many sizes, the runs of a sweep) share plans and twiddle tables instead of
+//! planning again. Each length is planned by planners of its own, made for it: a RustFFT
+//! planner builds a length on the lengths it has cached, so one planner shared by the process
+//! gave a length's transform other bits after other lengths had been planned (1152 after 288,
+//! 2304 after 288 or 1152), and a run's result depended on what the process had run before, or
+//! on which run of a sweep planned first. A plan's algorithm thus depends on its length and the
+//! CPU's instruction set only, and a shared plan is only read by `process_with_scratch` (the
+//! scratch is each lane's own), so sharing changes no bit.
 
+use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 
 use ndarray::parallel::prelude::*;
@@ -66,43 +70,50 @@ const BANDS_PER_THREAD: usize = 4;
 /// Grids with fewer elements than this run on one lane (threads would cost more than they save).
 const PARALLEL_MIN: usize = 64 * 64;
 
-/// The planners every [`Fft2`] of the process takes its plans from: real transforms of the
-/// rows, complex ones of the columns. Each caches the plan of every length it has made, so a
-/// length is planned once per process (the cache holds a few twiddle tables per length, a
-/// small fraction of an operator of that length).
-struct Planners {
-    real: RealFftPlanner<f64>,
-    complex: FftPlanner<f64>,
+/// A row length's real transforms `(r2c, c2r)`.
+type RowPlans = (Arc<dyn RealToComplex<f64>>, Arc<dyn ComplexToReal<f64>>);
+/// A column length's complex transforms `(forward, inverse)`.
+type ColumnPlans = (Arc<dyn Fft<f64>>, Arc<dyn Fft<f64>>);
+
+/// The plans every [`Fft2`] of the process takes: real transforms of the rows and complex ones
+/// of the columns, by length, each length planned once per process by planners made for it
+/// (module docs; the table holds a few twiddle tables per length, a small fraction of an
+/// operator of that length).
+#[derive(Default)]
+struct Plans {
+    rows: HashMap<usize, RowPlans>,
+    columns: HashMap<usize, ColumnPlans>,
 }
 
 /// The plans of an `mx × my` real grid from the process's [`Planners`]: `(r2c, c2r)` of the
 /// rows (length `my`) and `(forward, inverse)` of the columns (length `mx`).
-#[allow(clippy::type_complexity)]
-fn planned(
-    mx: usize,
-    my: usize,
-) -> (
-    (Arc<dyn RealToComplex<f64>>, Arc<dyn ComplexToReal<f64>>),
-    (Arc<dyn Fft<f64>>, Arc<dyn Fft<f64>>),
-) {
-    static PLANNERS: OnceLock<Mutex<Planners>> = OnceLock::new();
-    let planners = PLANNERS.get_or_init(|| {
-        Mutex::new(Planners {
-            real: RealFftPlanner::new(),
-            complex: FftPlanner::new(),
-        })
-    });
-    // A panic while planning leaves the caches as they were before the failed length: still
+fn planned(mx: usize, my: usize) -> (RowPlans, ColumnPlans) {
+    static PLANS: OnceLock<Mutex<Plans>> = OnceLock::new();
+    let plans = PLANS.get_or_init(Mutex::default);
+    // A panic while planning leaves the table as it was before the failed length: still
     // valid, so a poisoned lock is taken over.
-    let mut p = planners
+    let mut p = plans
         .lock()
         .unwrap_or_else(|poisoned| poisoned.into_inner());
-    let rows = (p.real.plan_fft_forward(my), p.real.plan_fft_inverse(my));
-    let columns = (
-        p.complex.plan_fft_forward(mx),
-        p.complex.plan_fft_inverse(mx),
-    );
+    let rows = p.rows.entry(my).or_insert_with(|| fresh_rows(my)).clone();
+    let columns = p
+        .columns
+        .entry(mx)
+        .or_insert_with(|| fresh_columns(mx))
+        .clone();
     (rows, columns)
+}
+
+/// The real transforms of rows of length `my`, from a planner made for them.
+fn fresh_rows(my: usize) -> RowPlans {
+    let mut real = RealFftPlanner::<f64>::new();
+    (real.plan_fft_forward(my), real.plan_fft_inverse(my))
+}
+
+/// The complex transforms of columns of length `mx`, from a planner made for them.
+fn fresh_columns(mx: usize) -> ColumnPlans {
+    let mut complex = FftPlanner::<f64>::new();
+    (complex.plan_fft_forward(mx), complex.plan_fft_inverse(mx))
 }
 
 impl Fft2 {
@@ -114,15 +125,7 @@ impl Fft2 {
 
     /// An `mx × my` grid's transforms with the given plans (`(r2c, c2r)` of length `my`,
     /// `(forward, inverse)` of length `mx`).
-    #[allow(clippy::type_complexity)]
-    fn with_plans(
-        mx: usize,
-        my: usize,
-        ((r2c, c2r), (fwd, inv)): (
-            (Arc<dyn RealToComplex<f64>>, Arc<dyn ComplexToReal<f64>>),
-            (Arc<dyn Fft<f64>>, Arc<dyn Fft<f64>>),
-        ),
-    ) -> Self {
+    fn with_plans(mx: usize, my: usize, ((r2c, c2r), (fwd, inv)): (RowPlans, ColumnPlans)) -> Self {
         let mh = my / 2 + 1;
         let zero = Complex::new(0.0, 0.0);
         Self {
@@ -432,34 +435,69 @@ mod tests {
 
     #[test]
     fn shared_plans_are_reused_and_give_the_bits_of_fresh_planners() {
-        // Other lengths planned first, from several threads at once, in no set order.
+        // Other lengths planned first, from several threads at once, in no set order; among
+        // them 288 and 576, on which one shared RustFFT planner built 1152 and 2304 otherwise
+        // (other bits).
         std::thread::scope(|scope| {
             for t in 0..3 {
                 scope.spawn(move || {
-                    for m in [48, 90, 100, 126, 150, 180, 250] {
+                    for m in [48, 90, 100, 126, 150, 180, 250, 288] {
                         Fft2::new(m + t, 2 * m);
                     }
                 });
             }
         });
-        let (mx, my) = (180, 250);
-        let (a, b) = (Fft2::new(mx, my), Fft2::new(mx, my));
-        assert!(Arc::ptr_eq(&a.fwd, &b.fwd) && Arc::ptr_eq(&a.inv, &b.inv));
-        assert!(Arc::ptr_eq(&a.r2c, &b.r2c) && Arc::ptr_eq(&a.c2r, &b.c2r));
-        let mut real = RealFftPlanner::<f64>::new();
-        let mut complex = FftPlanner::<f64>::new();
-        let fresh_plans = (
-            (real.plan_fft_forward(my), real.plan_fft_inverse(my)),
-            (complex.plan_fft_forward(mx), complex.plan_fft_inverse(mx)),
-        );
-        let mut fresh = Fft2::with_plans(mx, my, fresh_plans);
-        let mut shared = a;
-        let (x, y) = (
-            convolved(&mut fresh, 90, 125),
-            convolved(&mut shared, 90, 125),
-        );
-        assert!(x.iter().any(|v| *v != 0.0));
-        assert!(x.iter().zip(&y).all(|(p, q)| p.to_bits() == q.to_bits()));
+        for (mx, my) in [(180, 250), (1152, 2304)] {
+            let (a, b) = (Fft2::new(mx, my), Fft2::new(mx, my));
+            assert!(Arc::ptr_eq(&a.fwd, &b.fwd) && Arc::ptr_eq(&a.inv, &b.inv));
+            assert!(Arc::ptr_eq(&a.r2c, &b.r2c) && Arc::ptr_eq(&a.c2r, &b.c2r));
+            let mut real = RealFftPlanner::<f64>::new();
+            let mut complex = FftPlanner::<f64>::new();
+            let fresh_plans = (
+                (real.plan_fft_forward(my), real.plan_fft_inverse(my)),
+                (complex.plan_fft_forward(mx), complex.plan_fft_inverse(mx)),
+            );
+            let mut fresh = Fft2::with_plans(mx, my, fresh_plans);
+            let mut shared = a;
+            let (x, y) = (
+                convolved(&mut fresh, mx / 2, my / 2),
+                convolved(&mut shared, mx / 2, my / 2),
+            );
+            assert!(x.iter().any(|v| *v != 0.0));
+            assert!(
+                x.iter().zip(&y).all(|(p, q)| p.to_bits() == q.to_bits()),
+                "{mx} x {my}"
+            );
+        }
+    }
+
+    /// RustFFT's own planner builds a length on the lengths it has cached: the reason
+    /// [`planned`] plans every length with planners of its own. If a RustFFT release stops
+    /// doing so this test fails, and the table could go back to one shared planner.
+    #[test]
+    fn a_shared_rustfft_planner_changes_a_lengths_bits() {
+        let signal = |n: usize| -> Vec<Complex<f64>> {
+            (0..n)
+                .map(|i| Complex::new(((i * 7919) % 1000) as f64 / 997.0, (i % 101) as f64))
+                .collect()
+        };
+        let mut fresh = signal(1152);
+        FftPlanner::<f64>::new()
+            .plan_fft_forward(1152)
+            .process(&mut fresh);
+        let mut shared = FftPlanner::<f64>::new();
+        shared.plan_fft_forward(288);
+        let mut after = signal(1152);
+        shared.plan_fft_forward(1152).process(&mut after);
+        let same = fresh
+            .iter()
+            .zip(&after)
+            .all(|(a, b)| a.re.to_bits() == b.re.to_bits() && a.im.to_bits() == b.im.to_bits());
+        let close = fresh
+            .iter()
+            .zip(&after)
+            .all(|(a, b)| (a - b).norm() <= 1e-9 * (1.0 + a.norm()));
+        assert!(close && !same);
     }
 
     #[test]
