@@ -15,9 +15,9 @@
 //! and the error against the same law's converged pull-off: the exponential law's from the
 //! axisymmetric ring solution (`crates/tack-solver/tests/axisym_reference.rs`, three meshes
 //! within ±0.001), the Dugdale law's Maugis–Dugdale closed form, the criterion's JKR 1.5πγR,
-//! the Lennard-Jones law's tack's own 256² and 512² runs (1.54902 and 1.54933: the ring solver
-//! does not yet settle that law at μ = 3, so its error is not against an independent
-//! solution). The peers' rows are
+//! the Lennard-Jones law's from the ring solution traced by continuation
+//! (`crates/tack-solver/tests/smooth.rs`, `tabor_3_ring_pull_off`: 1.549594 and 1.549584 on 292
+//! and 583 rings; tack's 256² and 512² runs give 1.54902 and 1.54933). The peers' rows are
 //! the measurements quoted in the issue (Tamaas 2.9 and ContactMechanics + Adhesion on this
 //! machine kind). A second table times the bench's rough sphere at 256² under the exponential
 //! law at μ = 3 against its zero-range run.
@@ -43,9 +43,10 @@ const TABOR: f64 = 3.0;
 /// of 170, 255 and 380 rings: 1.5422, 1.5414, 1.5417).
 const EXPONENTIAL_REFERENCE: f64 = 1.5417;
 
-/// The Lennard-Jones law's converged pull-off `F/(πγR)` at μ = 3: tack's own runs of this case
-/// on 256² and 512² (1.54902 and 1.54933, 0.02% apart).
-const LENNARD_JONES_REFERENCE: f64 = 1.5492;
+/// The Lennard-Jones law's converged pull-off `F/(πγR)` at μ = 3 from the ring solution traced
+/// by continuation (292 and 583 rings: 1.549594, 1.549584; tack's own 256² and 512² runs give
+/// 1.54902 and 1.54933).
+const LENNARD_JONES_REFERENCE: f64 = 1.54959;
 
 /// The peers' measurements of the issue: (who, n, seconds, error against their own converged
 /// pull-off or a note).

@@ -794,4 +794,163 @@ impl Reference {
             pull_off_sampled: pmin,
         }
     }
+
+    /// The retraction branch traced by pseudo-arclength continuation, a method independent of
+    /// [`Reference::step`] (no active set, no relaxation) for laws with `P(0) = 0` at the wall
+    /// (Lennard-Jones), where the active-set Newton method meets a wall far stiffer than a ring.
+    /// Each ring has one unknown `z` on the complementarity graph: `g = z`, `p = P(z)` for
+    /// `z ≥ 0` (off the wall), `g = 0`, `p = P′(0) z ≥ 0` for `z < 0` (on it; `P′(0) < 0`), so
+    /// `p(z)` is C¹ and the graph is one curve. The equations `g(z_i) − f_i + d − Σ C_ij p(z_j) = 0`
+    /// and the approach `d` are continued along the arclength from the equilibrium at `d0`
+    /// (found by damped Newton from the rigid gaps), towards smaller `d`, until `d` turns (the
+    /// fold where displacement control jumps out) or `max_points`. Returns the points (approach,
+    /// force); the stable branch under displacement control is the part before the turn.
+    pub fn trace_retraction(&self, d0: f64, ds: f64, max_points: usize) -> Option<Vec<(f64, f64)>> {
+        assert!(
+            self.law.wall() == 0.0,
+            "continuation needs P(0) = 0 at the wall"
+        );
+        let n = self.rings();
+        let s0 = self.law.dp(0.0);
+        assert!(s0 < 0.0, "the law must turn tensile off the wall");
+        let g_of = |z: f64| z.max(0.0);
+        let dg = |z: f64| if z >= 0.0 { 1.0 } else { 0.0 };
+        let p_of = |z: f64| if z >= 0.0 { self.law.p(z) } else { s0 * z };
+        let dp = |z: f64| if z >= 0.0 { self.law.dp(z) } else { s0 };
+        let heights: Vec<f64> = (0..n).map(|i| self.height(i)).collect();
+        let residual = |z: &[f64], d: f64| -> Vec<f64> {
+            let p: Vec<f64> = z.iter().map(|&z| p_of(z)).collect();
+            (0..n)
+                .map(|i| {
+                    let row = &self.infl[i * n..(i + 1) * n];
+                    let u: f64 = row.iter().zip(&p).map(|(c, p)| c * p).sum();
+                    g_of(z[i]) - heights[i] + d - u
+                })
+                .collect()
+        };
+        // The (n + 1)-column Jacobian [∂F/∂z, ∂F/∂d], row-major, n rows.
+        let jacobian = |z: &[f64]| -> Vec<f64> {
+            let m = n + 1;
+            let mut j = vec![0.0; n * m];
+            let slopes: Vec<f64> = z.iter().map(|&z| dp(z)).collect();
+            for i in 0..n {
+                let row = &self.infl[i * n..(i + 1) * n];
+                let out = &mut j[i * m..(i + 1) * m];
+                for k in 0..n {
+                    out[k] = -row[k] * slopes[k];
+                }
+                out[i] += dg(z[i]);
+                out[n] = 1.0;
+            }
+            j
+        };
+        let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        // The arclength's metric: the rings' mean square and the approach, `Σz²/n + d²`.
+        let w = 1.0 / n as f64;
+        let weighted = |t: &[f64]| -> Vec<f64> {
+            t.iter()
+                .enumerate()
+                .map(|(i, v)| if i < n { v * w } else { *v })
+                .collect()
+        };
+        let length = |t: &[f64]| {
+            weighted(t)
+                .iter()
+                .zip(t)
+                .map(|(a, b)| a * b)
+                .sum::<f64>()
+                .sqrt()
+        };
+        let scale = self.law.peak() * self.infl[0];
+        // The equilibrium at d0: damped Newton in z from the rigid gaps.
+        let mut z: Vec<f64> = heights.iter().map(|&f| f - d0).collect();
+        let mut ok = false;
+        for _ in 0..200 {
+            let r = residual(&z, d0);
+            let r0 = norm(&r);
+            if r0 <= 1e-12 * scale * (n as f64).sqrt() {
+                ok = true;
+                break;
+            }
+            let j = jacobian(&z);
+            let a: Vec<f64> = (0..n)
+                .flat_map(|i| j[i * (n + 1)..i * (n + 1) + n].to_vec())
+                .collect();
+            let lu = Lu::new(a, n)?;
+            let step = lu.solve(&r.iter().map(|x| -x).collect::<Vec<_>>());
+            let mut alpha = 1.0;
+            loop {
+                let trial: Vec<f64> = z.iter().zip(&step).map(|(z, s)| z + alpha * s).collect();
+                if norm(&residual(&trial, d0)) < (1.0 - 1e-4 * alpha) * r0 || alpha < 1e-6 {
+                    z = trial;
+                    break;
+                }
+                alpha *= 0.5;
+            }
+        }
+        if !ok {
+            return None;
+        }
+        let force =
+            |z: &[f64]| -> f64 { z.iter().zip(&self.area).map(|(&z, a)| p_of(z) * a).sum() };
+        let mut x: Vec<f64> = z.clone();
+        x.push(d0);
+        let mut points = vec![(d0, force(&z))];
+        // The first tangent points to smaller d.
+        let mut tangent: Vec<f64> = vec![0.0; n + 1];
+        tangent[n] = -1.0;
+        let mut h = ds;
+        let mut turned = 0;
+        while points.len() < max_points && h > 1e-6 * ds {
+            // Tangent: [J; tᵀ] t' = [0; 1], normalised, in the direction of the last one.
+            let mut a = jacobian(&x[..n]);
+            a.extend_from_slice(&weighted(&tangent));
+            let lu = Lu::new(a, n + 1)?;
+            let mut rhs = vec![0.0; n + 1];
+            rhs[n] = 1.0;
+            let mut t = lu.solve(&rhs);
+            let tn = length(&t);
+            t.iter_mut().for_each(|v| *v /= tn);
+            let tw = weighted(&t);
+            // Predictor, then Newton on [F(x) = 0, tᵀ(x − x_pred) = 0].
+            let pred: Vec<f64> = x.iter().zip(&t).map(|(x, t)| x + h * t).collect();
+            let mut y = pred.clone();
+            let mut converged = false;
+            for _ in 0..12 {
+                let r = residual(&y[..n], y[n]);
+                if norm(&r) <= 1e-11 * scale * (n as f64).sqrt() {
+                    converged = true;
+                    break;
+                }
+                let mut a = jacobian(&y[..n]);
+                a.extend_from_slice(&tw);
+                let Some(lu) = Lu::new(a, n + 1) else { break };
+                let mut b: Vec<f64> = r.iter().map(|v| -v).collect();
+                let along: f64 = y
+                    .iter()
+                    .zip(&pred)
+                    .zip(&tw)
+                    .map(|((y, p), t)| (y - p) * t)
+                    .sum();
+                b.push(-along);
+                let step = lu.solve(&b);
+                y.iter_mut().zip(&step).for_each(|(y, s)| *y += s);
+            }
+            if !converged {
+                h *= 0.5;
+                continue;
+            }
+            if y[n] > x[n] {
+                turned += 1;
+            }
+            tangent = t;
+            x = y;
+            points.push((x[n], force(&x[..n])));
+            if turned >= 3 {
+                break;
+            }
+            h = (h * 1.2).min(ds);
+        }
+        Some(points)
+    }
 }
