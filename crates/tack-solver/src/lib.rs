@@ -122,7 +122,8 @@ pub use law::{
 };
 pub use options::{SolverError, SolverOptions};
 pub use path::{
-    ApproachPath, Observer, PathResult, Phase, SnapshotRequest, StepFields, pull_off_step,
+    ApproachPath, Observer, PathResult, Phase, RELEASE_MARGIN, SnapshotRequest, StepFields,
+    pull_off_step,
 };
 pub use rounds::{CASCADE_GENERATIONS, CASCADE_MARGIN, LOOSE_ATTACH_MARGIN, LOOSE_DETACH_MARGIN};
 pub use state::{ContactState, StepRecord};
