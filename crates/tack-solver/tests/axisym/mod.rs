@@ -802,9 +802,11 @@ impl Reference {
     /// `z ≥ 0` (off the wall), `g = 0`, `p = P′(0) z ≥ 0` for `z < 0` (on it; `P′(0) < 0`), so
     /// `p(z)` is C¹ and the graph is one curve. The equations `g(z_i) − f_i + d − Σ C_ij p(z_j) = 0`
     /// and the approach `d` are continued along the arclength from the equilibrium at `d0`
-    /// (found by damped Newton from the rigid gaps), towards smaller `d`, until `d` turns (the
-    /// fold where displacement control jumps out) or `max_points`. Returns the points (approach,
-    /// force); the stable branch under displacement control is the part before the turn.
+    /// (found by damped Newton from the rigid gaps), towards smaller `d`, until the tension has
+    /// fallen back to half its greatest value (past the fold where displacement control jumps
+    /// out, on the unstable branch; the rings' lattice makes small folds of its own, which a fine
+    /// `ds` resolves) or `max_points`. Returns the points (approach, force); the pull-off under
+    /// displacement control is their least force, which lies before the fold.
     pub fn trace_retraction(&self, d0: f64, ds: f64, max_points: usize) -> Option<Vec<(f64, f64)>> {
         assert!(
             self.law.wall() == 0.0,
@@ -900,7 +902,7 @@ impl Reference {
         let mut tangent: Vec<f64> = vec![0.0; n + 1];
         tangent[n] = -1.0;
         let mut h = ds;
-        let mut turned = 0;
+        let mut least = f64::INFINITY;
         while points.len() < max_points && h > 1e-6 * ds {
             // Tangent: [J; tᵀ] t' = [0; 1], normalised, in the direction of the last one.
             let mut a = jacobian(&x[..n]);
@@ -940,13 +942,12 @@ impl Reference {
                 h *= 0.5;
                 continue;
             }
-            if y[n] > x[n] {
-                turned += 1;
-            }
             tangent = t;
             x = y;
-            points.push((x[n], force(&x[..n])));
-            if turned >= 3 {
+            let f = force(&x[..n]);
+            points.push((x[n], f));
+            least = least.min(f);
+            if least < 0.0 && f >= 0.5 * least {
                 break;
             }
             h = (h * 1.2).min(ds);
