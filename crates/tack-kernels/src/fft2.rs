@@ -85,7 +85,7 @@ struct Plans {
     columns: HashMap<usize, ColumnPlans>,
 }
 
-/// The plans of an `mx × my` real grid from the process's [`Planners`]: `(r2c, c2r)` of the
+/// The plans of an `mx × my` real grid from the process's [`Plans`]: `(r2c, c2r)` of the
 /// rows (length `my`) and `(forward, inverse)` of the columns (length `mx`).
 fn planned(mx: usize, my: usize) -> (RowPlans, ColumnPlans) {
     static PLANS: OnceLock<Mutex<Plans>> = OnceLock::new();

@@ -8,9 +8,9 @@ use crate::{AdhesiveSolver, SolverError};
 /// Everything an [`AdhesiveSolver`] carries from one step to the next: the pressure, gap and
 /// displacement, the bonded set, the Dugdale law's cohesive zone, the secant predictor's
 /// previous step and, under a smooth law, whether the step landed (the next step's predictor
-/// and Newton's reach depend on it). Restoring it makes the next step exactly (bit for bit) what it would have
-/// been right after the step it was saved at; the solver's scratch (sub-grid operators, CG
-/// vectors) holds nothing a step reads before writing it.
+/// and Newton's reach depend on it). Restoring it makes the next step exactly (bit for bit)
+/// what it would have been right after the step it was saved at; the solver's scratch
+/// (sub-grid operators, CG vectors) holds nothing a step reads before writing it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SolverState {
     pressure: Array2<f64>,
