@@ -251,28 +251,22 @@ fn a_state_restores_only_into_a_solver_of_its_grid_and_law() {
     let saved = a.save_state();
     let grid = Grid::square(19, 0.38, Boundary::Free).unwrap();
     let surface = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
-    let op = tack_kernels::operator_for(grid, 1.0).unwrap();
-    let law = crate::AdhesionLaw::from(crate::Dugdale { sigma0: 1.0 });
-    let mut b =
-        AdhesiveSolver::with_law(op, &surface, 1.0, law, AdhesiveOptions::default()).unwrap();
-    let e = b.restore_state(&saved).unwrap_err().to_string();
-    assert!(
-        e.contains(
-            "(19 × 19 grid, zero range) does not fit this solver (19 × 19 grid, a cohesive zone)"
-        ),
-        "{e}"
-    );
-    let op = tack_kernels::operator_for(grid, 1.0).unwrap();
-    let law = crate::AdhesionLaw::from(crate::Exponential { range: 0.1 });
-    let mut smooth =
-        AdhesiveSolver::with_law(op, &surface, 1.0, law, AdhesiveOptions::default()).unwrap();
-    let e = smooth.restore_state(&saved).unwrap_err().to_string();
-    assert!(
-        e.contains(
-            "(19 × 19 grid, zero range) does not fit this solver (19 × 19 grid, a smooth law)"
-        ),
-        "{e}"
-    );
+    let with_law = |law: crate::AdhesionLaw| {
+        let op = tack_kernels::operator_for(grid, 1.0).unwrap();
+        AdhesiveSolver::with_law(op, &surface, 1.0, law, AdhesiveOptions::default()).unwrap()
+    };
+    let dugdale = crate::AdhesionLaw::from(crate::Dugdale { sigma0: 1.0 });
+    let exponential = crate::AdhesionLaw::from(crate::Exponential { range: 0.1 });
+    for (law, kind) in [(dugdale, "a cohesive zone"), (exponential, "a smooth law")] {
+        let e = with_law(law).restore_state(&saved).unwrap_err().to_string();
+        assert!(
+            e.contains(&format!(
+                "(19 × 19 grid, zero range) does not fit this solver (19 × 19 grid, {kind})"
+            )),
+            "{e}"
+        );
+    }
+    let mut smooth = with_law(exponential);
     smooth.step(0.5).unwrap();
     let e = a
         .restore_state(&smooth.save_state())
