@@ -25,7 +25,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let solver = |e_star: f64| -> Result<AdhesiveSolver, Box<dyn std::error::Error>> {
         let op = operator_for(grid, e_star)?;
         let options = AdhesiveOptions::default();
-        Ok(AdhesiveSolver::with_law(op, &surface, gamma, law, options)?)
+        Ok(AdhesiveSolver::with_law(
+            op,
+            &surface,
+            gamma,
+            law.clone(),
+            options,
+        )?)
     };
     let path = ApproachPath {
         start: -10.0 * range,

@@ -203,7 +203,7 @@ impl AdhesiveSolver {
             }
             Family::Smooth(_) => {
                 law.check(gamma, surface)?;
-                let traction = Traction::new(law, gamma).expect("a smooth law");
+                let traction = Traction::new(law.clone(), gamma).expect("a smooth law");
                 (None, Some(SmoothState::new(traction, shape)))
             }
         };
@@ -266,7 +266,7 @@ impl AdhesiveSolver {
                 allowed: "a finite number ≥ 0 in every element",
             });
         }
-        let (gamma_ref, law) = self.reference;
+        let (gamma_ref, law) = (self.reference.0, &self.reference.1);
         let (e_star, dx) = (self.base.op.e_star(), self.base.grid().dx());
         self.tension = gamma.mapv(|g| law.element_tension(g, gamma_ref, e_star, dx));
         if let Some(s) = self.smooth.as_mut() {
@@ -321,8 +321,8 @@ impl AdhesiveSolver {
     }
 
     /// The adhesion law the solver runs.
-    pub fn law(&self) -> AdhesionLaw {
-        self.reference.1
+    pub fn law(&self) -> &AdhesionLaw {
+        &self.reference.1
     }
     /// Dugdale law: the cohesive zone (elements not in contact that carry the tension σ0, their
     /// gap below the range); smooth laws: the elements out of contact whose tension exceeds 1%

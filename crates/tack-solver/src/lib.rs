@@ -116,7 +116,7 @@ pub use extrapolate::{
     CRITERION_ERROR_COEFFICIENT, observed_order, pull_off_error_estimate, richardson_first_order,
 };
 pub use law::{
-    AdhesionLaw, Curve, Dugdale, Exponential, Family, JkrLimit, Law, LennardJones,
+    AdhesionLaw, Curve, CustomCurve, Dugdale, Exponential, Family, JkrLimit, Law, LennardJones,
     MIN_COHESIVE_ZONE_ELEMENTS, MIN_PROCESS_ZONE_ELEMENTS, RANGE_ROUND_OFF, REACH_FRACTION,
     StepColumn, ZONE_COLUMN,
 };

@@ -58,6 +58,17 @@ pub enum SolverError {
         /// The solver's grid shape and law.
         solver: String,
     },
+    /// A custom adhesion law's curve ([`AdhesionLaw::custom`](crate::AdhesionLaw::custom))
+    /// that fails a check.
+    #[error("custom adhesion law \"{name}\": {method} {reason}")]
+    Curve {
+        /// The curve's name.
+        name: &'static str,
+        /// The method of [`Curve`](crate::Curve) at fault.
+        method: &'static str,
+        /// What it gives and what it must give.
+        reason: String,
+    },
     /// The surface and the operator live on different grids.
     #[error("the surface grid {surface:?} does not match the operator grid {operator:?}")]
     GridMismatch {

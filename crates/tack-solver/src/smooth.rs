@@ -330,7 +330,7 @@ impl AdhesiveSolver {
     fn newton_direction(&mut self, k: f64, eta: f64) -> usize {
         let weights = self.weights();
         let s = self.smooth.as_mut().expect("a smooth law");
-        let t = s.traction;
+        let t = s.traction.clone();
         let p = self.base.pressure.as_slice().expect("contiguous");
         let g = self.base.gap.as_slice().expect("contiguous");
         // |c| is capped at 1e8·k: an element whose law has no stiffness (its tail, or a peak)
@@ -488,7 +488,7 @@ impl AdhesiveSolver {
         let cg = self.options.cg;
         let window = if last { None } else { self.landing_window() };
         let s = self.smooth.as_mut().expect("a smooth law");
-        let t = s.traction;
+        let t = s.traction.clone();
         let b = &mut self.base;
         let Some(w) = window else {
             let patch = Patch {
@@ -550,7 +550,7 @@ impl AdhesiveSolver {
     /// cheaper than the grid.
     fn landing_window(&self) -> Option<tack_geometry::Window> {
         let s = self.smooth.as_ref().expect("a smooth law");
-        let t = s.traction;
+        let t = s.traction.clone();
         let cut = LANDING_REACH * t.pressure(0.0).abs().max(self.sigma_c);
         let mask = Zip::from(&self.bonded)
             .and(&self.base.gap)
@@ -597,7 +597,7 @@ impl AdhesiveSolver {
 
     /// The smooth law's traction.
     fn traction(&self) -> Traction {
-        self.smooth.as_ref().expect("a smooth law").traction
+        self.smooth.as_ref().expect("a smooth law").traction.clone()
     }
 
     /// Each element's share `w = γ_ij/γ` of the law (1 without a γ map).

@@ -34,7 +34,7 @@ fn fingerprint(
     n: usize,
     side: f64,
     gamma: f64,
-    law: AdhesionLaw,
+    law: &AdhesionLaw,
     map: bool,
     (start, deepest, step): (f64, f64, f64),
 ) -> (u64, usize) {
@@ -47,7 +47,7 @@ fn fingerprint(
         cascade: false,
         ..AdhesiveOptions::default()
     };
-    let mut solver = AdhesiveSolver::with_law(op, &surface, gamma, law, options).unwrap();
+    let mut solver = AdhesiveSolver::with_law(op, &surface, gamma, law.clone(), options).unwrap();
     if map {
         // Stripes of half and full γ.
         let g = Array2::from_shape_fn(
@@ -100,7 +100,7 @@ fn the_criterion_and_the_dugdale_law_keep_their_bits() {
                 64,
                 1.0,
                 1e-3,
-                criterion,
+                &criterion,
                 false,
                 (-0.01, 0.02, 0.002),
             ),
@@ -113,7 +113,7 @@ fn the_criterion_and_the_dugdale_law_keep_their_bits() {
                 64,
                 1.0,
                 1e-3,
-                criterion,
+                &criterion,
                 true,
                 (-0.01, 0.02, 0.002),
             ),
@@ -126,7 +126,7 @@ fn the_criterion_and_the_dugdale_law_keep_their_bits() {
                 64,
                 1.0,
                 0.0,
-                criterion,
+                &criterion,
                 false,
                 (0.0, 0.02, 0.004),
             ),
@@ -139,7 +139,7 @@ fn the_criterion_and_the_dugdale_law_keep_their_bits() {
                 32,
                 1.0,
                 2e-3,
-                criterion,
+                &criterion,
                 false,
                 (0.0, 0.05, 0.004),
             ),
@@ -152,7 +152,7 @@ fn the_criterion_and_the_dugdale_law_keep_their_bits() {
                 64,
                 1.0,
                 1e-3,
-                dugdale,
+                &dugdale,
                 false,
                 (-0.01, 0.02, 0.002),
             ),
@@ -165,7 +165,7 @@ fn the_criterion_and_the_dugdale_law_keep_their_bits() {
                 32,
                 1.0,
                 2e-3,
-                dugdale,
+                &dugdale,
                 true,
                 (-0.002, 0.05, 0.004),
             ),

@@ -233,7 +233,8 @@ fn a_uniform_map_keeps_the_bits_of_the_dugdale_law() {
     for with_map in [false, true] {
         let op = operator_for(grid, 1.0).unwrap();
         let mut s =
-            AdhesiveSolver::with_law(op, &surface, 0.05, law, AdhesiveOptions::default()).unwrap();
+            AdhesiveSolver::with_law(op, &surface, 0.05, law.clone(), AdhesiveOptions::default())
+                .unwrap();
         if with_map {
             s.set_gamma_map(Array2::from_elem((41, 41), 0.05).view())
                 .unwrap();

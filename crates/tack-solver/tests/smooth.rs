@@ -17,12 +17,13 @@ use tack_solver::{
 
 /// A sphere R = 1 on E* = 1 with γ = 1 under `law`, on a free grid of `n` elements of `dx`,
 /// loaded from `start` to `depth` and retracted in steps of `step` to `end`.
-fn run(law: AdhesionLaw, n: usize, dx: f64, path: (f64, f64, f64, f64)) -> PathResult {
+fn run(law: &AdhesionLaw, n: usize, dx: f64, path: (f64, f64, f64, f64)) -> PathResult {
     let grid = Grid::square(n, dx, Boundary::Free).unwrap();
     let surface = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
     let op = operator_for(grid, 1.0).unwrap();
     let mut solver =
-        AdhesiveSolver::with_law(op, &surface, 1.0, law, AdhesiveOptions::default()).unwrap();
+        AdhesiveSolver::with_law(op, &surface, 1.0, law.clone(), AdhesiveOptions::default())
+            .unwrap();
     let (start, depth, step, end) = path;
     let path = ApproachPath {
         start,
@@ -76,7 +77,7 @@ fn lennard_jones_sphere_follows_the_ring_solution() {
     let mut refs = Vec::new();
     for (n, dx) in [(48, 0.5), (96, 0.25), (192, 0.125)] {
         let t = std::time::Instant::now();
-        let result = run(law, n, dx, path);
+        let result = run(&law, n, dx, path);
         let secs = t.elapsed().as_secs_f64();
         let approaches: Vec<f64> = result.records.iter().map(|r| r.approach).collect();
         if refs.is_empty() {
@@ -134,7 +135,7 @@ fn exponential_dissipation_follows_the_ring_solution() {
     let mut errors = Vec::new();
     let mut refs = Vec::new();
     for (n, dx) in [(32, 0.25), (64, 0.125), (128, 0.0625)] {
-        let result = run(law, n, dx, (-2.0, 1.0, 0.05, -2.0));
+        let result = run(&law, n, dx, (-2.0, 1.0, 0.05, -2.0));
         assert!(result.all_converged());
         let approaches: Vec<f64> = result.records.iter().map(|r| r.approach).collect();
         if refs.is_empty() {
@@ -169,7 +170,7 @@ fn exponential_sphere_follows_the_ring_solution() {
     let mut refs = Vec::new();
     for (n, dx) in [(24, 0.5), (48, 0.25), (96, 0.125)] {
         let t = std::time::Instant::now();
-        let result = run(law, n, dx, path);
+        let result = run(&law, n, dx, path);
         let secs = t.elapsed().as_secs_f64();
         assert!(result.all_converged(), "n = {n}");
         let approaches: Vec<f64> = result.records.iter().map(|r| r.approach).collect();
@@ -216,7 +217,7 @@ fn small_tabor_parameter_approaches_dmt() {
     // the law's stiff part, so 24² elements of 1 resolve it).
     let rho = 10.0;
     let result = run(
-        AdhesionLaw::Exponential(Exponential { range: rho }),
+        &AdhesionLaw::Exponential(Exponential { range: rho }),
         40,
         1.0,
         (-30.0, 2.0, 0.5, -30.0),
@@ -276,7 +277,8 @@ fn lennard_jones_at_tabor_3_converges_on_coarse_grids() {
         let surface = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
         let op = operator_for(grid, 1.0).unwrap();
         let mut solver =
-            AdhesiveSolver::with_law(op, &surface, gamma, law, AdhesiveOptions::default()).unwrap();
+            AdhesiveSolver::with_law(op, &surface, gamma, law.clone(), AdhesiveOptions::default())
+                .unwrap();
         let result = solver
             .run_path(&path, &SnapshotRequest::None, &mut ())
             .unwrap();
@@ -300,7 +302,12 @@ fn lennard_jones_at_tabor_3_converges_on_coarse_grids() {
 /// Runs `law` on `n` elements of `dx` along `path` (as [`run`]) in a pool of one thread and in
 /// one of two, asserts the same force bits, set sizes and products at every step, and returns
 /// the one-thread result.
-fn assert_same_bits(law: AdhesionLaw, n: usize, dx: f64, path: (f64, f64, f64, f64)) -> PathResult {
+fn assert_same_bits(
+    law: &AdhesionLaw,
+    n: usize,
+    dx: f64,
+    path: (f64, f64, f64, f64),
+) -> PathResult {
     let run_on = |threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
@@ -323,7 +330,7 @@ fn assert_same_bits(law: AdhesionLaw, n: usize, dx: f64, path: (f64, f64, f64, f
 #[test]
 fn same_bits_on_one_and_two_threads() {
     let law = AdhesionLaw::Exponential(Exponential { range: 1.0 });
-    assert_same_bits(law, 96, 0.125, (-3.0, 1.0, 0.25, -2.0));
+    assert_same_bits(&law, 96, 0.125, (-3.0, 1.0, 0.25, -2.0));
 }
 
 /// The same for the Lennard-Jones law at μ = 3 (ε = 1/3), whose landings solve the stiff wall
@@ -331,7 +338,7 @@ fn same_bits_on_one_and_two_threads() {
 #[test]
 fn lennard_jones_same_bits_on_one_and_two_threads() {
     let law = AdhesionLaw::LennardJones(LennardJones { range: 1.0 / 3.0 });
-    let one = assert_same_bits(law, 64, 0.16, (-1.0, 0.5, 0.1, -1.2));
+    let one = assert_same_bits(&law, 64, 0.16, (-1.0, 0.5, 0.1, -1.2));
     assert!(one.all_converged());
 }
 
@@ -360,7 +367,8 @@ fn wavy_1d_approaches_johnson_as_the_range_shrinks() {
         let op = operator_for(grid, 1.0).unwrap();
         let law = AdhesionLaw::Exponential(Exponential { range: rho });
         let mut solver =
-            AdhesiveSolver::with_law(op, &surface, gamma, law, AdhesiveOptions::default()).unwrap();
+            AdhesiveSolver::with_law(op, &surface, gamma, law.clone(), AdhesiveOptions::default())
+                .unwrap();
         let path = ApproachPath {
             start: -20.0 * rho,
             max_approach: 0.007,
@@ -414,7 +422,8 @@ fn a_restored_state_retakes_each_smooth_step_exactly() {
     let surface = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
     let op = operator_for(grid, 1.0).unwrap();
     let mut solver =
-        AdhesiveSolver::with_law(op, &surface, gamma, law, AdhesiveOptions::default()).unwrap();
+        AdhesiveSolver::with_law(op, &surface, gamma, law.clone(), AdhesiveOptions::default())
+            .unwrap();
     solver.step(0.0).unwrap();
     let mut saved = solver.save_state();
     for i in 1..=40 {

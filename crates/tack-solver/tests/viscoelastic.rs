@@ -28,12 +28,12 @@ fn solver(
     side: f64,
     e_star: f64,
     gamma: f64,
-    law: AdhesionLaw,
+    law: &AdhesionLaw,
 ) -> AdhesiveSolver {
     let grid = Grid::square(n, side / n as f64, Boundary::Free).unwrap();
     let surface = Surface::from_shape(grid, shape);
     let op = operator_for(grid, e_star).unwrap();
-    AdhesiveSolver::with_law(op, &surface, gamma, law, AdhesiveOptions::default()).unwrap()
+    AdhesiveSolver::with_law(op, &surface, gamma, law.clone(), AdhesiveOptions::default()).unwrap()
 }
 
 fn run(s: &mut AdhesiveSolver, path: &ApproachPath) -> PathResult {
@@ -86,7 +86,7 @@ fn a_sphere_pressed_at_constant_speed_follows_lee_and_radok() {
     // The same grid's elastic force at unit modulus, finely sampled: the discrete problem's own
     // hereditary integral (Lee–Radok holds for it exactly while the contact grows).
     let fine = 800;
-    let mut elastic = solver(&sphere, n, side, 1.0, 0.0, none);
+    let mut elastic = solver(&sphere, n, side, 1.0, 0.0, &none);
     let e = run(&mut elastic, &press(depth, fine));
     let times: Vec<f64> = e.records.iter().map(|r| r.approach / speed).collect();
     let forces: Vec<f64> = e.records.iter().map(|r| r.force).collect();
@@ -118,7 +118,7 @@ fn a_sphere_pressed_at_constant_speed_follows_lee_and_radok() {
     let hertz_error = forces.last().unwrap() / ((4.0 / 3.0) * depth.powf(1.5)) - 1.0;
     let mut errors = Vec::new();
     for steps in [10usize, 20, 40, 80] {
-        let mut visco = solver(&sphere, n, side, 1.0, 0.0, none);
+        let mut visco = solver(&sphere, n, side, 1.0, 0.0, &none);
         visco.set_viscoelastic(sls(), rates(speed, speed)).unwrap();
         let r = run(&mut visco, &press(depth, steps));
         let last = r.records.last().unwrap();
@@ -183,14 +183,14 @@ fn very_slow_and_very_fast_paths_are_elastic_at_the_relaxed_and_the_instantaneou
     let (n, side, gamma, sigma0) = (48, 1.2, 1e-3, 0.1);
     let law = AdhesionLaw::Dugdale(Dugdale { sigma0 });
     let path = cycle(0.02, 0.001, gamma / sigma0);
-    let relaxed = run(&mut solver(&sphere, n, side, 1.0, gamma, law), &path);
-    let glassy = run(&mut solver(&sphere, n, side, 10.0, gamma, law), &path);
+    let relaxed = run(&mut solver(&sphere, n, side, 1.0, gamma, &law), &path);
+    let glassy = run(&mut solver(&sphere, n, side, 10.0, gamma, &law), &path);
     // Steps of 10⁴τ: each step's modulus is E0 + E1·τ/Δt = 1.0009, the history 9e-4 of w.
-    let mut slow = solver(&sphere, n, side, 1.0, gamma, law);
+    let mut slow = solver(&sphere, n, side, 1.0, gamma, &law);
     slow.set_viscoelastic(sls(), rates(1e-7, 1e-7)).unwrap();
     let slow = run(&mut slow, &path);
     // Steps of 1e-7τ: the modulus is E∞(1 − 4.5e-8), the history as small.
-    let mut fast = solver(&sphere, n, side, 1.0, gamma, law);
+    let mut fast = solver(&sphere, n, side, 1.0, gamma, &law);
     fast.set_viscoelastic(sls(), rates(1e4, 1e4)).unwrap();
     let fast = run(&mut fast, &path);
     let (gs, gf) = (curve_gap(&slow, &relaxed), curve_gap(&fast, &glassy));
@@ -221,10 +221,10 @@ fn a_punch_relaxed_under_load_and_pulled_fast_lies_between_its_elastic_pull_offs
     let range = gamma / sigma0;
     let path = cycle(0.001, 2e-4, range);
     let mut pulls = Vec::new();
-    let relaxed = run(&mut solver(&punch, n, side, 1.0, gamma, law), &path);
-    let glassy = run(&mut solver(&punch, n, side, 10.0, gamma, law), &path);
+    let relaxed = run(&mut solver(&punch, n, side, 1.0, gamma, &law), &path);
+    let glassy = run(&mut solver(&punch, n, side, 10.0, gamma, &law), &path);
     for unload in [1e-3, 1e-2, 1e-1, 1e3] {
-        let mut s = solver(&punch, n, side, 1.0, gamma, law);
+        let mut s = solver(&punch, n, side, 1.0, gamma, &law);
         let mut r = rates(1e-3, unload);
         (r.dwell, r.dwell_steps) = (50.0, 10);
         s.set_viscoelastic(sls(), r).unwrap();
@@ -263,7 +263,7 @@ fn a_smooth_law_pull_off_converges_in_the_time_step_and_keeps_its_bits_on_two_th
     for k in [1usize, 2, 4] {
         let step = 0.002 / k as f64;
         let path = cycle(0.02, step, 10.0 * range);
-        let mut s = solver(&sphere, n, side, 1.0, gamma, law);
+        let mut s = solver(&sphere, n, side, 1.0, gamma, &law);
         s.set_viscoelastic(sls(), rates(0.01, 0.01)).unwrap();
         let r = run(&mut s, &path);
         println!(
@@ -274,11 +274,11 @@ fn a_smooth_law_pull_off_converges_in_the_time_step_and_keeps_its_bits_on_two_th
         pulls.push(r.pull_off_force());
     }
     let relaxed = run(
-        &mut solver(&sphere, n, side, 1.0, gamma, law),
+        &mut solver(&sphere, n, side, 1.0, gamma, &law),
         &cycle(0.02, 0.0005, 10.0 * range),
     );
     let glassy = run(
-        &mut solver(&sphere, n, side, 10.0, gamma, law),
+        &mut solver(&sphere, n, side, 10.0, gamma, &law),
         &cycle(0.02, 0.0005, 10.0 * range),
     );
     println!(
@@ -301,7 +301,7 @@ fn a_smooth_law_pull_off_converges_in_the_time_step_and_keeps_its_bits_on_two_th
             .build()
             .unwrap();
         pool.install(|| {
-            let mut s = solver(&sphere, n, side, 1.0, gamma, law);
+            let mut s = solver(&sphere, n, side, 1.0, gamma, &law);
             s.set_viscoelastic(sls(), rates(0.01, 0.01)).unwrap();
             let r = run(&mut s, &cycle(0.02, 0.002, 10.0 * range));
             let bits: Vec<u64> = r.records.iter().map(|x| x.force.to_bits()).collect();
@@ -317,17 +317,17 @@ fn what_a_viscoelastic_solver_refuses_is_named() {
     let law = AdhesionLaw::Exponential(Exponential { range: 0.01 });
     let message = |e: tack_solver::SolverError| e.to_string();
     // Another modulus than the operator's, the criterion with adhesion, bad rates.
-    let mut s = solver(&sphere, 16, 1.2, 2.0, 1e-3, law);
+    let mut s = solver(&sphere, 16, 1.2, 2.0, 1e-3, &law);
     let e = message(s.set_viscoelastic(sls(), rates(1.0, 1.0)).unwrap_err());
     assert!(e.starts_with("material.e_star = 1 is invalid"), "{e}");
     let criterion = AdhesionLaw::JkrLimit(JkrLimit { kappa: KAPPA });
-    let mut s = solver(&sphere, 16, 1.2, 1.0, 1e-3, criterion);
+    let mut s = solver(&sphere, 16, 1.2, 1.0, 1e-3, &criterion);
     let e = message(s.set_viscoelastic(sls(), rates(1.0, 1.0)).unwrap_err());
     assert!(
         e.starts_with("adhesion.model: the zero-range criterion"),
         "{e}"
     );
-    let mut s = solver(&sphere, 16, 1.2, 1.0, 1e-3, law);
+    let mut s = solver(&sphere, 16, 1.2, 1.0, 1e-3, &law);
     let e = message(s.set_viscoelastic(sls(), rates(-1.0, 1.0)).unwrap_err());
     assert!(e.starts_with("protocol.speed = -1 is invalid"), "{e}");
     // A hold before any step; a solid set after one; a saved state restored.
@@ -342,7 +342,7 @@ fn what_a_viscoelastic_solver_refuses_is_named() {
         Some(1.0),
         "the first step is instant, the hold lasts 1"
     );
-    let mut late = solver(&sphere, 16, 1.2, 1.0, 1e-3, law);
+    let mut late = solver(&sphere, 16, 1.2, 1.0, 1e-3, &law);
     late.step(0.001).unwrap();
     let e = message(late.set_viscoelastic(sls(), rates(1.0, 1.0)).unwrap_err());
     assert!(e.contains("starts at rest"), "{e}");

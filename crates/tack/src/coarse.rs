@@ -136,6 +136,8 @@ pub fn coarse_problem(scene: &Scene, problem: &Problem) -> Result<Problem, Scene
         base_dir: scene.base_dir.clone(),
         origin: scene.origin.clone(),
     };
+    // A law held in memory is not in the scene: the coarse run takes the fine one's.
+    let law = problem.law_in_memory.then_some(&problem.law);
     match &coarse_map {
         Some((map, range)) => Problem::build(
             &coarse,
@@ -145,8 +147,9 @@ pub fn coarse_problem(scene: &Scene, problem: &Problem) -> Result<Problem, Scene
                 radius: None,
                 gamma: None,
             }),
+            law,
         ),
-        None => Problem::from_scene(&coarse),
+        None => Problem::build(&coarse, None, law),
     }
 }
 

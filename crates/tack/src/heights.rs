@@ -49,7 +49,7 @@ use crate::scene::{
 /// [`Problem::from_scene`] validates a scene (the first touch, the path, the crop window are
 /// those of the sum), plus the JKR references of `body.radius`.
 pub fn problem(scene: &Scene, body: &HeightBody<'_>) -> Result<Problem, SceneError> {
-    Problem::build(scene, Some(body))
+    Problem::build(scene, Some(body), None)
 }
 
 /// Runs the scene with `body.heights` added to its body, in memory, through the run engine

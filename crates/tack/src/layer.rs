@@ -101,7 +101,7 @@ pub(crate) fn body_layer(
 pub(crate) fn film_warnings(
     layer: &Layer,
     references: &crate::references::References,
-    law: tack_solver::AdhesionLaw,
+    law: &tack_solver::AdhesionLaw,
     gamma: f64,
     dx: f64,
     warnings: &mut Vec<String>,

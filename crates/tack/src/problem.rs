@@ -96,6 +96,8 @@ pub struct Problem {
     /// The body includes heights given as an array in memory ([`crate::heights`]): defined per
     /// element, so a Richardson coarse grid cannot carry it.
     pub heights_in_memory: bool,
+    /// The law was given in memory ([`Problem::with_law`]), not by the scene's `[adhesion]`.
+    pub law_in_memory: bool,
     /// Where the path came from when `[protocol]` left it to the default pull-off rule
     /// ([`crate::pull_off_path`]); `None` when the scene gave it.
     pub path_rule: Option<PathRule>,
@@ -158,15 +160,32 @@ impl std::fmt::Display for PathRule {
 impl Problem {
     /// Validates `scene` and builds grid, surface and path.
     pub fn from_scene(scene: &Scene) -> Result<Self, SceneError> {
-        Self::build(scene, None)
+        Self::build(scene, None, None)
+    }
+
+    /// Validates `scene` as [`Problem::from_scene`] does, under `law` instead of the scene's
+    /// `[adhesion]` law: a law held in memory, in particular a smooth law of the caller's own
+    /// ([`AdhesionLaw::custom`]). The scene then names no law (`adhesion.model` left at its
+    /// default, no `adhesion.range`, `adhesion.sigma0` or `solver.kappa`), and the law is
+    /// checked against the scene's γ and heights ([`tack_solver::Law::check`]). Everything the
+    /// law decides (the default path's start, the crop window, the mesh warning, Tabor's μ, the
+    /// summary's law entries) follows it; a result names it in `/summary` (`adhesion_model`,
+    /// its range and peak tension), since the scene text it stores cannot.
+    pub fn with_law(scene: &Scene, law: AdhesionLaw) -> Result<Self, SceneError> {
+        Self::build(scene, None, Some(&law))
     }
 
     /// The one problem builder: [`Problem::from_scene`], and with `body` its heights added to
     /// the scene's body, their roughness range added to the crop rule's and their radius giving
-    /// the JKR references (`crate::heights`: bodies held in memory). It runs in stages, each a
+    /// the JKR references (`crate::heights`: bodies held in memory); with `law` that law instead
+    /// of the scene's ([`Problem::with_law`]). It runs in stages, each a
     /// function: material, grid and memory, body (shape, roughness, heights, references), film
     /// and γ map, law, path, fits, solver options, the warnings known before the run, crop.
-    pub(crate) fn build(scene: &Scene, body: Option<&HeightBody<'_>>) -> Result<Self, SceneError> {
+    pub(crate) fn build(
+        scene: &Scene,
+        body: Option<&HeightBody<'_>>,
+        law: Option<&AdhesionLaw>,
+    ) -> Result<Self, SceneError> {
         let f = &scene.file;
         let material = check_material(f.material.e_star, f.material.gamma, true)?;
         let (e_star, gamma) = (material.e_star, material.gamma);
@@ -207,15 +226,8 @@ impl Problem {
             }
         }
         let first_touch = surface.min();
-        let kappa = f.solver.kappa.unwrap_or(KAPPA);
-        if !(kappa.is_finite() && kappa > 0.0) {
-            return Err(SceneError::out_of_range(
-                fields::SOLVER_KAPPA,
-                kappa,
-                "a finite number > 0",
-            ));
-        }
-        let law = adhesion_law(f, kappa, &surface)?;
+        let law_in_memory = law.is_some();
+        let (law, kappa) = law_stage(f, law, &surface)?;
         let path_sphere = shape.path_sphere();
         let (path, path_rule) = approach_path(
             &f.protocol,
@@ -227,7 +239,7 @@ impl Problem {
                 given_radius: body_radius,
                 heights_only: shape.heights_only(),
                 material,
-                law,
+                law: &law,
             },
         )?;
         path.validate()?;
@@ -261,23 +273,23 @@ impl Problem {
             Some(Roughness::Random { .. } | Roughness::File { .. })
         ) || body.is_some_and(|b| b.roughness_range.is_none_or(|r| r > 1e-9 * span));
         warnings.extend(loading_history_warning(
-            law,
+            &law,
             gamma,
             random,
             &path,
             first_touch,
         ));
         let options = solver_options(&f.solver)?;
-        let viscoelastic = viscoelastic(f, law, layer.is_some())?;
+        let viscoelastic = viscoelastic(f, &law, layer.is_some())?;
         if let Family::Cohesive { sigma0 } = law.family() {
             dugdale_references(&mut references, e_star, gamma, sigma0);
         }
         if law.is_smooth() {
-            smooth_references(&mut references, law, e_star, gamma);
+            smooth_references(&mut references, &law, e_star, gamma);
         }
         warnings.extend(law.mesh_warning(e_star, gamma, grid.dx()));
         if let Some(layer) = &layer {
-            crate::layer::film_warnings(layer, &references, law, gamma, grid.dx(), &mut warnings);
+            crate::layer::film_warnings(layer, &references, &law, gamma, grid.dx(), &mut warnings);
         }
         let window = crop_window(
             f,
@@ -285,7 +297,7 @@ impl Problem {
             &path,
             roughness_range,
             material,
-            law,
+            &law,
             gamma_map.as_ref(),
             layer.is_some(),
         );
@@ -310,6 +322,7 @@ impl Problem {
             references,
             warnings,
             heights_in_memory: body.is_some(),
+            law_in_memory,
             path_rule,
         })
     }
@@ -343,7 +356,7 @@ impl Problem {
             None => tack_kernels::operator_for(*surface.grid(), self.e_star)?,
         };
         let mut solver =
-            AdhesiveSolver::with_law(op, &surface, self.gamma, self.law, self.options)?;
+            AdhesiveSolver::with_law(op, &surface, self.gamma, self.law.clone(), self.options)?;
         if let Some(map) = &self.gamma_map {
             let view = match window {
                 Some(w) => map.slice(ndarray::s![w.i0..w.i1, w.j0..w.j1]),
@@ -527,7 +540,7 @@ fn crop_window(
     path: &ApproachPath,
     roughness_range: f64,
     material: crate::shape::Material,
-    law: AdhesionLaw,
+    law: &AdhesionLaw,
     gamma_map: Option<&ndarray::Array2<f64>>,
     film: bool,
 ) -> Option<Window> {
@@ -566,7 +579,7 @@ fn dugdale_references(references: &mut References, e_star: f64, gamma: f64, sigm
 /// retraction, which retraces steps).
 fn viscoelastic(
     f: &SceneSchema,
-    law: AdhesionLaw,
+    law: &AdhesionLaw,
     film: bool,
 ) -> Result<Option<(Prony, Rates)>, SceneError> {
     let p = &f.protocol;
@@ -643,7 +656,7 @@ fn viscoelastic(
 }
 
 /// A smooth law's reference: Tabor's μ of the sphere (its radius read back from F_JKR).
-fn smooth_references(references: &mut References, law: AdhesionLaw, e_star: f64, gamma: f64) {
+fn smooth_references(references: &mut References, law: &AdhesionLaw, e_star: f64, gamma: f64) {
     if let Some(f_jkr) = references.f_jkr {
         let radius = -f_jkr / (1.5 * std::f64::consts::PI * gamma);
         references.tabor_mu = law.tabor(e_star, gamma, radius);
@@ -704,6 +717,75 @@ fn adhesion_law(f: &SceneSchema, kappa: f64, surface: &Surface) -> Result<Adhesi
     // Positive, finite parameters and a range above the round-off of the heights.
     law.check(gamma, surface)?;
     Ok(law)
+}
+
+/// The law and κ: `law` given in memory, or the scene's `[adhesion]` law; κ is checked either
+/// way (the problem carries it).
+fn law_stage(
+    f: &SceneSchema,
+    law: Option<&AdhesionLaw>,
+    surface: &Surface,
+) -> Result<(AdhesionLaw, f64), SceneError> {
+    let kappa = f.solver.kappa.unwrap_or(KAPPA);
+    if !(kappa.is_finite() && kappa > 0.0) {
+        return Err(SceneError::out_of_range(
+            fields::SOLVER_KAPPA,
+            kappa,
+            "a finite number > 0",
+        ));
+    }
+    let law = match law {
+        Some(law) => checked_law_in_memory(f, law, surface)?,
+        None => adhesion_law(f, kappa, surface)?,
+    };
+    Ok((law, kappa))
+}
+
+/// A law given in memory ([`Problem::with_law`]), checked: the scene names none of its own
+/// (`adhesion.model` at its default, no law parameter), γ > 0 for a finite-range law, and the
+/// law's own checks.
+fn checked_law_in_memory(
+    f: &SceneSchema,
+    law: &AdhesionLaw,
+    surface: &Surface,
+) -> Result<AdhesionLaw, SceneError> {
+    let model_field = fields::ADHESION_MODEL;
+    let default = crate::AdhesionModel::default().name();
+    if f.adhesion.model.name() != default {
+        return Err(SceneError::Inconsistent(format!(
+            "{model_field} = \"{}\" names a law but the law \"{}\" is given in memory; leave \
+             {model_field} out",
+            f.adhesion.model.name(),
+            law.name(),
+        )));
+    }
+    let given = [
+        (fields::ADHESION_SIGMA0, f.adhesion.sigma0),
+        (fields::ADHESION_RANGE, f.adhesion.range),
+        (fields::SOLVER_KAPPA, f.solver.kappa),
+    ];
+    if let Some((field, value)) = given.iter().find_map(|(f, v)| v.map(|v| (f, v))) {
+        return Err(SceneError::Inconsistent(format!(
+            "{field} = {} is a parameter of the scene's law, but the law \"{}\" is given in \
+             memory with its own; leave {field} out",
+            num(value),
+            law.name(),
+        )));
+    }
+    let gamma = f.material.gamma;
+    if law.range(gamma).is_some() {
+        if gamma <= 0.0 {
+            return Err(SceneError::Inconsistent(format!(
+                "the law \"{}\" given in memory needs {} > 0 (a finite-range law spreads γ \
+                 over its range); got {}",
+                law.name(),
+                fields::MATERIAL_GAMMA,
+                num(gamma),
+            )));
+        }
+        law.check(gamma, surface)?;
+    }
+    Ok(law.clone())
 }
 
 /// The models whose parameter is `field`, quoted and joined: `"dugdale"`, or
@@ -774,7 +856,7 @@ struct PathBody<'a> {
     /// radius a least-squares paraboloid may find; a punch has none.
     heights_only: bool,
     material: crate::shape::Material,
-    law: AdhesionLaw,
+    law: &'a AdhesionLaw,
 }
 
 /// The approach path of `[protocol]`: an indentation (`indent`), the given load–unload path
@@ -1184,7 +1266,7 @@ fn check_memory(
 /// comes out below the finite-range law's, which tends to the one-step load's as λ grows
 /// (README, "Loading history"; `cargo xtask study loading`).
 fn loading_history_warning(
-    law: AdhesionLaw,
+    law: &AdhesionLaw,
     gamma: f64,
     random: bool,
     path: &tack_solver::ApproachPath,

@@ -136,7 +136,7 @@ pub fn summary(problem: &Problem, path: &PathResult) -> tack_io::Summary {
         alpha_star: r.alpha_star,
         extra,
         status: Some(status.to_owned()),
-        adhesion_model: Some(model_name(problem.law).to_owned()),
+        adhesion_model: Some(model_name(&problem.law).to_owned()),
         warnings: warnings(problem, path),
     }
 }
@@ -166,7 +166,7 @@ fn law_extras(
 
 /// The name of an adhesion law in scene files and results (`/summary` attribute
 /// `adhesion_model`).
-pub fn model_name(law: AdhesionLaw) -> &'static str {
+pub fn model_name(law: &AdhesionLaw) -> &'static str {
     law.name()
 }
 
@@ -453,7 +453,7 @@ pub fn surface_file(problem: &Problem, provenance: tack_io::Provenance) -> tack_
             alpha_star: problem.references.alpha_star,
             extra: Default::default(),
             status: None,
-            adhesion_model: Some(model_name(problem.law).to_owned()),
+            adhesion_model: Some(model_name(&problem.law).to_owned()),
             warnings: problem.warnings.clone(),
         },
     }

@@ -1,19 +1,21 @@
 //! The adhesion laws an [`AdhesiveSolver`](crate::AdhesiveSolver) can run: one type per law
 //! (its own file here) behind one interface, [`Law`], and the smooth laws' traction–gap
-//! curves behind [`Curve`]; [`AdhesionLaw`] is the closed set a scene, the solver and the
-//! results name.
+//! curves behind [`Curve`]; [`AdhesionLaw`] is the set a scene, the solver and the results
+//! name: the built-in laws and smooth laws of the caller's own.
 //!
 //! A law states its parameter and checks, its range, reach and peak tension, the mesh rule it
 //! needs and the warning when a mesh breaks it, its summary entries, the per-step column it
 //! adds to a result's curve ([`StepColumn`]), its one-line description, and which of the
 //! solver's three algorithms runs it ([`Family`]): the zero-range criterion (`criterion.rs`),
 //! the Dugdale cohesive zone (`dugdale.rs`, with the [`Cohesive`] state kept here) or a smooth
-//! curve (`smooth.rs`). A new smooth law is one type
-//! implementing [`Curve`] (every [`Law`] fact follows from it), one variant of
-//! [`AdhesionLaw`] with its `From` and its line in the registry (`MODELS`), its name among the
-//! scene field's choices (`tack-fields`; a test checks that the two agree), its Python class,
-//! its docs and its tests; the solver's loops and the scene's reading need no edit.
+//! curve (`smooth.rs`). A smooth law of the caller's own is one type implementing [`Curve`]
+//! (every [`Law`] fact follows from it), given to [`AdhesionLaw::custom`] (checked in
+//! `custom.rs`). A new built-in smooth law is that type, one variant of [`AdhesionLaw`] with
+//! its `From` and its line in the registry (`MODELS`), its name among the scene field's choices
+//! (`tack-fields`; a test checks that the two agree), its Python class, its docs and its tests;
+//! the solver's loops and the scene's reading need no edit.
 
+mod custom;
 mod dugdale;
 mod exponential;
 mod jkr_limit;
@@ -25,6 +27,7 @@ use tack_geometry::Surface;
 
 use crate::SolverError;
 
+pub use custom::CustomCurve;
 pub use dugdale::Dugdale;
 pub use exponential::Exponential;
 pub use jkr_limit::JkrLimit;
@@ -288,9 +291,10 @@ fn largest_height(surface: &Surface) -> f64 {
 
 /// The adhesion law of an [`AdhesiveSolver`](crate::AdhesiveSolver): one of the law types.
 /// It dereferences to its law's [`Law`] interface (`law.name()`, `law.reach(γ)`, …); build
-/// one from a law type with `From` (`AdhesionLaw::from(Exponential { range })`) or by its
-/// scene name with [`AdhesionLaw::from_model`].
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// one from a law type with `From` (`AdhesionLaw::from(Exponential { range })`), by its
+/// scene name with [`AdhesionLaw::from_model`], or from a curve of your own with
+/// [`AdhesionLaw::custom`]. Clones are cheap (a custom curve is shared).
+#[derive(Debug, Clone, PartialEq)]
 pub enum AdhesionLaw {
     /// The zero-range (JKR) limit, the paper's model.
     JkrLimit(JkrLimit),
@@ -300,6 +304,8 @@ pub enum AdhesionLaw {
     Exponential(Exponential),
     /// The Lennard-Jones 9–3 law.
     LennardJones(LennardJones),
+    /// A smooth law of the caller's own ([`AdhesionLaw::custom`]).
+    Custom(CustomCurve),
 }
 
 /// How a law is made from its parameter.
@@ -322,7 +328,21 @@ impl AdhesionLaw {
             AdhesionLaw::Dugdale(l) => l,
             AdhesionLaw::Exponential(l) => l,
             AdhesionLaw::LennardJones(l) => l,
+            AdhesionLaw::Custom(c) => c.0.as_ref(),
         }
+    }
+
+    /// A smooth law of the caller's own: any type implementing [`Curve`], run by the same
+    /// solver as the built-in smooth laws (through a dynamic call, where the built-ins are
+    /// inlined). The curve is checked once, at γ = 1 on a few thousand graded gaps up to its
+    /// reach: a name of its own (lowercase, digits, `_`; not a built-in's), a finite positive
+    /// length, peak and reach, a stiffness that is the pressure's derivative (1e-4), negative
+    /// only where [`Curve::stiffens`] says so, the work `−∫p dg = γ` and the greatest tension
+    /// [`Curve::peak`] (both within 1e-3), and a tension at the reach below 1e-6 of the peak;
+    /// the error ([`SolverError::Curve`]) names the method that fails. The law is shared:
+    /// clones are one curve.
+    pub fn custom<C: Curve + 'static>(curve: C) -> Result<AdhesionLaw, SolverError> {
+        Ok(AdhesionLaw::Custom(CustomCurve::new(curve)?))
     }
 
     /// The scene names of every law, in the order of the docs.
@@ -410,7 +430,7 @@ macro_rules! on_curve {
 
 /// A smooth law's traction–gap curve for work of adhesion `gamma` (the solver's handle: the
 /// law and the γ that scales it).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Traction {
     pub(crate) law: AdhesionLaw,
     pub(crate) gamma: f64,

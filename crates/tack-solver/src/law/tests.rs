@@ -128,3 +128,170 @@ fn every_law_with_a_zone_declares_its_column() {
         }
     }
 }
+
+/// A built-in curve with one statement broken, to check that [`AdhesionLaw::custom`] refuses
+/// it and names the method.
+#[derive(Debug)]
+struct Broken {
+    /// The curve it wraps.
+    inner: AdhesionLaw,
+    name: &'static str,
+    /// Factors of the pressure, the stiffness, the peak and the reach.
+    pressure: f64,
+    stiffness: f64,
+    peak: f64,
+    reach: f64,
+    /// `Some`: what `stiffens` says instead of the truth.
+    stiffens: Option<bool>,
+}
+
+impl Broken {
+    fn of(inner: AdhesionLaw) -> Self {
+        Self {
+            inner,
+            name: "broken",
+            pressure: 1.0,
+            stiffness: 1.0,
+            peak: 1.0,
+            reach: 1.0,
+            stiffens: None,
+        }
+    }
+}
+
+impl Curve for Broken {
+    fn name(&self) -> &'static str {
+        self.name
+    }
+    fn label(&self) -> &'static str {
+        "broken, range l"
+    }
+    fn length(&self) -> f64 {
+        self.inner.curve().unwrap().length()
+    }
+    fn meaning(&self) -> &'static str {
+        "a test curve"
+    }
+    fn pressure(&self, gamma: f64, g: f64) -> f64 {
+        self.pressure * self.inner.curve().unwrap().pressure(gamma, g)
+    }
+    fn stiffness(&self, gamma: f64, g: f64) -> f64 {
+        self.stiffness * self.pressure * self.inner.curve().unwrap().stiffness(gamma, g)
+    }
+    fn stiffens(&self) -> bool {
+        self.stiffens
+            .unwrap_or_else(|| self.inner.curve().unwrap().stiffens())
+    }
+    fn peak(&self, gamma: f64) -> f64 {
+        self.peak * self.pressure * self.inner.curve().unwrap().peak(gamma)
+    }
+    fn reach(&self) -> f64 {
+        self.reach * self.inner.curve().unwrap().reach()
+    }
+}
+
+/// The built-in smooth curves pass every check a custom curve must pass (so the tolerances
+/// refuse no law the solver runs), and the same curve under its own name runs as a custom law.
+#[test]
+fn the_built_in_curves_pass_the_custom_checks() {
+    for law in curves() {
+        custom::check_shape(law.curve().unwrap()).unwrap_or_else(|e| panic!("{e}"));
+        let custom = AdhesionLaw::custom(Broken::of(law.clone())).unwrap();
+        assert!(custom.is_smooth());
+        assert_eq!(custom.name(), "broken");
+        assert_eq!(custom, custom.clone(), "clones are one curve");
+        let other = AdhesionLaw::custom(Broken::of(law.clone())).unwrap();
+        assert_ne!(custom, other, "two curves are two laws");
+    }
+}
+
+/// Each broken statement is refused with the method at fault named.
+#[test]
+fn a_custom_curve_that_breaks_a_statement_is_refused_naming_the_method() {
+    let exp = AdhesionLaw::from(Exponential { range: 2.0 });
+    let lj = AdhesionLaw::from(LennardJones { range: 2.0 });
+    let cases: [(Broken, &str, &str); 9] = [
+        (
+            Broken {
+                name: "exponential",
+                ..Broken::of(exp.clone())
+            },
+            "Curve::name",
+            "built-in",
+        ),
+        (
+            Broken {
+                name: "Morse law",
+                ..Broken::of(exp.clone())
+            },
+            "Curve::name",
+            "lowercase",
+        ),
+        (
+            Broken {
+                stiffness: -1.0,
+                ..Broken::of(exp.clone())
+            },
+            "Curve::stiffens",
+            "is false",
+        ),
+        (
+            Broken {
+                stiffness: 1.01,
+                ..Broken::of(lj.clone())
+            },
+            "Curve::stiffness",
+            "dp/dg",
+        ),
+        (
+            Broken {
+                stiffens: Some(false),
+                ..Broken::of(lj.clone())
+            },
+            "Curve::stiffens",
+            "is false",
+        ),
+        (
+            Broken {
+                pressure: 2.0,
+                ..Broken::of(exp.clone())
+            },
+            "Curve::pressure",
+            "work",
+        ),
+        (
+            Broken {
+                peak: 1.1,
+                ..Broken::of(exp.clone())
+            },
+            "Curve::peak",
+            "greatest tension",
+        ),
+        (
+            Broken {
+                reach: 0.5,
+                ..Broken::of(exp.clone())
+            },
+            "Curve::reach",
+            "crops",
+        ),
+        (
+            Broken {
+                pressure: f64::NAN,
+                ..Broken::of(exp.clone())
+            },
+            "Curve::peak",
+            "finite",
+        ),
+    ];
+    for (curve, method, says) in cases {
+        let e = AdhesionLaw::custom(curve).unwrap_err();
+        let SolverError::Curve { method: m, .. } = &e else {
+            panic!("{e}")
+        };
+        let text = e.to_string();
+        assert_eq!(*m, method, "{text}");
+        assert!(text.contains(says), "{method}: {text}");
+        assert!(text.starts_with("custom adhesion law"), "{text}");
+    }
+}

@@ -257,7 +257,10 @@ fn a_state_restores_only_into_a_solver_of_its_grid_and_law() {
     };
     let dugdale = crate::AdhesionLaw::from(crate::Dugdale { sigma0: 1.0 });
     let exponential = crate::AdhesionLaw::from(crate::Exponential { range: 0.1 });
-    for (law, kind) in [(dugdale, "a cohesive zone"), (exponential, "a smooth law")] {
+    for (law, kind) in [
+        (dugdale, "a cohesive zone"),
+        (exponential.clone(), "a smooth law"),
+    ] {
         let e = with_law(law).restore_state(&saved).unwrap_err().to_string();
         assert!(
             e.contains(&format!(

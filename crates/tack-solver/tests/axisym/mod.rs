@@ -43,6 +43,15 @@ pub enum Law {
         /// Equilibrium separation ε.
         eps: f64,
     },
+    /// Morse, with the wall at the potential's minimum: with x = g/ρ,
+    /// p(g) = −(2γ/ρ)(e^(−x) − e^(−2x)), zero at the wall; potential V(g) = γ(e^(−2x) − 2e^(−x))
+    /// (V(0) = −γ), peak tension γ/(2ρ) at x = ln 2.
+    Morse {
+        /// Work of adhesion γ.
+        gamma: f64,
+        /// Range ρ.
+        rho: f64,
+    },
     /// p = −σ0 for 0 < g < h0, 0 beyond (γ = σ0 h0); hard wall at g = 0.
     Dugdale {
         /// Cohesive stress σ0.
@@ -57,7 +66,9 @@ impl Law {
     pub fn gamma(&self) -> f64 {
         match *self {
             Law::None => 0.0,
-            Law::Exponential { gamma, .. } | Law::LennardJones { gamma, .. } => gamma,
+            Law::Exponential { gamma, .. }
+            | Law::LennardJones { gamma, .. }
+            | Law::Morse { gamma, .. } => gamma,
             Law::Dugdale { sigma0, h0 } => sigma0 * h0,
         }
     }
@@ -66,7 +77,7 @@ impl Law {
         match *self {
             Law::None => 0.0,
             Law::Exponential { gamma, rho } => -gamma / rho,
-            Law::LennardJones { .. } => 0.0,
+            Law::LennardJones { .. } | Law::Morse { .. } => 0.0,
             Law::Dugdale { sigma0, .. } => -sigma0,
         }
     }
@@ -75,6 +86,7 @@ impl Law {
     fn peak(&self) -> f64 {
         match *self {
             Law::LennardJones { gamma, eps } => 16.0 * gamma / (9.0 * 3f64.sqrt() * eps),
+            Law::Morse { gamma, rho } => gamma / (2.0 * rho),
             _ => -self.wall(),
         }
     }
@@ -86,6 +98,10 @@ impl Law {
             Law::LennardJones { gamma, eps } => {
                 let t = eps / (g.max(0.0) + eps);
                 -(8.0 * gamma / (3.0 * eps)) * (t.powi(3) - t.powi(9))
+            }
+            Law::Morse { gamma, rho } => {
+                let e = (-g.max(0.0) / rho).exp();
+                -(2.0 * gamma / rho) * (e - e * e)
             }
             Law::Dugdale { sigma0, h0 } => {
                 if g < h0 {
@@ -106,6 +122,10 @@ impl Law {
                 let t = eps / h;
                 (8.0 * gamma / (eps * h)) * (t.powi(3) - 3.0 * t.powi(9))
             }
+            Law::Morse { gamma, rho } => {
+                let e = (-g.max(0.0) / rho).exp();
+                (2.0 * gamma / (rho * rho)) * (e - 2.0 * e * e)
+            }
             _ => 0.0,
         }
     }
@@ -118,6 +138,10 @@ impl Law {
                 let t = eps / (g.max(0.0) + eps);
                 -(8.0 * gamma / 3.0) * (0.5 * t.powi(2) - 0.125 * t.powi(8))
             }
+            Law::Morse { gamma, rho } => {
+                let e = (-g.max(0.0) / rho).exp();
+                gamma * (e * e - 2.0 * e)
+            }
             Law::Dugdale { sigma0, h0 } => -sigma0 * (h0 - g).max(0.0),
         }
     }
@@ -126,7 +150,7 @@ impl Law {
     /// algebraic, so every free ring stays an unknown.
     fn cut(&self) -> f64 {
         match *self {
-            Law::Exponential { rho, .. } => 25.0 * rho,
+            Law::Exponential { rho, .. } | Law::Morse { rho, .. } => 25.0 * rho,
             Law::LennardJones { .. } => f64::INFINITY,
             _ => 0.0,
         }
@@ -417,7 +441,7 @@ impl Reference {
         der.clear();
         match self.law {
             Law::None => 0.0,
-            Law::Exponential { .. } | Law::LennardJones { .. } => {
+            Law::Exponential { .. } | Law::LennardJones { .. } | Law::Morse { .. } => {
                 if g[j] < self.law.cut() {
                     der.push((j, self.law.dp(g[j])));
                 }
