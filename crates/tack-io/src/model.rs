@@ -242,7 +242,8 @@ pub struct Summary {
     /// How the run ended ([`Summary::COMPLETE`], [`Summary::STOPPED_AT_MAX_STEPS`], ...), the
     /// string attribute `status`; `None` in files written before it existed.
     pub status: Option<String>,
-    /// The adhesion law, the string attribute `adhesion_model` (`jkr_limit`, `dugdale`, `exponential`, `lennard_jones`); `None`
+    /// The adhesion law, the string attribute `adhesion_model` (`jkr_limit`, `dugdale`,
+    /// `exponential`, `lennard_jones`, or the name of a custom law given in memory); `None`
     /// in files written before it existed (the zero-range criterion).
     pub adhesion_model: Option<String>,
     /// What makes the result less than trustworthy (under-resolved pull-off, pull-off not

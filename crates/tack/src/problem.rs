@@ -65,8 +65,9 @@ pub struct Problem {
     pub layer: Option<tack_kernels::Layer>,
     /// Pohrt–Popov constant κ (read by the zero-range law only).
     pub kappa: f64,
-    /// The adhesion law (`[adhesion]`): the zero-range criterion with [`Problem::kappa`], or a
-    /// Dugdale cohesive zone.
+    /// The adhesion law: the scene's `[adhesion]` (the zero-range criterion with
+    /// [`Problem::kappa`], a Dugdale cohesive zone or a smooth law), or one given in memory
+    /// ([`Problem::with_law`]).
     pub law: AdhesionLaw,
     /// A viscoelastic solid and the rates of its path in time (`None`: elastic).
     pub viscoelastic: Option<(Prony, Rates)>,
@@ -734,11 +735,18 @@ fn law_stage(
             "a finite number > 0",
         ));
     }
-    let law = match law {
-        Some(law) => checked_law_in_memory(f, law, surface)?,
-        None => adhesion_law(f, kappa, surface)?,
-    };
-    Ok((law, kappa))
+    match law {
+        Some(law) => {
+            let law = checked_law_in_memory(f, law, surface)?;
+            // The zero-range criterion given in memory brings its own κ.
+            let kappa = match law.family() {
+                Family::Criterion { kappa } => kappa,
+                _ => kappa,
+            };
+            Ok((law, kappa))
+        }
+        None => Ok((adhesion_law(f, kappa, surface)?, kappa)),
+    }
 }
 
 /// A law given in memory ([`Problem::with_law`]), checked: the scene names none of its own
@@ -773,18 +781,16 @@ fn checked_law_in_memory(
         )));
     }
     let gamma = f.material.gamma;
-    if law.range(gamma).is_some() {
-        if gamma <= 0.0 {
-            return Err(SceneError::Inconsistent(format!(
-                "the law \"{}\" given in memory needs {} > 0 (a finite-range law spreads γ \
-                 over its range); got {}",
-                law.name(),
-                fields::MATERIAL_GAMMA,
-                num(gamma),
-            )));
-        }
-        law.check(gamma, surface)?;
+    if law.range(gamma).is_some() && gamma <= 0.0 {
+        return Err(SceneError::Inconsistent(format!(
+            "the law \"{}\" given in memory needs {} > 0 (a finite-range law spreads γ over \
+             its range); got {}",
+            law.name(),
+            fields::MATERIAL_GAMMA,
+            num(gamma),
+        )));
     }
+    law.check(gamma, surface)?;
     Ok(law.clone())
 }
 

@@ -60,10 +60,26 @@ pub fn provenance(
         tack_version: VERSION.to_owned(),
         git_revision: GIT_REVISION.to_owned(),
         command_line: command_line.into(),
-        scene: scene.text.clone(),
+        scene: scene_text(scene, problem),
         created: now_rfc3339(),
         seed: problem.seed,
     }
+}
+
+/// The scene's text, headed by a comment naming the law when it was given in memory
+/// ([`Problem::with_law`]), which the text cannot hold.
+fn scene_text(scene: &Scene, problem: &Problem) -> String {
+    if !problem.law_in_memory {
+        return scene.text.clone();
+    }
+    format!(
+        "# The adhesion law was given in memory (tack::Problem::with_law), not by this text: {} ({})\n{}",
+        problem.law.name(),
+        problem
+            .law
+            .describe(problem.gamma, problem.e_star, problem.grid.dx()),
+        scene.text
+    )
 }
 
 /// This process's command line, arguments joined by spaces (arguments with spaces quoted).

@@ -28,9 +28,9 @@ fn without_law(extra: &str) -> Scene {
 
 /// The exponential law under another name, through [`AdhesionLaw::custom`].
 #[derive(Debug)]
-struct Copy(Exponential);
+struct Copied(Exponential);
 
-impl Curve for Copy {
+impl Curve for Copied {
     fn name(&self) -> &'static str {
         "exp_copy"
     }
@@ -64,7 +64,7 @@ impl Curve for Copy {
 }
 
 fn copy(range: f64) -> AdhesionLaw {
-    AdhesionLaw::custom(Copy(Exponential { range })).unwrap()
+    AdhesionLaw::custom(Copied(Exponential { range })).unwrap()
 }
 
 #[test]
@@ -112,6 +112,13 @@ fn a_law_in_memory_runs_as_the_scene_law_it_copies() {
     let back = tack::io::read_result(&out).unwrap();
     std::fs::remove_dir_all(&dir).unwrap();
     assert_eq!(back.summary.adhesion_model.as_deref(), Some("exp_copy"));
+    // The stored scene cannot hold the law: its first line says so.
+    let first = back.provenance.scene.lines().next().unwrap();
+    assert!(
+        first.starts_with("# The adhesion law was given in memory"),
+        "{first}"
+    );
+    assert!(first.contains("exp_copy"), "{first}");
     let (ex, ey) = (&x.result.summary.extra, &back.summary.extra);
     for key in ["range", "peak_tension", "process_zone_elements", "tabor_mu"] {
         assert_eq!(ex.get(key), ey.get(key), "{key}");
@@ -119,6 +126,8 @@ fn a_law_in_memory_runs_as_the_scene_law_it_copies() {
     }
 }
 
+/// `--richardson` under the law in memory: its coarse problem keeps the curve, and the coarse
+/// and extrapolated pull-offs are the built-in scene's bits.
 #[test]
 fn the_richardson_coarse_run_keeps_a_law_in_memory() {
     let scene = without_law("");
@@ -127,6 +136,37 @@ fn the_richardson_coarse_run_keeps_a_law_in_memory() {
     assert_eq!(coarse.law, fine.law, "the same curve");
     assert!(coarse.law_in_memory);
     assert_eq!(coarse.grid.dx(), 2.0 * fine.grid.dx());
+    let options = RunOptions {
+        richardson: true,
+        ..RunOptions::default()
+    };
+    let built_in = Scene::parse(&example(), ".", &[]).unwrap();
+    let x = tack::run(&built_in, &options, &mut ()).unwrap();
+    let y = tack::engine::execute(&scene, fine, &options, &mut ()).unwrap();
+    for key in ["pull_off_force_coarse", "pull_off_force_richardson"] {
+        let (a, b) = (
+            x.result.summary.extra.get(key),
+            y.result.summary.extra.get(key),
+        );
+        assert!(a.is_some(), "{key}");
+        assert_eq!(a.map(|v| v.to_bits()), b.map(|v| v.to_bits()), "{key}");
+    }
+}
+
+/// The zero-range criterion given in memory brings its κ (the scene may not name one).
+#[test]
+fn a_criterion_in_memory_brings_its_kappa() {
+    let text = example().replace(
+        "[adhesion]\nmodel = \"exponential\"\nrange = 3.3333e-3\n",
+        "",
+    );
+    let scene = Scene::parse(&text, ".", &[]).unwrap();
+    let law = AdhesionLaw::from(tack::solver::JkrLimit { kappa: 0.5 });
+    let p = Problem::with_law(&scene, law).unwrap();
+    assert_eq!(p.kappa, 0.5);
+    let bad = AdhesionLaw::from(tack::solver::JkrLimit { kappa: -1.0 });
+    let e = Problem::with_law(&scene, bad).unwrap_err().to_string();
+    assert!(e.contains("solver.kappa"), "{e}");
 }
 
 #[test]

@@ -1,6 +1,7 @@
 //! A smooth law of the caller's own ([`AdhesionLaw::custom`](super::AdhesionLaw::custom)):
-//! the curve is checked once against what the solver assumes of it (its derivative, its
-//! work, its peak, its reach, whether it stiffens) and then shared.
+//! the curve is checked once against what the solver assumes of it (its derivative and
+//! continuity, its scaling with γ, its work, its peak, its reach and beyond, whether it
+//! stiffens) and then shared.
 
 use std::sync::Arc;
 
@@ -8,28 +9,42 @@ use super::{Curve, Law};
 use crate::SolverError;
 
 /// Intervals of the graded sampling `g = ℓ(eᵗ − 1)`, `t ∈ [0, ln(1 + reach/ℓ)]`, on which a
-/// curve is checked (Simpson's rule for its work: an error below 1e-8 on the built-in laws).
-const SAMPLES: usize = 4000;
+/// curve is checked (even, for Simpson's rule): spacing about `1e-3(g + ℓ)` for a reach of
+/// 10⁸ℓ, so a curve must vary on scales above `1e-3ℓ` near its wall, its [`Curve::length`]
+/// being its smallest length. Simpson's error on the built-in laws is below 1e-10 here.
+const SAMPLES: usize = 20_000;
 
 /// Relative tolerance of the work `−∫p dg = γ` and of the sampled peak tension against
 /// [`Curve::peak`]: a curve the solver and the references (JKR, DMT, Tabor's μ) read as a law
-/// of work γ must be one to this accuracy; 1e-3 is 10⁵ times Simpson's error here, so it
-/// refuses only curves whose scaling is off.
+/// of work γ must be one to this accuracy; it refuses a scale that is off, not the sampling.
 const WORK_TOLERANCE: f64 = 1e-3;
 
-/// Relative tolerance of [`Curve::stiffness`] against a central difference of
-/// [`Curve::pressure`] (step 1e-6 of the local length scale: a difference error near 1e-10),
-/// plus 1e-6 of the curve's stiffness scale `peak/ℓ` where both vanish: it catches a wrong sign,
-/// a missing factor or a jump of the pressure, which break Newton's steps.
+/// Relative tolerance of [`Curve::stiffness`] against differences of [`Curve::pressure`] (a
+/// central difference of step 1e-6 of the local length scale, a one-sided one of second order
+/// at the wall: errors near 1e-10), plus 1e-6 of the curve's stiffness scale `peak/ℓ` where
+/// both vanish: it catches a wrong sign or a missing factor, which break Newton's steps.
 const SLOPE_TOLERANCE: f64 = 1e-4;
 
-/// What is left of the peak tension at [`Curve::reach`], at most: beyond it the solver crops
-/// the law away (the built-in laws leave [`super::REACH_FRACTION`], 1e-8).
+/// Between neighbouring samples the pressure's change must be its slope's integral (Simpson on
+/// the interval) within this fraction of the peak: it catches a jump of the pressure between
+/// samples (a Dugdale step written as a curve), which Newton cannot follow.
+const JUMP_TOLERANCE: f64 = 1e-6;
+
+/// What is left of the peak tension at [`Curve::reach`] and beyond, at most: there the solver
+/// crops the law away (the built-in laws leave [`super::REACH_FRACTION`], 1e-8).
 const REACH_TOLERANCE: f64 = 1e-6;
 
+/// Gaps beyond the reach, in reaches, where the pressure must still be finite and negligible
+/// (the solver evaluates every element's gap, however far).
+const BEYOND: [f64; 5] = [1.01, 2.0, 10.0, 1e3, 1e6];
+
+/// Works of adhesion at which the curve must scale as `γ` times its value at 1 (relative
+/// 1e-12: a rounding or two): the solver scales laws by γ maps and reads the peak, reach and
+/// length at the scene's γ.
+const GAMMAS: [f64; 2] = [0.37, 3.1];
+
 /// A smooth law of the caller's own, shared between the solvers and results that use it: two
-/// are equal when they are one curve (one allocation), so a solver's saved state restores only
-/// into a solver of the same curve.
+/// are equal when they are one curve (one allocation).
 #[derive(Debug, Clone)]
 pub struct CustomCurve(pub(super) Arc<dyn Law>);
 
@@ -88,12 +103,18 @@ fn check_name(curve: &dyn Curve) -> Result<(), SolverError> {
     Ok(())
 }
 
-/// Checks a curve of work of adhesion 1 on `SAMPLES` graded gaps up to its reach: its
-/// length, peak and reach are finite and positive; its pressure and stiffness finite, the
-/// stiffness a derivative of the pressure (`SLOPE_TOLERANCE`) and the pair of
-/// [`Curve::pressure_and_stiffness`] the two calls' bits; a negative stiffness only when
-/// [`Curve::stiffens`] says so; the work `−∫₀^reach p dg` and the greatest tension within
-/// `WORK_TOLERANCE` of 1 and of [`Curve::peak`]; the tension at the reach below
+/// Whether `x` is within `tol` (false for NaN).
+fn within(x: f64, tol: f64) -> bool {
+    x.abs() <= tol
+}
+
+/// Checks a curve of work of adhesion 1 on `SAMPLES` graded gaps up to its reach and a few
+/// beyond: its length, peak and reach are finite and positive; it scales as γ (`GAMMAS`); its
+/// pressure and stiffness are finite, the stiffness the pressure's derivative
+/// (`SLOPE_TOLERANCE`), with no jump between samples (`JUMP_TOLERANCE`), and the pair of
+/// [`Curve::pressure_and_stiffness`] the two calls' values (1e-12); a negative stiffness only
+/// when [`Curve::stiffens`] says so; the work `−∫₀^reach p dg` and the greatest tension within
+/// `WORK_TOLERANCE` of 1 and of [`Curve::peak`]; the tension at and beyond the reach below
 /// `REACH_TOLERANCE` of the peak.
 pub(super) fn check_shape(curve: &dyn Curve) -> Result<(), SolverError> {
     let positive = |method: &'static str, v: f64| {
@@ -110,74 +131,26 @@ pub(super) fn check_shape(curve: &dyn Curve) -> Result<(), SolverError> {
     let length = positive("Curve::length", curve.length())?;
     let peak = positive("Curve::peak", curve.peak(1.0))?;
     let reach = positive("Curve::reach", curve.reach())?;
-    let tail = -curve.pressure(1.0, reach);
-    if tail.is_nan() || tail.abs() > REACH_TOLERANCE * peak {
-        return Err(refuse(
-            curve,
-            "Curve::reach",
-            format!(
-                "= {reach}: the tension there is {tail:e}, more than {REACH_TOLERANCE:e} of the \
-                 peak {peak:e}; the solver crops the law beyond its reach"
-            ),
-        ));
-    }
+    check_tail(curve, peak, reach)?;
     let top = (1.0 + reach / length).ln();
     let dt = top / SAMPLES as f64;
-    let (mut work, mut most) = (0.0, f64::NEG_INFINITY);
-    for i in 0..=SAMPLES {
-        let t = i as f64 * dt;
-        let g = if i == SAMPLES {
+    let gap = |i: usize| {
+        if i == SAMPLES {
             reach
         } else {
-            length * t.exp_m1()
-        };
-        let (p, k) = (curve.pressure(1.0, g), curve.stiffness(1.0, g));
-        if !(p.is_finite() && k.is_finite()) {
-            return Err(refuse(
-                curve,
-                "Curve::pressure",
-                format!("or Curve::stiffness is not finite at g = {g:e} (p = {p}, dp/dg = {k})"),
-            ));
+            length * (i as f64 * dt).exp_m1()
         }
-        let both = curve.pressure_and_stiffness(1.0, g);
-        if both.0.to_bits() != p.to_bits() || both.1.to_bits() != k.to_bits() {
-            return Err(refuse(
-                curve,
-                "Curve::pressure_and_stiffness",
-                format!(
-                    "gives ({}, {}) at g = {g:e} but the two calls give ({p}, {k}): it must \
-                     return their bits",
-                    both.0, both.1
-                ),
-            ));
-        }
-        if k < 0.0 && !curve.stiffens() {
-            return Err(refuse(
-                curve,
-                "Curve::stiffens",
-                format!(
-                    "is false but the stiffness is {k:e} < 0 at g = {g:e}: the landing then \
-                     leaves the stiff elements out of its contact solve"
-                ),
-            ));
-        }
-        let step = 1e-6 * (g + length);
-        if g >= 2.0 * step {
-            let slope =
-                (curve.pressure(1.0, g + step) - curve.pressure(1.0, g - step)) / (2.0 * step);
-            if (k - slope).abs() > SLOPE_TOLERANCE * k.abs() + 1e-6 * peak / length {
-                return Err(refuse(
-                    curve,
-                    "Curve::stiffness",
-                    format!(
-                        "= {k:e} at g = {g:e} but the pressure's slope there is {slope:e}: it \
-                         must be dp/dg (positive where the tension falls with the gap)"
-                    ),
-                ));
-            }
-        }
+    };
+    let mut samples = Vec::with_capacity(SAMPLES + 1);
+    for i in 0..=SAMPLES {
+        let g = gap(i);
+        samples.push((g, point(curve, g, length, peak)?));
+    }
+    check_scaling(curve, &samples, peak)?;
+    let (mut work, mut most) = (0.0, f64::NEG_INFINITY);
+    for (i, &(g, (p, _))) in samples.iter().enumerate() {
         most = most.max(-p);
-        // Simpson's rule in t: dg = ℓ eᵗ dt.
+        // Simpson's rule in t: dg = ℓ eᵗ dt = (g + ℓ) dt.
         let weight = if i == 0 || i == SAMPLES {
             1.0
         } else if i % 2 == 1 {
@@ -185,20 +158,39 @@ pub(super) fn check_shape(curve: &dyn Curve) -> Result<(), SolverError> {
         } else {
             2.0
         };
-        work -= weight * p * length * t.exp();
+        work -= weight * p * (g + length);
     }
     work *= dt / 3.0;
-    if (work - 1.0).abs() > WORK_TOLERANCE {
+    for pair in samples.windows(3).step_by(2) {
+        let [(g0, (p0, k0)), (g1, (_, k1)), (g2, (p2, k2))] = [pair[0], pair[1], pair[2]];
+        let integral =
+            dt / 3.0 * (k0 * (g0 + length) + 4.0 * k1 * (g1 + length) + k2 * (g2 + length));
+        if !within(p2 - p0 - integral, JUMP_TOLERANCE * peak) {
+            return Err(refuse(
+                curve,
+                "Curve::pressure",
+                format!(
+                    "changes by {:e} from g = {g0:e} to {g2:e} but its slope integrates to \
+                     {integral:e}: the pressure must be continuous, its slope dp/dg, and the \
+                     curve must vary on scales above about 1e-3 of its length {length:e} \
+                     (length() is its smallest length)",
+                    p2 - p0
+                ),
+            ));
+        }
+    }
+    if !within(work - 1.0, WORK_TOLERANCE) {
         return Err(refuse(
             curve,
             "Curve::pressure",
             format!(
                 "has work −∫p dg = {work:.6}·γ from the wall to the reach: a law must spread \
-                 exactly γ (within {WORK_TOLERANCE:e}), the references and the γ scaling read it so"
+                 exactly γ (within {WORK_TOLERANCE:e}) before its reach, the references and the \
+                 γ scaling read it so"
             ),
         ));
     }
-    if (most - peak).abs() > WORK_TOLERANCE * peak {
+    if !within(most - peak, WORK_TOLERANCE * peak) {
         return Err(refuse(
             curve,
             "Curve::peak",
@@ -207,6 +199,127 @@ pub(super) fn check_shape(curve: &dyn Curve) -> Result<(), SolverError> {
                  process zone, the mesh rule and the landing's step"
             ),
         ));
+    }
+    Ok(())
+}
+
+/// The pressure and stiffness at gap `g` for γ = 1, checked: finite, the pair call's values,
+/// no negative stiffness unless the curve stiffens, the stiffness the pressure's slope.
+fn point(curve: &dyn Curve, g: f64, length: f64, peak: f64) -> Result<(f64, f64), SolverError> {
+    let (p, k) = (curve.pressure(1.0, g), curve.stiffness(1.0, g));
+    if !(p.is_finite() && k.is_finite()) {
+        return Err(refuse(
+            curve,
+            "Curve::pressure",
+            format!("or Curve::stiffness is not finite at g = {g:e} (p = {p}, dp/dg = {k})"),
+        ));
+    }
+    let both = curve.pressure_and_stiffness(1.0, g);
+    let near = |a: f64, b: f64| within(a - b, 1e-12 * b.abs());
+    if !(near(both.0, p) && near(both.1, k)) {
+        return Err(refuse(
+            curve,
+            "Curve::pressure_and_stiffness",
+            format!(
+                "gives ({}, {}) at g = {g:e} but the two calls give ({p}, {k}): it must return \
+                 their values",
+                both.0, both.1
+            ),
+        ));
+    }
+    if k < 0.0 && !curve.stiffens() {
+        return Err(refuse(
+            curve,
+            "Curve::stiffens",
+            format!(
+                "is false but the stiffness is {k:e} < 0 at g = {g:e}: the landing then leaves \
+                 the stiff elements out of its contact solve"
+            ),
+        ));
+    }
+    let step = 1e-6 * (g + length);
+    let at = |g: f64| curve.pressure(1.0, g);
+    let slope = if g >= 2.0 * step {
+        (at(g + step) - at(g - step)) / (2.0 * step)
+    } else {
+        // One-sided, second order, at the wall.
+        (-3.0 * at(g) + 4.0 * at(g + step) - at(g + 2.0 * step)) / (2.0 * step)
+    };
+    if !within(k - slope, SLOPE_TOLERANCE * k.abs() + 1e-6 * peak / length) {
+        return Err(refuse(
+            curve,
+            "Curve::stiffness",
+            format!(
+                "= {k:e} at g = {g:e} but the pressure's slope there is {slope:e}: it must be \
+                 dp/dg (positive where the tension falls with the gap)"
+            ),
+        ));
+    }
+    Ok((p, k))
+}
+
+/// The tension at and beyond the reach (`BEYOND`): finite and below `REACH_TOLERANCE` of the
+/// peak.
+fn check_tail(curve: &dyn Curve, peak: f64, reach: f64) -> Result<(), SolverError> {
+    for g in std::iter::once(reach).chain(BEYOND.iter().map(|b| b * reach)) {
+        let (p, k) = (curve.pressure(1.0, g), curve.stiffness(1.0, g));
+        if !(within(p, REACH_TOLERANCE * peak) && k.is_finite()) {
+            return Err(refuse(
+                curve,
+                "Curve::reach",
+                format!(
+                    "= {reach:e}: at g = {g:e} the pressure is {p:e} (dp/dg {k:e}), more than \
+                     {REACH_TOLERANCE:e} of the peak {peak:e} or not finite; the solver crops \
+                     the law beyond its reach and evaluates it at every gap"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The curve at the works `GAMMAS` against γ times its values at 1: pressure and stiffness on
+/// every 100th sample, and the peak.
+fn check_scaling(
+    curve: &dyn Curve,
+    samples: &[(f64, (f64, f64))],
+    peak: f64,
+) -> Result<(), SolverError> {
+    for gamma in GAMMAS {
+        let off = |method: &'static str, at: String, got: f64, want: f64| {
+            refuse(
+                curve,
+                method,
+                format!(
+                    "at γ = {gamma}{at} gives {got:e}, not γ times its value at γ = 1 ({want:e}): \
+                     a law scales as γ (its gamma argument) at one range"
+                ),
+            )
+        };
+        let linear = |got: f64, one: f64| within(got - gamma * one, 1e-12 * gamma * one.abs());
+        let got = curve.peak(gamma);
+        if !linear(got, peak) {
+            return Err(off("Curve::peak", String::new(), got, gamma * peak));
+        }
+        for &(g, (p, k)) in samples.iter().step_by(100) {
+            let got = (curve.pressure(gamma, g), curve.stiffness(gamma, g));
+            if !linear(got.0, p) {
+                return Err(off(
+                    "Curve::pressure",
+                    format!(", g = {g:e},"),
+                    got.0,
+                    gamma * p,
+                ));
+            }
+            if !linear(got.1, k) {
+                return Err(off(
+                    "Curve::stiffness",
+                    format!(", g = {g:e},"),
+                    got.1,
+                    gamma * k,
+                ));
+            }
+        }
     }
     Ok(())
 }

@@ -134,12 +134,19 @@ pub trait Law: std::fmt::Debug + Send + Sync {
 /// A smooth law: every element carries the pressure of its own gap, `p(g)` for `g > 0`, with a
 /// hard wall at `g = 0`. Implementing it makes the type a [`Law`]: its range, reach, peak
 /// tension, process zone, mesh rule, summary and checks follow from the curve.
+///
+/// What the solver assumes of a curve (and [`AdhesionLaw::custom`] checks): it is asked only at
+/// gaps `g ≥ 0`, however far beyond the reach, and must be finite at each; the pressure is
+/// continuous, the stiffness its derivative; the pressure, stiffness and peak scale as `γ` at
+/// one length (`p(γ, g) = γ·p(1, g)`); the work `−∫₀^∞ p dg` is `γ`; [`Curve::length`] is the
+/// curve's smallest length scale.
 pub trait Curve: std::fmt::Debug + Send + Sync {
-    /// The name in scene files and results.
+    /// The name in results (`adhesion_model`) and, for the built-in laws, in scene files.
     fn name(&self) -> &'static str;
     /// The name in reports, with the symbol of its range, e.g. `exponential, range rho`.
     fn label(&self) -> &'static str;
-    /// The law's length ρ (ε): the scene's `adhesion.range`.
+    /// The law's length ρ (ε): the scene's `adhesion.range` for the built-in laws; the length
+    /// of Tabor's μ and of the process zone.
     fn length(&self) -> f64;
     /// What the length is, for a message that asks for it (e.g. `the range ρ > 0 of …`).
     fn meaning(&self) -> &'static str;
@@ -158,7 +165,8 @@ pub trait Curve: std::fmt::Debug + Send + Sync {
     fn stiffens(&self) -> bool;
     /// The greatest tension of the law.
     fn peak(&self, gamma: f64) -> f64;
-    /// The gap where the tension falls to [`REACH_FRACTION`] of the peak.
+    /// The gap where the tension falls to [`REACH_FRACTION`] of the peak (a custom law's may
+    /// leave up to 1e-6 of it): the solver crops the law beyond it.
     fn reach(&self) -> f64;
 }
 
@@ -262,7 +270,7 @@ impl<C: Curve> Law for C {
             return Err(SolverError::OutOfRange {
                 field: fields::MATERIAL_GAMMA,
                 value: gamma,
-                allowed: "a finite number > 0 under a smooth law (exponential, lennard_jones)",
+                allowed: "a finite number > 0 under a smooth law",
             });
         }
         if range <= RANGE_ROUND_OFF * largest_height(surface) {

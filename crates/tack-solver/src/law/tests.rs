@@ -143,6 +143,12 @@ struct Broken {
     reach: f64,
     /// `Some`: what `stiffens` says instead of the truth.
     stiffens: Option<bool>,
+    /// The pressure and stiffness at γ = 1 whatever γ is asked.
+    ignore_gamma: bool,
+    /// NaN beyond twice the reach.
+    nan_beyond: bool,
+    /// Factor of the pressure `pressure_and_stiffness` gives.
+    pair: f64,
 }
 
 impl Broken {
@@ -155,6 +161,9 @@ impl Broken {
             peak: 1.0,
             reach: 1.0,
             stiffens: None,
+            ignore_gamma: false,
+            nan_beyond: false,
+            pair: 1.0,
         }
     }
 }
@@ -173,10 +182,21 @@ impl Curve for Broken {
         "a test curve"
     }
     fn pressure(&self, gamma: f64, g: f64) -> f64 {
+        if self.nan_beyond && g > 2.0 * Curve::reach(self) {
+            return f64::NAN;
+        }
+        let gamma = if self.ignore_gamma { 1.0 } else { gamma };
         self.pressure * self.inner.curve().unwrap().pressure(gamma, g)
     }
     fn stiffness(&self, gamma: f64, g: f64) -> f64 {
+        let gamma = if self.ignore_gamma { 1.0 } else { gamma };
         self.stiffness * self.pressure * self.inner.curve().unwrap().stiffness(gamma, g)
+    }
+    fn pressure_and_stiffness(&self, gamma: f64, g: f64) -> (f64, f64) {
+        (
+            self.pair * self.pressure(gamma, g),
+            self.stiffness(gamma, g),
+        )
     }
     fn stiffens(&self) -> bool {
         self.stiffens
@@ -210,7 +230,55 @@ fn the_built_in_curves_pass_the_custom_checks() {
 fn a_custom_curve_that_breaks_a_statement_is_refused_naming_the_method() {
     let exp = AdhesionLaw::from(Exponential { range: 2.0 });
     let lj = AdhesionLaw::from(LennardJones { range: 2.0 });
-    let cases: [(Broken, &str, &str); 9] = [
+    let cases: [(Broken, &str, &str); 15] = [
+        (
+            Broken {
+                name: "",
+                ..Broken::of(exp.clone())
+            },
+            "Curve::name",
+            "non-empty",
+        ),
+        (
+            Broken {
+                ignore_gamma: true,
+                ..Broken::of(exp.clone())
+            },
+            "Curve::pressure",
+            "scales as γ",
+        ),
+        (
+            Broken {
+                nan_beyond: true,
+                ..Broken::of(lj.clone())
+            },
+            "Curve::reach",
+            "not finite",
+        ),
+        (
+            Broken {
+                pair: 1.0 + 1e-9,
+                ..Broken::of(exp.clone())
+            },
+            "Curve::pressure_and_stiffness",
+            "their values",
+        ),
+        (
+            Broken {
+                stiffness: -1.0,
+                ..Broken::of(lj.clone())
+            },
+            "Curve::stiffness",
+            "dp/dg",
+        ),
+        (
+            Broken {
+                reach: 0.0,
+                ..Broken::of(exp.clone())
+            },
+            "Curve::reach",
+            "finite and > 0",
+        ),
         (
             Broken {
                 name: "exponential",
@@ -284,8 +352,12 @@ fn a_custom_curve_that_breaks_a_statement_is_refused_naming_the_method() {
             "finite",
         ),
     ];
-    for (curve, method, says) in cases {
-        let e = AdhesionLaw::custom(curve).unwrap_err();
+    let step = AdhesionLaw::custom(Step).unwrap_err();
+    let stepped = [(step, "Curve::pressure", "continuous")];
+    let broken = cases
+        .into_iter()
+        .map(|(c, m, s)| (AdhesionLaw::custom(c).unwrap_err(), m, s));
+    for (e, method, says) in broken.chain(stepped) {
         let SolverError::Curve { method: m, .. } = &e else {
             panic!("{e}")
         };
@@ -293,5 +365,40 @@ fn a_custom_curve_that_breaks_a_statement_is_refused_naming_the_method() {
         assert_eq!(*m, method, "{text}");
         assert!(text.contains(says), "{method}: {text}");
         assert!(text.starts_with("custom adhesion law"), "{text}");
+    }
+}
+
+/// The Dugdale law written as a curve: `p = −1` for `g < 1`, 0 beyond (work 1, peak 1, zero
+/// slope): its jump lies between samples and only its slope's integral shows it.
+#[derive(Debug)]
+struct Step;
+
+impl Curve for Step {
+    fn name(&self) -> &'static str {
+        "step"
+    }
+    fn label(&self) -> &'static str {
+        "a step, range h0"
+    }
+    fn length(&self) -> f64 {
+        1.0
+    }
+    fn meaning(&self) -> &'static str {
+        "a test curve"
+    }
+    fn pressure(&self, gamma: f64, g: f64) -> f64 {
+        if g < 0.9876 { -gamma / 0.9876 } else { 0.0 }
+    }
+    fn stiffness(&self, _gamma: f64, _g: f64) -> f64 {
+        0.0
+    }
+    fn stiffens(&self) -> bool {
+        false
+    }
+    fn peak(&self, gamma: f64) -> f64 {
+        gamma / 0.9876
+    }
+    fn reach(&self) -> f64 {
+        2.0
     }
 }
