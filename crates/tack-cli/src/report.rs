@@ -429,8 +429,14 @@ fn richardson_lines(s: &tack_io::Summary) -> Vec<String> {
         .map_or(String::new(), |&r| {
             format!(", F/F_JKR = {}", rounded_ratio(r))
         });
+    // The law's order: 2·F(Δx) − F(2Δx) at first order, F(Δx) + (F(Δx) − F(2Δx))/3 at second.
+    let rule = match s.extra.get("richardson_order").copied() {
+        Some(2.0) => "F(Δx) + (F(Δx) − F(2Δx))/3 (second order)".to_owned(),
+        Some(p) if p != 1.0 => format!("F(Δx) + (F(Δx) − F(2Δx))/(2^{p} − 1)"),
+        _ => "2·F(Δx) − F(2Δx)".to_owned(),
+    };
     let mut lines = vec![format!(
-        "Richardson  F = {} = 2·F(Δx) − F(2Δx), F(2Δx) = {}{ratio}",
+        "Richardson  F = {} = {rule}, F(2Δx) = {}{ratio}",
         rounded(fr),
         rounded(fc)
     )];

@@ -147,9 +147,10 @@ impl Result {
 
     /// The Richardson extrapolation of the pull-off force (`tack.run(richardson=True)`,
     /// `tack.pull_off(richardson=True)`), or None for a run without one: a dict of `fine`,
-    /// `coarse` (the pull-off forces at Δx and 2Δx), `extrapolated` (`2·fine − coarse`),
-    /// `error_estimate` (how far `fine` may be from converged), `order` (1, assumed: the
-    /// criterion's first order in Δx), `ratio` (`extrapolated / f_jkr`, or None) and
+    /// `coarse` (the pull-off forces at Δx and 2Δx), `extrapolated` (`fine + (fine −
+    /// coarse)/(2^order − 1)`: `2·fine − coarse` at first order), `error_estimate` (how far
+    /// `fine` may be from converged), `order` (the law's order in Δx: 1 for the criterion and
+    /// the Dugdale law, 2 for the smooth laws), `ratio` (`extrapolated / f_jkr`, or None) and
     /// `aliased_rms` (height arrays only: the content the coarse array aliases, or None).
     #[getter]
     fn richardson(&self, py: Python<'_>) -> PyResult<Option<Py<PyDict>>> {

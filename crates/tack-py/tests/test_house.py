@@ -26,6 +26,21 @@ def test_richardson_on_a_sphere_array_extrapolates_towards_jkr():
     assert tack.pull_off(SPHERE, **PULL_OFF, snapshots="none").richardson is None
 
 
+def test_richardson_under_a_smooth_law_takes_its_second_order():
+    # The peers' case (mu = 3) on 64^2: a smooth law converges at second order, so the
+    # extrapolation is fine + (fine - coarse)/3, not the criterion's 2 fine - coarse.
+    n, dx = 64, 1 / 64
+    sphere = tack.surface.sphere(n, dx=dx, radius=1.0)
+    # Its process zone spans 0.6 elements here: the run says so.
+    with pytest.warns(tack.UnderResolvedWarning, match="process zone"):
+        r = tack.pull_off(sphere, dx=dx, e_star=1.0, gamma=1e-3, radius=1.0,
+                          law=tack.Exponential(range=3.3333e-3), richardson=True,
+                          snapshots="none")
+    rich = r.richardson
+    assert rich["order"] == 2.0
+    assert rich["extrapolated"] == rich["fine"] + (rich["fine"] - rich["coarse"]) / 3
+
+
 def test_richardson_warns_when_the_roughness_aliases_and_refuses_what_cannot_hold():
     n, dx = 64, 1 / 64
     sphere = tack.surface.sphere(n, dx=dx, radius=1.0)

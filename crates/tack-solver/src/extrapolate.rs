@@ -14,6 +14,18 @@ pub fn richardson_first_order(fine: f64, coarse: f64) -> f64 {
     2.0 * fine - coarse
 }
 
+/// The Richardson extrapolation of a quantity whose error is `c·Δxᵖ` (`order` p), computed at
+/// element size Δx (`fine`) and 2Δx (`coarse`): `fine + (fine − coarse)/(2ᵖ − 1)`, exactly
+/// [`richardson_first_order`] for p = 1 (its bits too). The laws' own orders:
+/// [`crate::Law::convergence_order`].
+pub fn richardson(fine: f64, coarse: f64, order: f64) -> f64 {
+    if order == 1.0 {
+        richardson_first_order(fine, coarse)
+    } else {
+        fine + (fine - coarse) / (2f64.powf(order) - 1.0)
+    }
+}
+
 /// Observed order of convergence p of a quantity computed at element sizes 4Δx (`coarse`),
 /// 2Δx (`medium`) and Δx (`fine`) on the same geometry (docs/theory.md §9):
 /// `p = log2(|coarse − medium| / |medium − fine|)`.
@@ -55,7 +67,25 @@ pub fn pull_off_error_estimate(fine: f64, coarse: f64, dx_over_a_c: Option<f64>)
 
 #[cfg(test)]
 mod tests {
-    use super::{observed_order, pull_off_error_estimate, richardson_first_order};
+    use super::{observed_order, pull_off_error_estimate, richardson, richardson_first_order};
+
+    #[test]
+    fn richardson_cancels_an_error_of_its_order() {
+        let (exact, c, h) = (-2.5, 0.4, 0.05);
+        for p in [1.0, 2.0, 3.0] {
+            let q = |h: f64| exact + c * h.powf(p);
+            let x = richardson(q(h), q(2.0 * h), p);
+            assert!((x - exact).abs() < 1e-14, "order {p}: {x}");
+        }
+        assert_eq!(
+            richardson(-1.1, -1.3, 1.0).to_bits(),
+            richardson_first_order(-1.1, -1.3).to_bits()
+        );
+        // A second-order error extrapolated at first order overshoots by twice the fine one.
+        let q = |h: f64| exact + c * h * h;
+        let first = richardson_first_order(q(h), q(2.0 * h));
+        assert!(((first - exact) + 2.0 * (q(h) - exact)).abs() < 1e-14);
+    }
 
     #[test]
     fn the_error_estimate_covers_the_first_order_error_and_the_criterion_floor() {

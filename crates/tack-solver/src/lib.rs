@@ -113,7 +113,8 @@ pub use contact::{ContactMethod, ContactSolver};
 pub use crop::{adhesive_reach, contact_window, touches_edge};
 pub use cycle::{Cycle, CycleStep, cycle};
 pub use extrapolate::{
-    CRITERION_ERROR_COEFFICIENT, observed_order, pull_off_error_estimate, richardson_first_order,
+    CRITERION_ERROR_COEFFICIENT, observed_order, pull_off_error_estimate, richardson,
+    richardson_first_order,
 };
 pub use law::{
     AdhesionLaw, Curve, CustomCurve, Dugdale, Exponential, Family, JkrLimit, Law, LennardJones,

@@ -159,8 +159,12 @@ pub fn execute(
         let coarse_f = solve_in_pool(&coarse, observer)?.pull_off_force();
         coarse_wall_time = Some(started.elapsed());
         let fine_f = path.pull_off_force();
-        let extrapolated = tack_solver::richardson_first_order(fine_f, coarse_f);
+        // The law's order: first for the criterion and the Dugdale law, second for the smooth
+        // laws (a first-order extrapolation of a second-order error overshoots by twice it).
+        let order = problem.law.convergence_order();
+        let extrapolated = tack_solver::richardson(fine_f, coarse_f, order);
         let extra = &mut result.summary.extra;
+        extra.insert("richardson_order".into(), order);
         extra.insert("pull_off_force_coarse".into(), coarse_f);
         extra.insert("pull_off_force_richardson".into(), extrapolated);
         // The pull-off contact radius (a sphere's a_c, a punch's a, …) sets the zero-range

@@ -30,10 +30,6 @@ use crate::scene::SceneError;
 /// coarse Nyquist wave ([`aliased_rms`]) with which the coarse array is taken as the same body.
 pub const ALIAS_TOLERANCE: f64 = 0.01;
 
-/// The order of convergence the extrapolation assumes (the Pohrt–Popov criterion's, first
-/// order in Δx; `tack_solver::richardson_first_order`).
-pub const ASSUMED_ORDER: f64 = 1.0;
-
 /// The array sampled at the element centres of the grid of twice the element size: shape
 /// `(nx/2, ny/2)`, a side of one element staying one; odd sides are refused.
 pub fn coarse_heights(heights: &Array2<f64>) -> Result<Array2<f64>, SceneError> {
@@ -163,7 +159,8 @@ pub fn aliases(heights: &Array2<f64>) -> (bool, f64, f64) {
 /// `max_approach`, steps and radius), extrapolated. The fine outcome is returned with the
 /// summary entries of `tack run --richardson` (`pull_off_force_coarse`,
 /// `pull_off_force_richardson`, `pull_off_error_estimate`, `pull_off_ratio_richardson` where
-/// F_JKR applies) and `richardson_order` (1, assumed), `richardson_aliased_rms`; a warning
+/// F_JKR applies) and `richardson_order` (the law's, `tack_solver::Law::convergence_order`),
+/// `richardson_aliased_rms`; a warning
 /// beginning `richardson:` when the heights alias on the coarse grid. The error estimate is
 /// `tack_solver::pull_off_error_estimate`, with the criterion's floor 1.4·(Δx/a_c)·|F| for
 /// the zero-range law on a body with a radius; `|F(Δx) − F(2Δx)|` otherwise.
@@ -217,7 +214,8 @@ pub fn pull_off_richardson(
     let coarse_f = pull_off(&coarse, &coarse_spec, &single, observer)?.pull_off_force();
     outcome.coarse_wall_time = Some(started.elapsed());
     let fine_f = outcome.pull_off_force();
-    let extrapolated = tack_solver::richardson_first_order(fine_f, coarse_f);
+    let order = outcome.problem.law.convergence_order();
+    let extrapolated = tack_solver::richardson(fine_f, coarse_f, order);
     let dx_over_a_c = match (plan.radius, spec.adhesion.model) {
         (Some(r), m) if m.is_zero_range() => {
             Some(spec.dx / tack_analytics::jkr_pull_off_radius(spec.e_star, spec.gamma, r))
@@ -236,7 +234,7 @@ pub fn pull_off_richardson(
     if let Some(f_jkr) = outcome.problem.references.f_jkr {
         extra.insert("pull_off_ratio_richardson".into(), extrapolated / f_jkr);
     }
-    extra.insert("richardson_order".into(), ASSUMED_ORDER);
+    extra.insert("richardson_order".into(), order);
     extra.insert("richardson_aliased_rms".into(), aliased);
     if aliasing {
         summary.warnings.push(format!(

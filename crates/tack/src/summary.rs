@@ -312,7 +312,7 @@ pub const MIN_TENSILE_STEPS: usize = 3;
 /// Names of every scalar [`summary`] can record: the [`tack_io::Summary`] fields, then its
 /// `extra` keys. A run need not have all of them (`d_jkr` only for spheres, `crop_rows` only
 /// when cropped, ...). Parameter sweeps collect quantities by these names.
-pub const SUMMARY_QUANTITIES: [&str; 40] = [
+pub const SUMMARY_QUANTITIES: [&str; 41] = [
     "pull_off_force",
     "f_jkr",
     "pull_off_ratio",
@@ -353,6 +353,7 @@ pub const SUMMARY_QUANTITIES: [&str; 40] = [
     "pull_off_force_richardson",
     "pull_off_ratio_richardson",
     "pull_off_error_estimate",
+    "richardson_order",
 ];
 
 /// The summary quantity `name` (a field of [`tack_io::Summary`] or a key of its `extra`), NaN

@@ -72,6 +72,11 @@ impl Law for Dugdale {
         MIN_COHESIVE_ZONE_ELEMENTS
     }
 
+    /// First order: the zone's edge moves by whole elements (docs/theory.md §3.7).
+    fn convergence_order(&self) -> f64 {
+        1.0
+    }
+
     fn mesh_warning(&self, e_star: f64, gamma: f64, dx: f64) -> Option<String> {
         let zone = self.zone_length(e_star, gamma)?;
         let shown = super::under_resolved(zone / dx, self.min_zone_elements())?;

@@ -61,6 +61,11 @@ impl Law for JkrLimit {
         0.0
     }
 
+    /// First order: the Pohrt–Popov criterion's error is 1.4·Δx/a_c on the smooth sphere.
+    fn convergence_order(&self) -> f64 {
+        1.0
+    }
+
     /// `None`: the criterion's mesh rules are the contact's, checked with the body.
     fn mesh_warning(&self, _e_star: f64, _gamma: f64, _dx: f64) -> Option<String> {
         None

@@ -116,6 +116,11 @@ pub trait Law: std::fmt::Debug + Send + Sync {
     /// The least number of elements across [`Law::zone_length`] below which a result is
     /// flagged.
     fn min_zone_elements(&self) -> f64;
+    /// The order in Δx of the pull-off's mesh error on a smooth body, which Richardson
+    /// extrapolation assumes ([`crate::richardson`]): 1 where the front moves by whole elements
+    /// (the criterion, the Dugdale law), 2 where every element carries its own gap's traction
+    /// (the smooth laws).
+    fn convergence_order(&self) -> f64;
     /// The warning of a mesh of element `dx` that does not resolve the law's zone, naming the
     /// fields that mend it; `None` when it does.
     fn mesh_warning(&self, e_star: f64, gamma: f64, dx: f64) -> Option<String>;
@@ -213,6 +218,13 @@ impl<C: Curve> Law for C {
 
     fn min_zone_elements(&self) -> f64 {
         MIN_PROCESS_ZONE_ELEMENTS
+    }
+
+    /// Second order: the force–approach curves of the exponential, Lennard-Jones and Morse laws
+    /// converge at 2.0–2.9 against their ring solutions (`tests/smooth.rs`,
+    /// `tests/custom_law.rs`).
+    fn convergence_order(&self) -> f64 {
+        2.0
     }
 
     fn mesh_warning(&self, e_star: f64, gamma: f64, dx: f64) -> Option<String> {

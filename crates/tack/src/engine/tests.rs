@@ -107,6 +107,7 @@ fn richardson_runs_the_scene_at_twice_the_element_size() {
     let (f, c) = (outcome.path.pull_off_force(), e["pull_off_force_coarse"]);
     assert!(f < 0.0 && c < 0.0 && f != c);
     assert_eq!(e["pull_off_force_richardson"], 2.0 * f - c);
+    assert_eq!(e["richardson_order"], 1.0);
     assert!(outcome.coarse_wall_time.is_some());
     // Written only on request, and it reads back.
     let out = dir.join("r.h5");
@@ -115,6 +116,28 @@ fn richardson_runs_the_scene_at_twice_the_element_size() {
     let back = tack_io::read_result(&out).unwrap();
     assert_eq!(back.summary.extra["pull_off_force_richardson"], 2.0 * f - c);
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A smooth law converges at second order, so its extrapolation is `F + (F − F_c)/3`, not the
+/// criterion's `2F − F_c` (which would overshoot by twice the fine error), and the summary says
+/// which order it took.
+#[test]
+fn richardson_takes_the_smooth_laws_second_order() {
+    // The peers' case of the example scene (μ = 3, 64², its coarse run 32²).
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../data/examples/exponential_sphere.toml");
+    let smooth = Scene::load(&path, &[]).unwrap();
+    let options = RunOptions {
+        command_line: None,
+        richardson: true,
+        threads: None,
+    };
+    let outcome = run(&smooth, &options, &mut ()).unwrap();
+    let e = &outcome.result.summary.extra;
+    let (f, c) = (outcome.path.pull_off_force(), e["pull_off_force_coarse"]);
+    assert!(f < 0.0 && c < 0.0 && f != c, "{f} {c}");
+    assert_eq!(e["richardson_order"], 2.0);
+    assert_eq!(e["pull_off_force_richardson"], f + (f - c) / 3.0);
 }
 
 fn run_with(sets: &[&str]) -> RunOutcome {
