@@ -1,19 +1,16 @@
-//! A smooth law of the caller's own ([`AdhesionLaw::custom`]): the Morse law, written here and
-//! nowhere in tack, against the independent ring solution of the same law (`tests/axisym`):
+//! A smooth law of the caller's own ([`AdhesionLaw::custom`]): the Morse law, written in the
+//! example `custom_law` and nowhere in tack, against the independent ring solution of the same law (`tests/axisym`):
 //! the pull-off and both branches at Tabor μ = 1 with the observed order, the DMT limit at
 //! μ = 0.1; and a built-in curve run as a custom one gives the built-in's bits.
 
 mod axisym;
 #[path = "../examples/custom_law/morse.rs"]
 mod morse;
+mod sphere_run;
 
+use sphere_run::run;
 use std::f64::consts::PI;
-use tack_geometry::{Boundary, Grid, Sphere, Surface};
-use tack_kernels::operator_for;
-use tack_solver::{
-    AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, Curve, Exponential, LennardJones,
-    PathResult, SnapshotRequest,
-};
+use tack_solver::{AdhesionLaw, Curve, Exponential, LennardJones};
 
 use morse::Morse;
 
@@ -53,30 +50,6 @@ impl Curve for Copied {
     fn reach(&self) -> f64 {
         self.0.curve().unwrap().reach()
     }
-}
-
-/// A sphere R = 1 on E* = 1 with γ = 1 under `law`, on a free grid of `n` elements of `dx`,
-/// loaded from `start` to `depth` and retracted in steps of `step` to `end`.
-fn run(law: &AdhesionLaw, n: usize, dx: f64, path: (f64, f64, f64, f64)) -> PathResult {
-    let grid = Grid::square(n, dx, Boundary::Free).unwrap();
-    let surface = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
-    let op = operator_for(grid, 1.0).unwrap();
-    let options = AdhesiveOptions::default();
-    let mut solver = AdhesiveSolver::with_law(op, &surface, 1.0, law.clone(), options).unwrap();
-    let (start, depth, step, end) = path;
-    let path = ApproachPath {
-        start,
-        max_approach: depth,
-        load_step: step,
-        unload_step: step,
-        coarse_unload_step: None,
-        refine_pull_off: false,
-        retract_to: Some(end),
-        max_steps: 10_000,
-    };
-    solver
-        .run_path(&path, &SnapshotRequest::None, &mut ())
-        .unwrap()
 }
 
 /// The Morse law at Tabor μ = 1 (ρ = 1): the grid's pull-off against the ring solution traced

@@ -6,7 +6,9 @@
 //! bits on one and two threads; a restored state retakes each step exactly.
 
 mod axisym;
+mod sphere_run;
 
+use sphere_run::run;
 use std::f64::consts::PI;
 use tack_geometry::{Boundary, Grid, Sphere, Surface};
 use tack_kernels::operator_for;
@@ -14,31 +16,6 @@ use tack_solver::{
     AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, Exponential, LennardJones,
     PathResult, SnapshotRequest,
 };
-
-/// A sphere R = 1 on E* = 1 with γ = 1 under `law`, on a free grid of `n` elements of `dx`,
-/// loaded from `start` to `depth` and retracted in steps of `step` to `end`.
-fn run(law: &AdhesionLaw, n: usize, dx: f64, path: (f64, f64, f64, f64)) -> PathResult {
-    let grid = Grid::square(n, dx, Boundary::Free).unwrap();
-    let surface = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
-    let op = operator_for(grid, 1.0).unwrap();
-    let mut solver =
-        AdhesiveSolver::with_law(op, &surface, 1.0, law.clone(), AdhesiveOptions::default())
-            .unwrap();
-    let (start, depth, step, end) = path;
-    let path = ApproachPath {
-        start,
-        max_approach: depth,
-        load_step: step,
-        unload_step: step,
-        coarse_unload_step: None,
-        refine_pull_off: false,
-        retract_to: Some(end),
-        max_steps: 10_000,
-    };
-    solver
-        .run_path(&path, &SnapshotRequest::None, &mut ())
-        .unwrap()
-}
 
 /// The reference's points at the same approaches, in the same order (so it follows the same
 /// branches).
