@@ -48,7 +48,9 @@ enum Command {
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
         /// Also run on a grid of twice the element size and record the Richardson extrapolation
-        /// 2·F(Δx) − F(2Δx) of the pull-off force (`/summary` `pull_off_force_richardson`);
+        /// of the pull-off force at the law's order (`/summary` `pull_off_force_richardson`,
+        /// `richardson_order`): 2·F(Δx) − F(2Δx) for the criterion and the Dugdale law,
+        /// F(Δx) + (F(Δx) − F(2Δx))/3 for the smooth laws;
         /// the body must be the same on both grids: random roughness needs an explicit
         /// `roughness.q1 ≤ π/(2Δx)`, a height map must be band-limited to π/(2Δx), and random
         /// roughness and periodic grids need even sides (docs/theory.md §9).

@@ -448,7 +448,7 @@ fn richardson_lines(s: &tack_io::Summary) -> Vec<String> {
         };
         lines.push(format!(
             "            error estimate of F(Δx) = {}{relative}: the larger of |F(Δx) − F(2Δx)| \
-             and, for spheres, {}·(Δx/a_c)·|F|",
+             and, for the zero-range criterion on a sphere, {}·(Δx/a_c)·|F|",
             rounded(err),
             tack::solver::CRITERION_ERROR_COEFFICIENT
         ));
@@ -710,5 +710,28 @@ mod tests {
             text.contains(&format!("error estimate of F(Δx) = {}", rounded(err))),
             "{text}"
         );
+        assert!(text.contains("= 2·F(Δx) − F(2Δx)"), "{text}");
+    }
+
+    /// The report names the rule the law's order gave: second order for a smooth law, first
+    /// for a file without `richardson_order` (written before it, extrapolated at first order).
+    #[test]
+    fn the_richardson_line_names_the_laws_order() {
+        let mut s = tack_io::Summary {
+            pull_off_force: -1.0,
+            ..Default::default()
+        };
+        s.extra.insert("pull_off_force_coarse".into(), -1.2);
+        s.extra
+            .insert("pull_off_force_richardson".into(), -1.0 + 0.2 / 3.0);
+        s.extra.insert("richardson_order".into(), 2.0);
+        let second = richardson_lines(&s).join("\n");
+        assert!(
+            second.contains("F(Δx) + (F(Δx) − F(2Δx))/3 (second order)"),
+            "{second}"
+        );
+        s.extra.remove("richardson_order");
+        let first = richardson_lines(&s).join("\n");
+        assert!(first.contains("2·F(Δx) − F(2Δx)"), "{first}");
     }
 }

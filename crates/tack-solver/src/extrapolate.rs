@@ -1,6 +1,7 @@
-//! Richardson extrapolation of mesh-dependent results: the Pohrt–Popov criterion converges at
-//! first order in Δx, so two resolutions cancel the leading error term. Also the observed order
-//! of convergence from three resolutions, and an error estimate for the pull-off force.
+//! Richardson extrapolation of mesh-dependent results: the Pohrt–Popov criterion and the
+//! Dugdale law converge at first order in Δx, the smooth laws at second, so two resolutions
+//! cancel the leading error term at the law's order. Also the observed order of convergence
+//! from three resolutions, and an error estimate for the pull-off force.
 
 /// `2·fine − coarse`: the first-order Richardson extrapolation of a quantity computed at
 /// element size Δx (`fine`) and 2Δx (`coarse`) on the same geometry.
@@ -48,7 +49,8 @@ pub const CRITERION_ERROR_COEFFICIENT: f64 = 1.4;
 /// `max(|fine − coarse|, 1.4·(Δx/a_c)·|fine|)`; without a sphere `|fine − coarse|`.
 ///
 /// `|fine − coarse|` alone is the error of `fine` when the error is first order in Δx, as on
-/// the smooth sphere. Rough and wavy fronts do not converge that cleanly: their pull-off
+/// the smooth sphere; at second order (the smooth laws) it is three times the asymptotic error,
+/// kept so because their pull-offs are not always asymptotic on the grids used. Rough and wavy fronts do not converge that cleanly: their pull-off
 /// changes by fits and starts between levels (observed orders from −3.8 to +5.8), so two levels
 /// may agree by accident. Measured on 9 bodies at n = 128, 256, 512 against n = 1024
 /// (`cargo xtask convergence`, README): `|fine − coarse|` covered the actual error in 14 of 27

@@ -7,9 +7,10 @@ use crate::problem::Problem;
 use crate::scene::{Roughness, Scene, SceneError};
 
 /// The scene's problem on a grid of twice the element size over (at least) the same domain,
-/// for the Richardson extrapolation of `tack run --richardson`: the Pohrt–Popov criterion
-/// converges at first order in Δx, so `2·F(Δx) − F(2Δx)` cancels the leading error (smooth
-/// sphere: +6.9% at a_c/Δx = 20 becomes −0.3%).
+/// for the Richardson extrapolation of `tack run --richardson` at the law's order
+/// (`tack_solver::Law::convergence_order`): the Pohrt–Popov criterion converges at first order
+/// in Δx, so `2·F(Δx) − F(2Δx)` cancels the leading error (smooth sphere: +6.9% at
+/// a_c/Δx = 20 becomes −0.3%); the smooth laws at second order, `F(Δx) + (F(Δx) − F(2Δx))/3`.
 ///
 /// The body must be the same on both grids. Shapes are analytic. Random roughness is one
 /// continuous surface per band (`tack_geometry::rough_surface`), so it needs a band the coarse

@@ -1,6 +1,8 @@
 //! Richardson extrapolation of the pull-off of a body given as a height array (the Python
 //! package's `tack.pull_off(..., richardson=True)`): the array and the array at twice the
-//! element size, pulled off along the same path, extrapolated as `2F(Δx) − F(2Δx)`.
+//! element size, pulled off along the same path, extrapolated at the law's order (`2F(Δx) −
+//! F(2Δx)` for the criterion and the Dugdale law, `F(Δx) + (F(Δx) − F(2Δx))/3` for the smooth
+//! laws).
 //!
 //! [`crate::heights::run`] refuses `RunOptions::richardson`, because an array is given per
 //! element and the library cannot know the body between its samples. This module takes the

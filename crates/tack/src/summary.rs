@@ -312,7 +312,7 @@ pub const MIN_TENSILE_STEPS: usize = 3;
 /// Names of every scalar [`summary`] can record: the [`tack_io::Summary`] fields, then its
 /// `extra` keys. A run need not have all of them (`d_jkr` only for spheres, `crop_rows` only
 /// when cropped, ...). Parameter sweeps collect quantities by these names.
-pub const SUMMARY_QUANTITIES: [&str; 41] = [
+pub const SUMMARY_QUANTITIES: [&str; 48] = [
     "pull_off_force",
     "f_jkr",
     "pull_off_ratio",
@@ -336,6 +336,13 @@ pub const SUMMARY_QUANTITIES: [&str; 41] = [
     "cohesive_zone_elements",
     "maugis_lambda",
     "f_maugis",
+    "tabor_mu",
+    "peak_tension",
+    "process_zone_elements",
+    "e_instantaneous",
+    "speed",
+    "unload_speed",
+    "dwell",
     "dissipated_energy",
     "jump_in_approach",
     "jump_in_force",

@@ -207,8 +207,10 @@ def run(
             during the run (the calling thread watches for Ctrl-C meanwhile). An exception it
             raises stops the run and propagates.
         richardson: also run the scene at twice the element size and record the Richardson
-            extrapolation ``2F(dx) - F(2dx)`` in the summary (``pull_off_force_richardson``)
-            with the error estimate of the fine force (``pull_off_error_estimate``). Random
+            extrapolation at the law's order in the summary (``pull_off_force_richardson``,
+            ``richardson_order``: ``2F(dx) - F(2dx)`` for the criterion and the Dugdale law,
+            ``F(dx) + (F(dx) - F(2dx))/3`` for the smooth laws) with the error estimate of the
+            fine force (``pull_off_error_estimate``). Random
             roughness needs an explicit ``roughness.q1 <= pi/(2 dx)``.
 
     Raises:
@@ -383,8 +385,10 @@ def pull_off(
             of the steps (``docs/theory.md`` section 3.5).
         richardson: also pull off the array sampled at the centres of the grid of twice the
             element size (even sides needed) along the same path, and extrapolate
-            ``2F(dx) - F(2dx)`` (first order, the criterion's). ``result.richardson`` holds
-            ``fine``, ``coarse``, ``extrapolated``, ``order``, ``error_estimate``. Exact for a
+            at the law's order: ``2F(dx) - F(2dx)`` for the criterion and the Dugdale law (first
+            order), ``F(dx) + (F(dx) - F(2dx))/3`` for the smooth laws (second).
+            ``result.richardson`` holds ``fine``, ``coarse``, ``extrapolated``, ``order``,
+            ``error_estimate``, ``ratio``, ``aliased_rms``. Exact for a
             smooth body and for roughness band-limited to ``q1 <= pi/(2 dx)``; with content
             above it the coarse run samples another body and a
             :class:`tack.RichardsonWarning` says so. A gamma array is refused.

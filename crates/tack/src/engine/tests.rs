@@ -517,4 +517,25 @@ unload_step = 0.1
     }
     assert!(summary_quantity(&s, "alpha_star").is_nan());
     assert!(summary_quantity(&s, "f_kendall").is_nan());
+    // A smooth law's and a viscoelastic solid's own entries (a sweep collects them by name).
+    for example in ["exponential_sphere.toml", "viscoelastic_sphere.toml"] {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../data/examples")
+            .join(example);
+        let scene = Scene::load(&path, &[]).unwrap();
+        let problem = Problem::from_scene(&scene).unwrap();
+        let s = summary(&problem, &solve(&problem, &mut ()).unwrap());
+        assert!(s.extra.contains_key("tabor_mu"), "{example}");
+        for (name, &value) in &s.extra {
+            assert!(
+                SUMMARY_QUANTITIES.contains(&name.as_str()),
+                "{example}: {name} is not listed"
+            );
+            assert_eq!(
+                summary_quantity(&s, name).to_bits(),
+                value.to_bits(),
+                "{name}"
+            );
+        }
+    }
 }
