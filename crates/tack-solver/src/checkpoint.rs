@@ -3,7 +3,7 @@
 
 use ndarray::Array2;
 
-use crate::{AdhesiveSolver, SolverError};
+use crate::{AdhesionLaw, AdhesiveSolver, SolverError};
 
 /// Everything an [`AdhesiveSolver`] carries from one step to the next: the pressure, gap and
 /// displacement, the bonded set, the Dugdale law's cohesive zone, the secant predictor's
@@ -21,6 +21,8 @@ pub struct SolverState {
     history: Option<(Array2<f64>, f64)>,
     last_approach: Option<f64>,
     landed: Option<bool>,
+    /// The law it was saved under: a state restores only into a solver of the same law.
+    law: AdhesionLaw,
 }
 
 impl SolverState {
@@ -75,6 +77,7 @@ impl AdhesiveSolver {
             history: self.history.clone(),
             last_approach: self.last_approach,
             landed: self.smooth.as_ref().map(|s| s.landed),
+            law: self.law().clone(),
         }
     }
 
@@ -97,11 +100,13 @@ impl AdhesiveSolver {
         }
         state.last_approach = self.last_approach;
         state.landed = self.smooth.as_ref().map(|s| s.landed);
+        state.law.clone_from(self.law());
     }
 
     /// Goes back to `state`, saved from this solver (or one built the same way). A state of
-    /// another grid shape or another kind of law (a cohesive zone, a smooth law or neither) is
-    /// refused, and so is any state on a viscoelastic solver (the state holds no arms).
+    /// another grid shape or another law (another kind, or the same kind with another
+    /// parameter; a custom law restores only into a solver of the same curve) is refused, and
+    /// so is any state on a viscoelastic solver (the state holds no arms).
     pub fn restore_state(&mut self, state: &SolverState) -> Result<(), SolverError> {
         if self.visco.is_some() {
             return Err(SolverError::Refused {
@@ -132,6 +137,16 @@ impl AdhesiveSolver {
             return Err(SolverError::StateMismatch {
                 state: describe(theirs.0, theirs.1),
                 solver: describe(mine.0, mine.1),
+            });
+        }
+        if state.law != *self.law() {
+            let named = |law: &AdhesionLaw| {
+                let (field, value) = law.parameter();
+                format!("the law {} with {field} = {value}", law.name())
+            };
+            return Err(SolverError::StateMismatch {
+                state: named(&state.law),
+                solver: named(self.law()),
             });
         }
         self.base.pressure.assign(&state.pressure);

@@ -44,7 +44,8 @@ const BEYOND: [f64; 5] = [1.01, 2.0, 10.0, 1e3, 1e6];
 const GAMMAS: [f64; 2] = [0.37, 3.1];
 
 /// A smooth law of the caller's own, shared between the solvers and results that use it: two
-/// are equal when they are one curve (one allocation).
+/// are equal when they are one curve (one allocation), so a saved solver state restores only
+/// into a solver of the same curve.
 #[derive(Debug, Clone)]
 pub struct CustomCurve(pub(super) Arc<dyn Law>);
 

@@ -279,6 +279,17 @@ fn a_state_restores_only_into_a_solver_of_its_grid_and_law() {
         e.contains("(19 × 19 grid, a smooth law) does not fit"),
         "{e}"
     );
+    // The same kind of law with another parameter: refused too, naming both.
+    let wider = with_law(crate::AdhesionLaw::from(crate::Exponential { range: 0.2 }));
+    let e = { wider }
+        .restore_state(&smooth.save_state())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("(the law exponential with adhesion.range = 0.1) does not fit this solver (the law exponential with adhesion.range = 0.2)"),
+        "{e}"
+    );
+    smooth.restore_state(&smooth.save_state()).unwrap();
     let small = Grid::square(7, 0.38, Boundary::Free).unwrap();
     let op = tack_kernels::operator_for(small, 1.0).unwrap();
     let s = Surface::from_shape(small, &Sphere::new(1.0).unwrap());
