@@ -158,15 +158,6 @@ pub fn execute(
         let started = Instant::now();
         let coarse_f = solve_in_pool(&coarse, observer)?.pull_off_force();
         coarse_wall_time = Some(started.elapsed());
-        let fine_f = path.pull_off_force();
-        // The law's order: first for the criterion and the Dugdale law, second for the smooth
-        // laws (a first-order extrapolation of a second-order error overshoots by twice it).
-        let order = problem.law.convergence_order();
-        let extrapolated = tack_solver::richardson(fine_f, coarse_f, order);
-        let extra = &mut result.summary.extra;
-        extra.insert("richardson_order".into(), order);
-        extra.insert("pull_off_force_coarse".into(), coarse_f);
-        extra.insert("pull_off_force_richardson".into(), extrapolated);
         // The pull-off contact radius (a sphere's a_c, a punch's a, …) sets the zero-range
         // criterion's error floor; a finite-range law has none of its own.
         let dx_over_a_c = problem
@@ -174,13 +165,8 @@ pub fn execute(
             .pull_off_radius
             .filter(|_| matches!(problem.law, tack_solver::AdhesionLaw::JkrLimit(_)))
             .map(|a| problem.grid.dx() / a);
-        extra.insert(
-            "pull_off_error_estimate".into(),
-            tack_solver::pull_off_error_estimate(fine_f, coarse_f, dx_over_a_c),
-        );
-        if let Some(f_jkr) = problem.references.f_jkr {
-            extra.insert("pull_off_ratio_richardson".into(), extrapolated / f_jkr);
-        }
+        let forces = (path.pull_off_force(), coarse_f);
+        insert_richardson(&mut result.summary.extra, &problem, forces, dx_over_a_c);
     }
     Ok(RunOutcome {
         problem,
@@ -189,6 +175,33 @@ pub fn execute(
         coarse_wall_time,
         result,
     })
+}
+
+/// The summary entries of a Richardson extrapolation of `problem`'s pull-off from the
+/// `(fine, coarse)` forces at Δx and 2Δx: `richardson_order` (the law's: first for the
+/// criterion and the Dugdale law, second for the smooth laws, where a first-order rule would
+/// overshoot by twice the fine error), `pull_off_force_coarse`, `pull_off_force_richardson`,
+/// `pull_off_error_estimate` (with the criterion's floor when `dx_over_a_c` is given) and,
+/// where F_JKR applies, `pull_off_ratio_richardson`. Shared by `--richardson` and
+/// [`crate::heights_richardson`].
+pub(crate) fn insert_richardson(
+    extra: &mut std::collections::BTreeMap<String, f64>,
+    problem: &Problem,
+    (fine, coarse): (f64, f64),
+    dx_over_a_c: Option<f64>,
+) {
+    let order = problem.law.convergence_order();
+    let extrapolated = tack_solver::richardson(fine, coarse, order);
+    extra.insert("richardson_order".into(), order);
+    extra.insert("pull_off_force_coarse".into(), coarse);
+    extra.insert("pull_off_force_richardson".into(), extrapolated);
+    extra.insert(
+        "pull_off_error_estimate".into(),
+        tack_solver::pull_off_error_estimate(fine, coarse, dx_over_a_c),
+    );
+    if let Some(f_jkr) = problem.references.f_jkr {
+        extra.insert("pull_off_ratio_richardson".into(), extrapolated / f_jkr);
+    }
 }
 
 /// Runs an already parsed scene in memory: [`Problem::from_scene`], then [`execute`].

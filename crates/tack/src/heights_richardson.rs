@@ -215,9 +215,6 @@ pub fn pull_off_richardson(
     let started = std::time::Instant::now();
     let coarse_f = pull_off(&coarse, &coarse_spec, &single, observer)?.pull_off_force();
     outcome.coarse_wall_time = Some(started.elapsed());
-    let fine_f = outcome.pull_off_force();
-    let order = outcome.problem.law.convergence_order();
-    let extrapolated = tack_solver::richardson(fine_f, coarse_f, order);
     let dx_over_a_c = match (plan.radius, spec.adhesion.model) {
         (Some(r), m) if m.is_zero_range() => {
             Some(spec.dx / tack_analytics::jkr_pull_off_radius(spec.e_star, spec.gamma, r))
@@ -225,19 +222,12 @@ pub fn pull_off_richardson(
         _ => None,
     };
     let (aliasing, aliased, rms) = aliases(heights);
+    let forces = (outcome.pull_off_force(), coarse_f);
     let summary = &mut outcome.result.summary;
-    let extra = &mut summary.extra;
-    extra.insert("pull_off_force_coarse".into(), coarse_f);
-    extra.insert("pull_off_force_richardson".into(), extrapolated);
-    extra.insert(
-        "pull_off_error_estimate".into(),
-        tack_solver::pull_off_error_estimate(fine_f, coarse_f, dx_over_a_c),
-    );
-    if let Some(f_jkr) = outcome.problem.references.f_jkr {
-        extra.insert("pull_off_ratio_richardson".into(), extrapolated / f_jkr);
-    }
-    extra.insert("richardson_order".into(), order);
-    extra.insert("richardson_aliased_rms".into(), aliased);
+    crate::engine::insert_richardson(&mut summary.extra, &outcome.problem, forces, dx_over_a_c);
+    summary
+        .extra
+        .insert("richardson_aliased_rms".into(), aliased);
     if aliasing {
         summary.warnings.push(format!(
             "richardson: the heights hold content above the coarse grid's Nyquist wave \

@@ -671,11 +671,7 @@ fn smooth_references(references: &mut References, law: &AdhesionLaw, e_star: f64
 fn adhesion_law(f: &SceneSchema, kappa: f64, surface: &Surface) -> Result<AdhesionLaw, SceneError> {
     let model_field = fields::ADHESION_MODEL;
     let name = f.adhesion.model.name();
-    let given = [
-        (fields::ADHESION_SIGMA0, f.adhesion.sigma0),
-        (fields::ADHESION_RANGE, f.adhesion.range),
-        (fields::SOLVER_KAPPA, f.solver.kappa),
-    ];
+    let given = law_parameters(f);
     // The law's own field, from a probe of the model (its value is set below).
     let probe = AdhesionLaw::from_model(name, 1.0).ok_or_else(|| {
         SceneError::Inconsistent(format!("{model_field} = \"{name}\" names no law"))
@@ -707,14 +703,7 @@ fn adhesion_law(f: &SceneSchema, kappa: f64, surface: &Surface) -> Result<Adhesi
         return Ok(law);
     }
     let gamma = f.material.gamma;
-    if gamma <= 0.0 {
-        return Err(SceneError::Inconsistent(format!(
-            "{model_field} = \"{name}\" needs {gamma_field} > 0 (a finite-range law spreads γ \
-             over its range); got {}",
-            num(gamma),
-            gamma_field = fields::MATERIAL_GAMMA,
-        )));
-    }
+    finite_range_gamma(&format!("{model_field} = \"{name}\""), gamma)?;
     // Positive, finite parameters and a range above the round-off of the heights.
     law.check(gamma, surface)?;
     Ok(law)
@@ -767,12 +756,10 @@ fn checked_law_in_memory(
             law.name(),
         )));
     }
-    let given = [
-        (fields::ADHESION_SIGMA0, f.adhesion.sigma0),
-        (fields::ADHESION_RANGE, f.adhesion.range),
-        (fields::SOLVER_KAPPA, f.solver.kappa),
-    ];
-    if let Some((field, value)) = given.iter().find_map(|(f, v)| v.map(|v| (f, v))) {
+    if let Some((field, value)) = law_parameters(f)
+        .iter()
+        .find_map(|(f, v)| v.map(|v| (f, v)))
+    {
         return Err(SceneError::Inconsistent(format!(
             "{field} = {} is a parameter of the scene's law, but the law \"{}\" is given in \
              memory with its own; leave {field} out",
@@ -781,17 +768,36 @@ fn checked_law_in_memory(
         )));
     }
     let gamma = f.material.gamma;
-    if law.range(gamma).is_some() && gamma <= 0.0 {
+    if law.range(gamma).is_some() {
+        finite_range_gamma(
+            &format!("the law \"{}\" given in memory", law.name()),
+            gamma,
+        )?;
+    }
+    law.check(gamma, surface)?;
+    Ok(law.clone())
+}
+
+/// The scene's law parameters and their values: `adhesion.sigma0`, `adhesion.range`,
+/// `solver.kappa`.
+fn law_parameters(f: &SceneSchema) -> [(&'static str, Option<f64>); 3] {
+    [
+        (fields::ADHESION_SIGMA0, f.adhesion.sigma0),
+        (fields::ADHESION_RANGE, f.adhesion.range),
+        (fields::SOLVER_KAPPA, f.solver.kappa),
+    ]
+}
+
+/// A finite-range law (`who`) needs γ > 0: it spreads γ over its range.
+fn finite_range_gamma(who: &str, gamma: f64) -> Result<(), SceneError> {
+    if gamma <= 0.0 {
         return Err(SceneError::Inconsistent(format!(
-            "the law \"{}\" given in memory needs {} > 0 (a finite-range law spreads γ over \
-             its range); got {}",
-            law.name(),
+            "{who} needs {} > 0 (a finite-range law spreads γ over its range); got {}",
             fields::MATERIAL_GAMMA,
             num(gamma),
         )));
     }
-    law.check(gamma, surface)?;
-    Ok(law.clone())
+    Ok(())
 }
 
 /// The models whose parameter is `field`, quoted and joined: `"dugdale"`, or
