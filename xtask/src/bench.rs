@@ -40,6 +40,40 @@ pub fn bare_fft_pair(mx: usize, my: usize) -> impl FnMut() {
     move || fft.round_trip()
 }
 
+/// The median time (s) of numpy's `irfft2(rfft2(a))` on an `n²` array, the unit of issue 37's
+/// targets, timed by `python3` in this run (`TACK_BENCH_PYTHON` names another interpreter);
+/// `None`, said once, where no interpreter with numpy runs. numpy's pocketfft is
+/// single-threaded, so the unit does not depend on the bench's threads.
+pub fn numpy_fft_pair(n: usize) -> Option<f64> {
+    let python = std::env::var("TACK_BENCH_PYTHON").unwrap_or_else(|_| "python3".into());
+    let script = format!(
+        "import time, numpy as np\n\
+         a = np.random.default_rng(1).random(({n}, {n}))\n\
+         np.fft.irfft2(np.fft.rfft2(a), s=a.shape)\n\
+         t = []\n\
+         for _ in range(15):\n    \
+         s = time.perf_counter(); np.fft.irfft2(np.fft.rfft2(a), s=a.shape); \
+         t.append(time.perf_counter() - s)\n\
+         print(sorted(t)[7])\n"
+    );
+    let out = std::process::Command::new(&python)
+        .args(["-c", &script])
+        .output();
+    let seconds = out
+        .ok()
+        .filter(|o| o.status.success())
+        .and_then(|o| String::from_utf8(o.stdout).ok())
+        .and_then(|t| t.trim().parse::<f64>().ok())
+        .filter(|t| t.is_finite() && *t > 0.0);
+    if seconds.is_none() {
+        println!(
+            "   ({python} with numpy not found: the numpy-pair columns are NaN; \
+             TACK_BENCH_PYTHON names an interpreter)"
+        );
+    }
+    seconds
+}
+
 /// The body of a kernel bench row: the half-space, or a bonded incompressible layer of 4Δx.
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Body {
@@ -765,12 +799,14 @@ pub(crate) fn timed_pull_off(scene: &tack::Scene, threads: usize) -> Result<Pull
 /// the speed-up of 2 threads.
 fn pull_off_scaling(sizes: &[usize], threads: usize, rows: &mut Vec<Row>) -> Result<()> {
     let t_pair = median_time(bare_fft_pair(1024, 1024));
+    let t_numpy = numpy_fft_pair(1024).unwrap_or(f64::NAN);
     println!(
-        "   (bare 1024² rfft2 + irfft2 pair: {:.2} ms; {threads} thread(s))",
-        t_pair * 1e3
+        "   (bare 1024² rfft2 + irfft2 pair: {:.2} ms; numpy's: {:.2} ms; {threads} thread(s))",
+        t_pair * 1e3,
+        t_numpy * 1e3
     );
     println!(
-        "   {:>6} {:>9} {:>9} {:>8} {:>6} {:>10} {:>12} {:>14} {:>9} {:>7}",
+        "   {:>6} {:>9} {:>9} {:>8} {:>6} {:>10} {:>12} {:>12} {:>14} {:>9} {:>7}",
         "n",
         "time [s]",
         "× prev n",
@@ -778,6 +814,7 @@ fn pull_off_scaling(sizes: &[usize], threads: usize, rows: &mut Vec<Row>) -> Res
         "steps",
         "rounds",
         "1024² pairs",
+        "numpy pairs",
         "F_pull-off",
         "peak [MB]",
         "B/elem"
@@ -790,12 +827,13 @@ fn pull_off_scaling(sizes: &[usize], threads: usize, rows: &mut Vec<Row>) -> Res
         let peak = r.peak_bytes;
         let per_element = peak / (n * n) as f64;
         println!(
-            "   {n:>6} {:>9.2} {growth:>9.2} {:>8} {:>6} {:>10} {:>12.0} {:>14.7e} {:>9.0} {per_element:>7.0}",
+            "   {n:>6} {:>9.2} {growth:>9.2} {:>8} {:>6} {:>10} {:>12.0} {:>12.0} {:>14.7e} {:>9.0} {per_element:>7.0}",
             r.seconds,
             r.cg,
             r.steps,
             r.rounds,
             r.seconds / t_pair,
+            r.seconds / t_numpy,
             r.force,
             peak / 1e6
         );
@@ -810,6 +848,7 @@ fn pull_off_scaling(sizes: &[usize], threads: usize, rows: &mut Vec<Row>) -> Res
                 ("rounds", r.rounds as f64),
                 ("steps", r.steps as f64),
                 ("fft_pairs_1024", r.seconds / t_pair),
+                ("numpy_pairs_1024", r.seconds / t_numpy),
                 ("pull_off_force", r.force),
                 ("threads", threads as f64),
                 ("peak_bytes", peak),
@@ -981,12 +1020,27 @@ fn periodic_rough(n: usize) -> Result<(tack_geometry::Surface, f64)> {
 fn periodic_scaling(sizes: &[usize], pk_max: usize, rows: &mut Vec<Row>) -> Result<()> {
     use tack_solver::ContactMethod;
     println!(
-        "   {:>6} {:>16} {:>9} {:>6} {:>10} {:>9} {:>16} {:>9} {:>7}",
-        "n", "method", "time [s]", "CG", "pairs (n²)", "contact", "force", "peak [MB]", "B/elem"
+        "   {:>6} {:>16} {:>9} {:>6} {:>10} {:>12} {:>9} {:>16} {:>9} {:>7}",
+        "n",
+        "method",
+        "time [s]",
+        "CG",
+        "pairs (n²)",
+        "numpy pairs",
+        "contact",
+        "force",
+        "peak [MB]",
+        "B/elem"
     );
     for &n in sizes {
         let (surface, d) = periodic_rough(n)?;
         let t_pair = median_time(bare_fft_pair(n, n));
+        // numpy's pair of the same size, up to 2048² (4096² takes seconds a transform).
+        let t_numpy = if n <= 2048 {
+            numpy_fft_pair(n).unwrap_or(f64::NAN)
+        } else {
+            f64::NAN
+        };
         for method in [ContactMethod::ActiveSet, ContactMethod::PolonskyKeer] {
             if method == ContactMethod::PolonskyKeer && n > pk_max {
                 continue;
@@ -996,9 +1050,10 @@ fn periodic_scaling(sizes: &[usize], pk_max: usize, rows: &mut Vec<Row>) -> Resu
             anyhow::ensure!(ok, "{n}² {method:?}: not converged");
             let per_element = peak / (n * n) as f64;
             println!(
-                "   {n:>6} {:>16} {secs:>9.3} {its:>6} {:>10.1} {:>8.2}% {force:>16.9e} {:>9.0} {per_element:>7.0}",
+                "   {n:>6} {:>16} {secs:>9.3} {its:>6} {:>10.1} {:>12.1} {:>8.2}% {force:>16.9e} {:>9.0} {per_element:>7.0}",
                 format!("{method:?}"),
                 secs / t_pair,
+                secs / t_numpy,
                 100.0 * frac,
                 peak / 1e6
             );
@@ -1010,6 +1065,7 @@ fn periodic_scaling(sizes: &[usize], pk_max: usize, rows: &mut Vec<Row>) -> Resu
                     ("seconds", secs),
                     ("iterations", its as f64),
                     ("fft_pairs", secs / t_pair),
+                    ("numpy_pairs", secs / t_numpy),
                     ("contact_fraction", frac),
                     ("force", force),
                     ("peak_bytes", peak),

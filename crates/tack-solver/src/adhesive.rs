@@ -421,6 +421,9 @@ impl AdhesiveSolver {
         // whole grid): after an inexact sub-grid round only its window can have changed, so
         // the next round's bookkeeping scans that instead of the grid.
         let mut extent: Option<Window> = None;
+        // The window of the last round's solve when that round changed nothing: the pressure,
+        // the set and `K p` (on that window) are as it left them.
+        let mut quiet: Option<Option<Window>> = None;
         loop {
             if tally.rounds == self.options.max_active_set_iterations {
                 tally.converged = false;
@@ -438,6 +441,7 @@ impl AdhesiveSolver {
                     Some(weakest) => {
                         self.bonded[weakest] = false;
                         rules.release(weakest);
+                        quiet = None;
                         continue;
                     }
                 }
@@ -453,6 +457,7 @@ impl AdhesiveSolver {
                 loaded: loaded.count,
                 window,
                 extent,
+                carried: !schedule.exact && loaded.count > 0 && quiet == Some(window),
             };
             let (fresh, margins) = rules.solve(self, round, &mut tally);
             stale = fresh.is_some();
@@ -462,7 +467,9 @@ impl AdhesiveSolver {
                 tally.converged = false;
                 break;
             }
-            if schedule.done(rules.judge(self, fresh, &margins)) {
+            let changed = rules.judge(self, fresh, &margins);
+            quiet = (!changed && loaded.count > 0).then_some(window);
+            if schedule.done(changed) {
                 break;
             }
         }
@@ -551,7 +558,10 @@ impl AdhesiveSolver {
     /// date inside the returned window.
     ///
     /// `window` is the sub-grid ([`Self::subgrid_around`] the loaded set), and `extent` a
-    /// window holding every non-zero pressure (`None`: anywhere).
+    /// window holding every non-zero pressure (`None`: anywhere). With `carried` (no `zone`)
+    /// the last solve was of the same set, pressure and window and its `K p` is still held:
+    /// the solve starts from it without a product.
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn solve_set(
         &mut self,
         d: f64,
@@ -560,7 +570,9 @@ impl AdhesiveSolver {
         window: Option<Window>,
         extent: Option<&Window>,
         zone: Option<ArrayView2<bool>>,
+        carried: bool,
     ) -> (Convergence, Option<Window>) {
+        let carried = carried && zone.is_none();
         let cg = SolverOptions {
             tolerance,
             ..self.options.cg
@@ -587,6 +599,7 @@ impl AdhesiveSolver {
                 &mut self.pcg,
                 &cg,
                 pre,
+                carried,
             );
             return (c, None);
         };
@@ -618,6 +631,7 @@ impl AdhesiveSolver {
             &mut sub.pcg,
             &cg,
             pre,
+            carried,
         );
         let fresh = base.adopt_subgrid(
             &window,

@@ -132,12 +132,53 @@ pub(crate) fn pcg_holding(
     held: Option<ArrayView2<bool>>,
     diagonal: Option<ArrayView2<f64>>,
     d: f64,
-    mut pressure: ArrayViewMut2<f64>,
+    pressure: ArrayViewMut2<f64>,
     w: &mut Work,
     pw: &mut PcgWork,
     options: &SolverOptions,
     preconditioned: bool,
 ) -> Convergence {
+    let system = System {
+        heights,
+        bonded,
+        held,
+        diagonal,
+        d,
+    };
+    pcg_from(op, system, pressure, w, pw, options, preconditioned, false)
+}
+
+/// The linear system of one CG solve: the heights, the bonded set, the held elements and the
+/// added diagonal ([`pcg_holding`]) and the approach.
+pub(crate) struct System<'a> {
+    pub(crate) heights: ArrayView2<'a, f64>,
+    pub(crate) bonded: ArrayView2<'a, bool>,
+    pub(crate) held: Option<ArrayView2<'a, bool>>,
+    pub(crate) diagonal: Option<ArrayView2<'a, f64>>,
+    pub(crate) d: f64,
+}
+
+/// [`pcg_holding`] of `system`; with `carried`, `work.disp` already holds `K p` of the given
+/// pressure (the last solve of the same system and pressure left it: a round that changed
+/// nothing), so the first residual needs no product.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn pcg_from(
+    op: &mut dyn ElasticOperator,
+    system: System<'_>,
+    mut pressure: ArrayViewMut2<f64>,
+    w: &mut Work,
+    pw: &mut PcgWork,
+    options: &SolverOptions,
+    preconditioned: bool,
+    carried: bool,
+) -> Convergence {
+    let System {
+        heights,
+        bonded,
+        held,
+        diagonal,
+        d,
+    } = system;
     let f = flat(&heights);
     let c = bonded.as_slice().expect("contiguous mask");
     let stats = clear_off_set(
@@ -159,9 +200,12 @@ pub(crate) fn pcg_holding(
         .as_ref()
         .map(|c| c.as_slice().expect("contiguous diagonal"));
     let mut it = 0;
-    // The true residual is recomputed from `K p` at every (re)start; inside the loop `disp` is
-    // carried along (`disp += α K s`), so a converged solve needs no further product.
-    op.apply(pressure.view(), w.disp.view_mut());
+    // The true residual is recomputed from `K p` at every (re)start (but a `carried` first
+    // one); inside the loop `disp` is carried along (`disp += α K s`), so a converged solve
+    // needs no further product.
+    if !carried {
+        op.apply(pressure.view(), w.disp.view_mut());
+    }
     loop {
         let rr = bonded_residual(f, c, diag, d, &pressure, &w.disp, &mut pw.resid);
         let residual = (rr / n_c as f64).sqrt() / scale;
@@ -424,7 +468,7 @@ fn precondition(
 
 /// One solve of the contact set on one grid (the whole grid or a sub-grid): the bonded-set CG,
 /// or with `held` (the Dugdale law's zone and per-element tension) the CG with the zone's
-/// tension held.
+/// tension held. With `carried` (no zone) `work.disp` already holds `K p` ([`pcg_from`]).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn solve_grid(
     op: &mut dyn ElasticOperator,
@@ -437,19 +481,28 @@ pub(crate) fn solve_grid(
     pcg_work: &mut PcgWork,
     cg: &SolverOptions,
     preconditioned: bool,
+    carried: bool,
 ) -> Convergence {
     match held {
-        None => pcg(
-            op,
-            heights,
-            bonded,
-            d,
-            pressure,
-            work,
-            pcg_work,
-            cg,
-            preconditioned,
-        ),
+        None => {
+            let system = System {
+                heights,
+                bonded,
+                held: None,
+                diagonal: None,
+                d,
+            };
+            pcg_from(
+                op,
+                system,
+                pressure,
+                work,
+                pcg_work,
+                cg,
+                preconditioned,
+                carried,
+            )
+        }
         Some((zone, tension)) => solve_with_zone(
             op,
             heights,
@@ -514,224 +567,4 @@ fn solve_with_zone(
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use tack_geometry::{Boundary, Grid};
-    use tack_kernels::FreeOperator;
-
-    const N: usize = 10;
-
-    /// A paraboloid `f = r²/2` on a free 10 × 10 grid (Δx = 0.1, E* = 1) bonded on a disc of 29
-    /// elements around its apex, pressed by d = 0.05: a symmetric positive definite `K_CC`.
-    fn problem() -> (FreeOperator, Array2<f64>, Array2<bool>, f64) {
-        let dx = 0.1;
-        let op = FreeOperator::new(Grid::square(N, dx, Boundary::Free).unwrap(), 1.0).unwrap();
-        let c = (N / 2) as f64;
-        let r2 = |i: usize, j: usize| ((i as f64 - c).powi(2) + (j as f64 - c).powi(2)) * dx * dx;
-        let heights = Array2::from_shape_fn((N, N), |(i, j)| r2(i, j) / 2.0);
-        let bonded = Array2::from_shape_fn((N, N), |(i, j)| r2(i, j) <= 0.09 + 1e-12);
-        (op, heights, bonded, 0.05)
-    }
-
-    /// `(K_CC + diag(c)) p_C = (d − f)_C` by dense Gaussian elimination (columns of K from unit
-    /// loads; `c = 0` without a diagonal).
-    fn dense_solution(
-        op: &mut FreeOperator,
-        heights: &Array2<f64>,
-        bonded: &Array2<bool>,
-        diagonal: Option<&Array2<f64>>,
-        d: f64,
-    ) -> Array2<f64> {
-        let idx: Vec<(usize, usize)> = bonded
-            .indexed_iter()
-            .filter(|(_, b)| **b)
-            .map(|(k, _)| k)
-            .collect();
-        let m = idx.len();
-        let mut a = vec![vec![0.0; m + 1]; m];
-        let (mut unit, mut col) = (Array2::zeros((N, N)), Array2::zeros((N, N)));
-        for (c, &e) in idx.iter().enumerate() {
-            unit[e] = 1.0;
-            op.apply(unit.view(), col.view_mut());
-            unit[e] = 0.0;
-            for (r, &row) in idx.iter().enumerate() {
-                a[r][c] = col[row];
-            }
-        }
-        for (r, &row) in idx.iter().enumerate() {
-            a[r][m] = d - heights[row];
-            a[r][r] += diagonal.map_or(0.0, |c| c[row]);
-        }
-        for k in 0..m {
-            let pivot = a[k].clone();
-            for row in &mut a[k + 1..] {
-                let f = row[k] / pivot[k];
-                for (x, &y) in row[k..].iter_mut().zip(&pivot[k..]) {
-                    *x -= f * y;
-                }
-            }
-        }
-        let mut x = vec![0.0; m];
-        for k in (0..m).rev() {
-            let s: f64 = (k + 1..m).map(|c| a[k][c] * x[c]).sum();
-            x[k] = (a[k][m] - s) / a[k][k];
-        }
-        let mut p = Array2::zeros((N, N));
-        for (k, &e) in idx.iter().enumerate() {
-            p[e] = x[k];
-        }
-        p
-    }
-
-    #[test]
-    fn solves_a_small_spd_system_to_the_tolerance() {
-        let (mut op, heights, bonded, d) = problem();
-        assert_eq!(bonded.iter().filter(|&&b| b).count(), 29);
-        let exact = dense_solution(&mut op, &heights, &bonded, None, d);
-        let p_max = exact.iter().fold(0.0f64, |m, p| m.max(p.abs()));
-        let options = SolverOptions {
-            tolerance: 1e-12,
-            max_iterations: 200,
-        };
-        for preconditioned in [true, false] {
-            // Start from a pressure that is wrong everywhere, also off the bonded set.
-            let mut p = Array2::from_elem((N, N), 1.0);
-            let (mut w, mut pw) = (Work::new((N, N)), PcgWork::new((N, N)));
-            let c = pcg(
-                &mut op,
-                heights.view(),
-                bonded.view(),
-                d,
-                p.view_mut(),
-                &mut w,
-                &mut pw,
-                &options,
-                preconditioned,
-            );
-            assert!(
-                c.converged && c.residual <= 1e-12,
-                "{preconditioned}: {c:?}"
-            );
-            assert!(c.iterations >= 3 && c.iterations <= 29, "{c:?}");
-            // Off the bonded set p = 0 exactly; on it, the dense solution.
-            assert!(p.iter().zip(&bonded).all(|(&p, &b)| b || p == 0.0));
-            let err = (&p - &exact).iter().fold(0.0f64, |m, e| m.max(e.abs()));
-            assert!(
-                err <= 1e-9 * p_max,
-                "{preconditioned}: error {err} of {p_max}"
-            );
-            // `disp` is the product K p, and closes the gap on C to the tolerance.
-            let mut u = Array2::zeros((N, N));
-            op.apply(p.view(), u.view_mut());
-            let du = (&u - &w.disp).iter().fold(0.0f64, |m, e| m.max(e.abs()));
-            assert!(du <= 1e-12 * d, "carried K p off by {du}");
-            let (mut rr, mut bb, mut n) = (0.0, 0.0, 0.0);
-            for ((&f, &u), &b) in heights.iter().zip(&u).zip(&bonded) {
-                if b {
-                    rr += (d - f - u).powi(2);
-                    bb += (d - f).powi(2);
-                    n += 1.0;
-                }
-            }
-            let rel = (rr / n).sqrt() / (bb / n).sqrt();
-            assert!(rel <= 1e-12, "true residual {rel}");
-            // A warm start from the solution needs no iteration.
-            let again = pcg(
-                &mut op,
-                heights.view(),
-                bonded.view(),
-                d,
-                p.view_mut(),
-                &mut w,
-                &mut pw,
-                &options,
-                preconditioned,
-            );
-            assert_eq!(again.iterations, 0);
-            assert!(again.converged);
-        }
-    }
-
-    #[test]
-    fn reports_non_convergence_at_the_iteration_cap() {
-        let (mut op, heights, bonded, d) = problem();
-        let mut p = Array2::zeros((N, N));
-        let (mut w, mut pw) = (Work::new((N, N)), PcgWork::new((N, N)));
-        let capped = SolverOptions {
-            tolerance: 1e-12,
-            max_iterations: 2,
-        };
-        let c = pcg(
-            &mut op,
-            heights.view(),
-            bonded.view(),
-            d,
-            p.view_mut(),
-            &mut w,
-            &mut pw,
-            &capped,
-            true,
-        );
-        assert!(!c.converged);
-        assert_eq!(c.iterations, 2);
-        assert!(c.residual > 1e-6 && c.residual < 1.0, "{c:?}");
-        // The capped solve still leaves `disp = K p` for the pressure it stopped at.
-        let mut u = Array2::zeros((N, N));
-        op.apply(p.view(), u.view_mut());
-        assert!((&u - &w.disp).iter().all(|e| e.abs() <= 1e-12 * d));
-    }
-
-    /// With a diagonal (the smooth laws' stiff elements: `c` from 0.1 to 0.9 self-compliances on
-    /// the disc's outer ring, 0 inside), `pcg_holding` solves `(K_CC + diag(c)) p_C = (d − f)_C`:
-    /// the dense solution to 1e-9 of the largest pressure, with and without preconditioning.
-    #[test]
-    fn solves_the_set_with_a_diagonal() {
-        let (mut op, heights, bonded, d) = problem();
-        let k = tack_kernels::ElasticOperator::self_compliance(&op);
-        let c = (N / 2) as f64;
-        let diag = Array2::from_shape_fn((N, N), |(i, j)| {
-            let r2 = ((i as f64 - c).powi(2) + (j as f64 - c).powi(2)) * 0.01;
-            if bonded[(i, j)] && r2 > 0.04 + 1e-12 {
-                k * (0.1 + 0.8 * ((i + 2 * j) % 5) as f64 / 4.0)
-            } else {
-                0.0
-            }
-        });
-        assert!(diag.iter().filter(|&&c| c > 0.0).count() >= 8);
-        let exact = dense_solution(&mut op, &heights, &bonded, Some(&diag), d);
-        let without = dense_solution(&mut op, &heights, &bonded, None, d);
-        let p_max = exact.iter().fold(0.0f64, |m, p| m.max(p.abs()));
-        // The diagonal matters: the two systems' solutions differ well beyond the tolerance.
-        let apart = (&exact - &without)
-            .iter()
-            .fold(0.0f64, |m, e| m.max(e.abs()));
-        assert!(apart > 1e-3 * p_max, "{apart}");
-        let options = SolverOptions {
-            tolerance: 1e-12,
-            max_iterations: 200,
-        };
-        for preconditioned in [true, false] {
-            let mut p = Array2::from_elem((N, N), 1.0);
-            let (mut w, mut pw) = (Work::new((N, N)), PcgWork::new((N, N)));
-            let conv = pcg_holding(
-                &mut op,
-                heights.view(),
-                bonded.view(),
-                None,
-                Some(diag.view()),
-                d,
-                p.view_mut(),
-                &mut w,
-                &mut pw,
-                &options,
-                preconditioned,
-            );
-            assert!(conv.converged, "{preconditioned}: {conv:?}");
-            let err = (&p - &exact).iter().fold(0.0f64, |m, e| m.max(e.abs()));
-            assert!(
-                err <= 1e-9 * p_max,
-                "{preconditioned}: error {err} of {p_max}"
-            );
-        }
-    }
-}
+mod tests;

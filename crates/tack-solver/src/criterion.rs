@@ -184,7 +184,7 @@ impl SetRules for Criterion {
         }
         if round.exact {
             let tolerance = s.options.cg.tolerance;
-            let (c, _) = s.solve_set(d, tolerance, true, round.window, extent, None);
+            let (c, _) = s.solve_set(d, tolerance, true, round.window, extent, None, false);
             tally.cg += c.iterations;
             tally.exact(&c);
             return (None, margins);
@@ -194,7 +194,7 @@ impl SetRules for Criterion {
         // the round's tolerance; without adhesion the equilibrium is unique (a convex
         // problem), so no decision needs one.
         let level = round.level;
-        let (c, fresh) = s.solve_set(d, level, false, round.window, extent, None);
+        let (c, fresh) = s.solve_set(d, level, false, round.window, extent, None, round.carried);
         tally.cg += c.iterations;
         if sigma_c > 0.0 || s.patterned {
             let relative = level / LOOSE_REFERENCE_TOLERANCE;

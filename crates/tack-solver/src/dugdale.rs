@@ -117,9 +117,9 @@ impl SetRules for Dugdale {
         let zone = Some(self.state.zone.view());
         let (d, extent) = (round.d, round.extent.as_ref());
         let (c, fresh) = if round.exact {
-            s.solve_set(d, tolerance, true, round.window, extent, zone)
+            s.solve_set(d, tolerance, true, round.window, extent, zone, false)
         } else {
-            s.solve_set(d, round.level, false, round.window, extent, zone)
+            s.solve_set(d, round.level, false, round.window, extent, zone, false)
         };
         tally.cg += c.iterations;
         if round.exact {

@@ -93,8 +93,8 @@ pub(crate) struct Loaded {
 }
 
 /// What one round solves: the approach, exact or at the inexact `level`, the loaded set's
-/// size, the sub-grid `window` (`None`: the grid) and a window `extent` holding every
-/// non-zero pressure (`None`: anywhere).
+/// size, the sub-grid `window` (`None`: the grid), a window `extent` holding every non-zero
+/// pressure (`None`: anywhere) and whether the last round's `K p` is carried over.
 #[derive(Clone, Copy)]
 pub(crate) struct Round {
     pub(crate) d: f64,
@@ -103,6 +103,9 @@ pub(crate) struct Round {
     pub(crate) loaded: usize,
     pub(crate) window: Option<Window>,
     pub(crate) extent: Option<Window>,
+    /// An inexact round right after one that solved the same `window` and changed nothing: its
+    /// solve left `K p` of the unchanged pressure, so this one starts without a product.
+    pub(crate) carried: bool,
 }
 
 /// The block of a round's tests: the window `fresh` where its gap is up to date (an inexact
