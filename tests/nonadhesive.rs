@@ -148,9 +148,11 @@ fn no_contact_is_exact_and_converged() {
 fn iteration_cap_is_reported_not_hidden() {
     let grid = Grid::square(41, 0.05, Boundary::Free).unwrap();
     let surface = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
+    // One iteration per CG: the active set's rounds continue a quiet round's CG, so with two a
+    // chain of rounds reaches 1e-12 here (each within its cap) and the step converges.
     let opts = SolverOptions {
         tolerance: 1e-12,
-        max_iterations: 2,
+        max_iterations: 1,
     };
     for method in [ContactMethod::PolonskyKeer, ContactMethod::ActiveSet] {
         let op = operator_for(grid, 1.0).unwrap();
@@ -160,7 +162,7 @@ fn iteration_cap_is_reported_not_hidden() {
         assert!(st.residual > 1e-12);
         // Polonsky–Keer is one CG; the active set caps each of its rounds' CGs.
         if method == ContactMethod::PolonskyKeer {
-            assert_eq!(st.iterations, 2);
+            assert_eq!(st.iterations, 1);
         }
     }
 }
@@ -293,9 +295,19 @@ fn cropped_solves_along_a_load_sequence_match_the_plain_ones() {
     let mut cropped = solver(grid, &surface, 1.0);
     let mut plain = solver(grid, &surface, 1.0);
     plain.set_crop(false);
-    for d in [0.01, 0.01, 0.02, 0.015, 0.015, 0.0, 0.02] {
+    // d = 0 touches the apex element with a zero load (d − f = 0 there): whether that element
+    // counts as in contact, with a pressure of round-off, is a tie, so only the load is
+    // compared; d = −0.001 separates the bodies.
+    for d in [0.01, 0.01, 0.02, 0.015, 0.015, 0.0, -0.001, 0.02] {
         let (a, b) = (cropped.solve(d).unwrap(), plain.solve(d).unwrap());
         assert!(a.converged && b.converged);
+        if d == 0.0 {
+            assert!(
+                a.force.abs() <= 1e-20 && b.force.abs() <= 1e-20,
+                "{a:?} {b:?}"
+            );
+            continue;
+        }
         assert_eq!(a.n_contact, b.n_contact, "d = {d}");
         let scale = b.force.abs().max(1e-12);
         assert!(

@@ -421,8 +421,10 @@ impl AdhesiveSolver {
         // whole grid): after an inexact sub-grid round only its window can have changed, so
         // the next round's bookkeeping scans that instead of the grid.
         let mut extent: Option<Window> = None;
-        // The window of the last round's solve when that round changed nothing: the pressure,
-        // the set and `K p` (on that window) are as it left them.
+        // The window of the last round's solve when that round met its tolerance and changed
+        // nothing: the pressure, the set, `K p` and the CG's direction (on that window) are as
+        // it left them. (A solve stopped by the iteration cap is not continued: each round's
+        // CG keeps its own cap.)
         let mut quiet: Option<Option<Window>> = None;
         loop {
             if tally.rounds == self.options.max_active_set_iterations {
@@ -457,7 +459,7 @@ impl AdhesiveSolver {
                 loaded: loaded.count,
                 window,
                 extent,
-                carried: !schedule.exact && loaded.count > 0 && quiet == Some(window),
+                carried: loaded.count > 0 && quiet == Some(window),
             };
             let (fresh, margins) = rules.solve(self, round, &mut tally);
             stale = fresh.is_some();
@@ -468,7 +470,7 @@ impl AdhesiveSolver {
                 break;
             }
             let changed = rules.judge(self, fresh, &margins);
-            quiet = (!changed && loaded.count > 0).then_some(window);
+            quiet = (!changed && loaded.count > 0 && tally.solved).then_some(window);
             if schedule.done(changed) {
                 break;
             }
@@ -558,9 +560,9 @@ impl AdhesiveSolver {
     /// date inside the returned window.
     ///
     /// `window` is the sub-grid ([`Self::subgrid_around`] the loaded set), and `extent` a
-    /// window holding every non-zero pressure (`None`: anywhere). With `carried` (no `zone`)
-    /// the last solve was of the same set, pressure and window and its `K p` is still held:
-    /// the solve starts from it without a product.
+    /// window holding every non-zero pressure (`None`: anywhere). With `carried` the last
+    /// solve was of the same sets, pressure and window and its `K p`, direction and `r·z` are
+    /// still held: the solve continues its CG ([`crate::cg::pcg_from`]).
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn solve_set(
         &mut self,
@@ -572,7 +574,6 @@ impl AdhesiveSolver {
         zone: Option<ArrayView2<bool>>,
         carried: bool,
     ) -> (Convergence, Option<Window>) {
-        let carried = carried && zone.is_none();
         let cg = SolverOptions {
             tolerance,
             ..self.options.cg
@@ -679,6 +680,7 @@ impl AdhesiveSolver {
             worst: residual,
             converged,
             full,
+            ..
         } = *tally;
         let grid = self.base.grid();
         let n_bonded = self.bonded.iter().filter(|&&b| b).count();

@@ -32,6 +32,9 @@ impl Work {
 pub(crate) struct PcgWork {
     resid: Array2<f64>,
     zres: Array2<f64>,
+    /// `r·z` of the last iteration of the last solve on these vectors, while its search
+    /// direction (`Work::dir`) and state stand: a `carried` solve continues that iteration.
+    rz: Option<f64>,
 }
 
 impl PcgWork {
@@ -40,6 +43,7 @@ impl PcgWork {
         Self {
             resid: z.clone(),
             zres: z,
+            rz: None,
         }
     }
 }
@@ -158,9 +162,10 @@ pub(crate) struct System<'a> {
     pub(crate) d: f64,
 }
 
-/// [`pcg_holding`] of `system`; with `carried`, `work.disp` already holds `K p` of the given
-/// pressure (the last solve of the same system and pressure left it: a round that changed
-/// nothing), so the first residual needs no product.
+/// [`pcg_holding`] of `system`; with `carried`, the last solve on these vectors was of the same
+/// system and left the pressure as it is (a round that changed nothing), so `work.disp` holds
+/// its `K p` and the solve continues that one's iteration (direction and `r·z`): no first
+/// product, no restart, the iterates of one solve run to the tighter tolerance.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn pcg_from(
     op: &mut dyn ElasticOperator,
@@ -200,9 +205,12 @@ pub(crate) fn pcg_from(
         .as_ref()
         .map(|c| c.as_slice().expect("contiguous diagonal"));
     let mut it = 0;
-    // The true residual is recomputed from `K p` at every (re)start (but a `carried` first
-    // one); inside the loop `disp` is carried along (`disp += α K s`), so a converged solve
-    // needs no further product.
+    // The true residual is recomputed from `K p` at every (re)start (but a `carried` one);
+    // inside the loop `disp` is carried along (`disp += α K s`), so a converged solve needs
+    // no further product.
+    // A `carried` solve also continues the last one's iteration (its direction and `r·z`):
+    // the same iterates as one solve run to the tighter tolerance.
+    let mut continued = if carried { pw.rz.take() } else { None };
     if !carried {
         op.apply(pressure.view(), w.disp.view_mut());
     }
@@ -210,6 +218,10 @@ pub(crate) fn pcg_from(
         let rr = bonded_residual(f, c, diag, d, &pressure, &w.disp, &mut pw.resid);
         let residual = (rr / n_c as f64).sqrt() / scale;
         if rr <= target || it >= max_it {
+            if it == 0 {
+                // Nothing moved: what could be continued still can.
+                pw.rz = continued;
+            }
             return Convergence {
                 iterations: it,
                 residual,
@@ -218,13 +230,18 @@ pub(crate) fn pcg_from(
             };
         }
         let mut rz = precondition(op, pw, bonded, preconditioned);
-        w.dir.assign(&pw.zres);
+        match continued.take() {
+            Some(last) => next_direction(&pw.zres, rz / last, &mut w.dir),
+            None => w.dir.assign(&pw.zres),
+        }
+        pw.rz = None;
         while it < max_it {
             it += 1;
             op.apply(w.dir.view(), w.kdir.view_mut());
             let alpha = rz / curvature(c, diag, w);
             let rr_new = advance(alpha, c, diag, pressure.view_mut(), &mut pw.resid, w);
             if rr_new <= target {
+                pw.rz = Some(rz);
                 break;
             }
             let rz_new = precondition(op, pw, bonded, preconditioned);
@@ -468,7 +485,7 @@ fn precondition(
 
 /// One solve of the contact set on one grid (the whole grid or a sub-grid): the bonded-set CG,
 /// or with `held` (the Dugdale law's zone and per-element tension) the CG with the zone's
-/// tension held. With `carried` (no zone) `work.disp` already holds `K p` ([`pcg_from`]).
+/// tension held. With `carried` the solve continues the last one's ([`pcg_from`]).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn solve_grid(
     op: &mut dyn ElasticOperator,
@@ -515,12 +532,14 @@ pub(crate) fn solve_grid(
             pcg_work,
             cg,
             preconditioned,
+            carried,
         ),
     }
 }
 
 /// `K_CC p_C = (d − f − K p_Z)_C` on one grid with `p_Z = −σ0` on `zone` (σ0 per element:
-/// `tension`); leaves the whole pressure in `pressure` and `work.disp = K p`.
+/// `tension`); leaves the whole pressure in `pressure` and `work.disp = K p`. With `carried`
+/// the last solve was of the same sets and pressure, whose CG this one continues.
 #[allow(clippy::too_many_arguments)]
 fn solve_with_zone(
     op: &mut dyn ElasticOperator,
@@ -534,6 +553,7 @@ fn solve_with_zone(
     pcg_work: &mut PcgWork,
     cg: &SolverOptions,
     preconditioned: bool,
+    carried: bool,
 ) -> Convergence {
     Zip::from(&mut pressure)
         .and(&bonded)
@@ -547,18 +567,22 @@ fn solve_with_zone(
             }
         });
     if bonded.iter().any(|&b| b) {
-        pcg_holding(
-            op,
+        let system = System {
             heights,
             bonded,
-            Some(zone),
-            None,
+            held: Some(zone),
+            diagonal: None,
             d,
+        };
+        pcg_from(
+            op,
+            system,
             pressure.view_mut(),
             work,
             pcg_work,
             cg,
             preconditioned,
+            carried,
         )
     } else {
         op.apply(pressure.view(), work.disp.view_mut());

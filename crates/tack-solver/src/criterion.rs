@@ -177,6 +177,7 @@ impl SetRules for Criterion {
             predict: false,
         };
         let (d, extent) = (round.d, round.extent.as_ref());
+        tally.solved = true;
         if round.loaded == 0 {
             s.base.pressure.fill(0.0);
             s.base.work.disp.fill(0.0);
@@ -184,8 +185,17 @@ impl SetRules for Criterion {
         }
         if round.exact {
             let tolerance = s.options.cg.tolerance;
-            let (c, _) = s.solve_set(d, tolerance, true, round.window, extent, None, false);
+            let (c, _) = s.solve_set(
+                d,
+                tolerance,
+                true,
+                round.window,
+                extent,
+                None,
+                round.carried,
+            );
             tally.cg += c.iterations;
+            tally.solved = c.converged;
             tally.exact(&c);
             return (None, margins);
         }
@@ -196,6 +206,7 @@ impl SetRules for Criterion {
         let level = round.level;
         let (c, fresh) = s.solve_set(d, level, false, round.window, extent, None, round.carried);
         tally.cg += c.iterations;
+        tally.solved = c.converged;
         if sigma_c > 0.0 || s.patterned {
             let relative = level / LOOSE_REFERENCE_TOLERANCE;
             margins.attach_below = -LOOSE_ATTACH_MARGIN * level * c.scale;

@@ -117,11 +117,28 @@ impl SetRules for Dugdale {
         let zone = Some(self.state.zone.view());
         let (d, extent) = (round.d, round.extent.as_ref());
         let (c, fresh) = if round.exact {
-            s.solve_set(d, tolerance, true, round.window, extent, zone, false)
+            s.solve_set(
+                d,
+                tolerance,
+                true,
+                round.window,
+                extent,
+                zone,
+                round.carried,
+            )
         } else {
-            s.solve_set(d, round.level, false, round.window, extent, zone, false)
+            s.solve_set(
+                d,
+                round.level,
+                false,
+                round.window,
+                extent,
+                zone,
+                round.carried,
+            )
         };
         tally.cg += c.iterations;
+        tally.solved = c.converged;
         if round.exact {
             tally.exact(&c);
         }

@@ -94,7 +94,7 @@ pub(crate) struct Loaded {
 
 /// What one round solves: the approach, exact or at the inexact `level`, the loaded set's
 /// size, the sub-grid `window` (`None`: the grid), a window `extent` holding every non-zero
-/// pressure (`None`: anywhere) and whether the last round's `K p` is carried over.
+/// pressure (`None`: anywhere) and whether the last round's CG is continued.
 #[derive(Clone, Copy)]
 pub(crate) struct Round {
     pub(crate) d: f64,
@@ -103,8 +103,8 @@ pub(crate) struct Round {
     pub(crate) loaded: usize,
     pub(crate) window: Option<Window>,
     pub(crate) extent: Option<Window>,
-    /// An inexact round right after one that solved the same `window` and changed nothing: its
-    /// solve left `K p` of the unchanged pressure, so this one starts without a product.
+    /// A round right after one that solved the same `window` and changed nothing: its solve
+    /// left `K p` of the unchanged pressure and its iteration, which this one continues.
     pub(crate) carried: bool,
 }
 
@@ -161,6 +161,8 @@ pub(crate) struct Tally {
     pub(crate) worst: f64,
     pub(crate) converged: bool,
     pub(crate) full: bool,
+    /// Whether the last round's solve met its tolerance (a capped one is not continued).
+    pub(crate) solved: bool,
 }
 
 impl Tally {
@@ -172,6 +174,7 @@ impl Tally {
             worst: 0.0,
             converged: true,
             full: false,
+            solved: true,
         }
     }
 

@@ -486,8 +486,15 @@ mod tests {
         let reference = crate::run(&scene, &RunOptions::default(), &mut ()).unwrap();
         let (a, b) = (&outcome.result.curve.force, &reference.result.curve.force);
         assert_eq!(a.len(), b.len());
+        // The two differ in the heights' round-off, so their CG solves stop at other iterates
+        // within the tolerance (1e-10 of the displacement scale): forces agree to 1.1e-9 of the
+        // path's largest (measured), checked at 1e-8; another contact set would differ by 1e-3.
+        let largest = b.iter().fold(0.0f64, |m, f| m.max(f.abs()));
         for (x, y) in a.iter().zip(b) {
-            assert!((x - y).abs() <= 1e-9 * y.abs().max(1e-3), "{x} vs {y}");
+            assert!(
+                (x - y).abs() <= 1e-8 * largest,
+                "{x} vs {y} (largest {largest})"
+            );
         }
         let (s, r) = (&outcome.result.summary, &reference.result.summary);
         assert!((s.f_jkr / r.f_jkr - 1.0).abs() < 1e-12);
