@@ -108,52 +108,22 @@ pub(crate) fn pcg(
     options: &SolverOptions,
     preconditioned: bool,
 ) -> Convergence {
-    pcg_holding(
-        op,
-        heights,
-        bonded,
-        None,
-        None,
-        d,
-        pressure,
-        w,
-        pw,
-        options,
-        preconditioned,
-    )
-}
-
-/// [`pcg`] with the pressure of the `held` elements off the bonded set kept as it is (the
-/// Dugdale law's cohesive zone): the solve is then `K_CC p_C = (d − f − K_CH p_H)_C` and
-/// `work.disp = K p` includes the held pressure. With `diagonal` (`c ≥ 0` per element) the
-/// matrix on the set is `K_CC + diag(c)` (still symmetric positive definite): a smooth law's
-/// landing solves its stiff elements' linearised law `u_i + c_i p_i = d − f_i` with the set.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn pcg_holding(
-    op: &mut dyn ElasticOperator,
-    heights: ArrayView2<f64>,
-    bonded: ArrayView2<bool>,
-    held: Option<ArrayView2<bool>>,
-    diagonal: Option<ArrayView2<f64>>,
-    d: f64,
-    pressure: ArrayViewMut2<f64>,
-    w: &mut Work,
-    pw: &mut PcgWork,
-    options: &SolverOptions,
-    preconditioned: bool,
-) -> Convergence {
     let system = System {
         heights,
         bonded,
-        held,
-        diagonal,
+        held: None,
+        diagonal: None,
         d,
     };
     pcg_from(op, system, pressure, w, pw, options, preconditioned, false)
 }
 
-/// The linear system of one CG solve: the heights, the bonded set, the held elements and the
-/// added diagonal ([`pcg_holding`]) and the approach.
+/// The linear system of one CG solve: [`pcg`]'s `K_CC p_C = (d − f)_C`, with the pressure of
+/// the `held` elements off the bonded set kept as it is (the Dugdale law's cohesive zone: the
+/// solve is then `K_CC p_C = (d − f − K_CH p_H)_C` and `work.disp = K p` includes the held
+/// pressure) and with a `diagonal` (`c ≥ 0` per element) the matrix on the set
+/// `K_CC + diag(c)` (still symmetric positive definite: a smooth law's landing solves its
+/// stiff elements' linearised law `u_i + c_i p_i = d − f_i` with the set).
 pub(crate) struct System<'a> {
     pub(crate) heights: ArrayView2<'a, f64>,
     pub(crate) bonded: ArrayView2<'a, bool>,
@@ -162,10 +132,11 @@ pub(crate) struct System<'a> {
     pub(crate) d: f64,
 }
 
-/// [`pcg_holding`] of `system`; with `carried`, the last solve on these vectors was of the same
-/// system and left the pressure as it is (a round that changed nothing), so `work.disp` holds
-/// its `K p` and the solve continues that one's iteration (direction and `r·z`): no first
-/// product, no restart, the iterates of one solve run to the tighter tolerance.
+/// [`pcg`] of `system` (held elements, a diagonal). With `carried`, the last solve on these
+/// vectors was of the same system and left the pressure as it is (a round that changed
+/// nothing), so `work.disp` holds its `K p` and the solve continues that one's iteration
+/// (direction and `r·z`): no first product, no restart, the iterates of one solve run to the
+/// tighter tolerance.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn pcg_from(
     op: &mut dyn ElasticOperator,

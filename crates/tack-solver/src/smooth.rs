@@ -731,18 +731,22 @@ fn relax(
                 tolerance: level,
                 ..options
             };
-            let c = crate::cg::pcg_holding(
-                &mut *op,
-                f,
-                solved,
-                Some(held.view()),
-                c,
+            let system = crate::cg::System {
+                heights: f,
+                bonded: solved,
+                held: Some(held.view()),
+                diagonal: c,
                 d,
+            };
+            let c = crate::cg::pcg_from(
+                &mut *op,
+                system,
                 pressure.view_mut(),
                 work,
                 pcg,
                 &opts,
                 pre,
+                false,
             );
             tally.cg += c.iterations;
         } else {

@@ -119,56 +119,34 @@ fn a_carried_solve_continues_the_last_one() {
         diagonal: None,
         d,
     };
-    // (iterations, products, pressure) of a loose solve from zero then a tight one, carried
-    // or fresh; `None`: the tight solve straight from zero.
-    let mut run = |carried: Option<bool>| {
+    // (iterations, products) of a sequence of solves from zero, each at its tolerance and
+    // carried or not.
+    let mut run = |plan: &[(&SolverOptions, bool)]| {
         let mut p = Array2::zeros((N, N));
         let (mut w, mut pw) = (Work::new((N, N)), PcgWork::new((N, N)));
         let before = op.1;
         let mut iterations = 0;
-        if let Some(carried) = carried {
+        for &(options, carried) in plan {
             let c = pcg_from(
                 &mut op,
                 system(),
                 p.view_mut(),
                 &mut w,
                 &mut pw,
-                &loose,
-                true,
-                false,
-            );
-            assert!(c.converged && c.iterations >= 1, "{c:?}");
-            let tight_solve = pcg_from(
-                &mut op,
-                system(),
-                p.view_mut(),
-                &mut w,
-                &mut pw,
-                &tight,
+                options,
                 true,
                 carried,
             );
-            assert!(tight_solve.converged, "{carried}: {tight_solve:?}");
-            iterations += c.iterations + tight_solve.iterations;
-        } else {
-            let c = pcg_from(
-                &mut op,
-                system(),
-                p.view_mut(),
-                &mut w,
-                &mut pw,
-                &tight,
-                true,
-                false,
-            );
-            assert!(c.converged, "{c:?}");
+            assert!(c.converged && c.iterations >= 1, "{plan:?}: {c:?}");
             iterations += c.iterations;
         }
         let err = (&p - &exact).iter().fold(0.0f64, |m, e| m.max(e.abs()));
-        assert!(err <= 1e-9 * p_max, "{carried:?}: error {err} of {p_max}");
+        assert!(err <= 1e-9 * p_max, "{plan:?}: error {err} of {p_max}");
         (iterations, op.1 - before)
     };
-    let (straight, carried, fresh) = (run(None), run(Some(true)), run(Some(false)));
+    let straight = run(&[(&tight, false)]);
+    let carried = run(&[(&loose, false), (&tight, true)]);
+    let fresh = run(&[(&loose, false), (&tight, false)]);
     assert!(
         carried.0.abs_diff(straight.0) <= 1 && carried.1.abs_diff(straight.1) <= 1,
         "carried {carried:?} against straight {straight:?}"
@@ -278,7 +256,7 @@ fn reports_non_convergence_at_the_iteration_cap() {
 }
 
 /// With a diagonal (the smooth laws' stiff elements: `c` from 0.1 to 0.9 self-compliances on
-/// the disc's outer ring, 0 inside), `pcg_holding` solves `(K_CC + diag(c)) p_C = (d − f)_C`:
+/// the disc's outer ring, 0 inside), `pcg_from` solves `(K_CC + diag(c)) p_C = (d − f)_C`:
 /// the dense solution to 1e-9 of the largest pressure, with and without preconditioning.
 #[test]
 fn solves_the_set_with_a_diagonal() {
@@ -309,18 +287,22 @@ fn solves_the_set_with_a_diagonal() {
     for preconditioned in [true, false] {
         let mut p = Array2::from_elem((N, N), 1.0);
         let (mut w, mut pw) = (Work::new((N, N)), PcgWork::new((N, N)));
-        let conv = pcg_holding(
-            &mut op,
-            heights.view(),
-            bonded.view(),
-            None,
-            Some(diag.view()),
+        let system = System {
+            heights: heights.view(),
+            bonded: bonded.view(),
+            held: None,
+            diagonal: Some(diag.view()),
             d,
+        };
+        let conv = pcg_from(
+            &mut op,
+            system,
             p.view_mut(),
             &mut w,
             &mut pw,
             &options,
             preconditioned,
+            false,
         );
         assert!(conv.converged, "{preconditioned}: {conv:?}");
         let err = (&p - &exact).iter().fold(0.0f64, |m, e| m.max(e.abs()));
