@@ -279,9 +279,9 @@ impl crate::AdhesiveSolver {
                 reason: concat!(
                     "the zero-range criterion has no rate-consistent form: a viscoelastic solid (",
                     field_name!(material.prony),
-                    ") with adhesion needs a finite-range law, ",
+                    ") with adhesion needs a finite-range law: any ",
                     field_name!(adhesion.model),
-                    " = \"dugdale\", \"exponential\" or \"lennard_jones\""
+                    " but \"jkr_limit\""
                 ),
             });
         }

@@ -612,9 +612,9 @@ fn viscoelastic(
     if matches!(law, AdhesionLaw::JkrLimit(_)) && f.material.gamma > 0.0 {
         return refuse(format!(
             "{prony_field} with adhesion needs a finite-range law: the zero-range criterion has \
-             no rate-consistent form; set {} = \"dugdale\", \"exponential\" or \
-             \"lennard_jones\"",
-            fields::ADHESION_MODEL
+             no rate-consistent form; set {} = {}",
+            fields::ADHESION_MODEL,
+            finite_range_models()
         ));
     }
     let Some(speed) = p.speed else {
@@ -798,6 +798,19 @@ fn finite_range_gamma(who: &str, gamma: f64) -> Result<(), SceneError> {
         )));
     }
     Ok(())
+}
+
+/// The models of a finite range, quoted and joined: `"dugdale", "exponential" or
+/// "lennard_jones"`.
+fn finite_range_models() -> String {
+    let quoted: Vec<String> = AdhesionLaw::models()
+        .filter(|m| AdhesionLaw::from_model(m, 1.0).is_some_and(|l| l.range(1.0).is_some()))
+        .map(|m| format!("{m:?}"))
+        .collect();
+    match quoted.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
+        _ => quoted.join(""),
+    }
 }
 
 /// The models whose parameter is `field`, quoted and joined: `"dugdale"`, or

@@ -10,10 +10,12 @@
 //! the Dugdale cohesive zone (`dugdale.rs`, with the [`Cohesive`] state kept here) or a smooth
 //! curve (`smooth.rs`). A smooth law of the caller's own is one type implementing [`Curve`]
 //! (every [`Law`] fact follows from it), given to [`AdhesionLaw::custom`] (checked in
-//! `custom.rs`). A new built-in smooth law is that type, one variant of [`AdhesionLaw`] with
-//! its `From` and its line in the registry (`MODELS`), its name among the scene field's choices
-//! (`tack-fields`; a test checks that the two agree), its Python class, its docs and its tests;
-//! the solver's loops and the scene's reading need no edit.
+//! `custom.rs`). A new built-in law is that type in its own module and one line of
+//! `built_in_laws!` (its variant, `From`, and registry entry follow), its name among the scene
+//! field's choices (`tack-fields`, which the docs are made from; a test checks that the two
+//! agree), its Python class, its docs and its tests; the solver's loops, the scene's reading
+//! and the messages that list laws need no edit (a smooth built-in may also join `on_curve!`,
+//! which inlines its curve in the hot loops).
 
 mod custom;
 mod dugdale;
@@ -312,49 +314,71 @@ fn largest_height(surface: &Surface) -> f64 {
         .fold(0.0f64, |m, &f| m.max(f.abs()))
 }
 
-/// The adhesion law of an [`AdhesiveSolver`](crate::AdhesiveSolver): one of the law types.
-/// It dereferences to its law's [`Law`] interface (`law.name()`, `law.reach(γ)`, …); build
-/// one from a law type with `From` (`AdhesionLaw::from(Exponential { range })`), by its
-/// scene name with [`AdhesionLaw::from_model`], or from a curve of your own with
-/// [`AdhesionLaw::custom`]. Clones are cheap (a custom curve is shared).
-#[derive(Debug, Clone, PartialEq)]
-pub enum AdhesionLaw {
-    /// The zero-range (JKR) limit, the paper's model.
-    JkrLimit(JkrLimit),
-    /// A Dugdale cohesive zone.
-    Dugdale(Dugdale),
-    /// The exponential law `p = −(γ/ρ) e^(−g/ρ)`.
-    Exponential(Exponential),
-    /// The Lennard-Jones 9–3 law.
-    LennardJones(LennardJones),
-    /// A smooth law of the caller's own ([`AdhesionLaw::custom`]).
-    Custom(CustomCurve),
+/// Declares the built-in laws, one line each (`Variant(Type) = module, |parameter| value;`):
+/// the variants of [`AdhesionLaw`] beside `Custom`, their `From`, [`AdhesionLaw::law`] and the
+/// registry `MODELS` of scene names (`module::NAME`) and how each law is made from its
+/// parameter. A new built-in law is its type (its own module) and its line here.
+macro_rules! built_in_laws {
+    (
+        $(#[$meta:meta])*
+        pub enum $name:ident {
+            $( $(#[$doc:meta])* $variant:ident($ty:ident) = $module:ident, |$v:ident| $make:expr; )*
+        }
+    ) => {
+        $(#[$meta])*
+        pub enum $name {
+            $( $(#[$doc])* $variant($ty), )*
+            /// A smooth law of the caller's own ([`AdhesionLaw::custom`]).
+            Custom(CustomCurve),
+        }
+
+        $(
+            impl From<$ty> for $name {
+                fn from(l: $ty) -> Self {
+                    $name::$variant(l)
+                }
+            }
+        )*
+
+        /// Each built-in law: its scene name and how it is made from its parameter (the order
+        /// of the docs).
+        const MODELS: &[(&str, Make)] = &[ $( ($module::NAME, |$v| $make.into()), )* ];
+
+        impl $name {
+            /// The law's interface.
+            pub fn law(&self) -> &(dyn Law + 'static) {
+                match self {
+                    $( $name::$variant(l) => l, )*
+                    $name::Custom(c) => c.0.as_ref(),
+                }
+            }
+        }
+    };
 }
 
 /// How a law is made from its parameter.
 type Make = fn(f64) -> AdhesionLaw;
 
-/// Each law of [`AdhesionLaw`]: its scene name and how it is made from its parameter (the
-/// order of the docs).
-const MODELS: [(&str, Make); 4] = [
-    (jkr_limit::NAME, |kappa| JkrLimit { kappa }.into()),
-    (dugdale::NAME, |sigma0| Dugdale { sigma0 }.into()),
-    (exponential::NAME, |range| Exponential { range }.into()),
-    (lennard_jones::NAME, |range| LennardJones { range }.into()),
-];
+built_in_laws! {
+    /// The adhesion law of an [`AdhesiveSolver`](crate::AdhesiveSolver): one of the law types.
+    /// It dereferences to its law's [`Law`] interface (`law.name()`, `law.reach(γ)`, …); build
+    /// one from a law type with `From` (`AdhesionLaw::from(Exponential { range })`), by its
+    /// scene name with [`AdhesionLaw::from_model`], or from a curve of your own with
+    /// [`AdhesionLaw::custom`]. Clones are cheap (a custom curve is shared).
+    #[derive(Debug, Clone, PartialEq)]
+    pub enum AdhesionLaw {
+        /// The zero-range (JKR) limit, the paper's model.
+        JkrLimit(JkrLimit) = jkr_limit, |kappa| JkrLimit { kappa };
+        /// A Dugdale cohesive zone.
+        Dugdale(Dugdale) = dugdale, |sigma0| Dugdale { sigma0 };
+        /// The exponential law `p = −(γ/ρ) e^(−g/ρ)`.
+        Exponential(Exponential) = exponential, |range| Exponential { range };
+        /// The Lennard-Jones 9–3 law.
+        LennardJones(LennardJones) = lennard_jones, |range| LennardJones { range };
+    }
+}
 
 impl AdhesionLaw {
-    /// The law's interface.
-    pub fn law(&self) -> &(dyn Law + 'static) {
-        match self {
-            AdhesionLaw::JkrLimit(l) => l,
-            AdhesionLaw::Dugdale(l) => l,
-            AdhesionLaw::Exponential(l) => l,
-            AdhesionLaw::LennardJones(l) => l,
-            AdhesionLaw::Custom(c) => c.0.as_ref(),
-        }
-    }
-
     /// A smooth law of the caller's own: any type implementing [`Curve`], run by the same
     /// solver as the built-in smooth laws (through a dynamic call, where the built-ins are
     /// inlined). The curve is checked once, at γ = 1 on a few thousand graded gaps up to its
@@ -409,30 +433,6 @@ impl std::ops::Deref for AdhesionLaw {
 
     fn deref(&self) -> &(dyn Law + 'static) {
         self.law()
-    }
-}
-
-impl From<JkrLimit> for AdhesionLaw {
-    fn from(l: JkrLimit) -> Self {
-        AdhesionLaw::JkrLimit(l)
-    }
-}
-
-impl From<Dugdale> for AdhesionLaw {
-    fn from(l: Dugdale) -> Self {
-        AdhesionLaw::Dugdale(l)
-    }
-}
-
-impl From<Exponential> for AdhesionLaw {
-    fn from(l: Exponential) -> Self {
-        AdhesionLaw::Exponential(l)
-    }
-}
-
-impl From<LennardJones> for AdhesionLaw {
-    fn from(l: LennardJones) -> Self {
-        AdhesionLaw::LennardJones(l)
     }
 }
 

@@ -726,7 +726,12 @@ mod adhesion_tests {
         }
         // The criterion with adhesion, no speed, no path in time, refined retraction, a film.
         let criterion = [path[0], path[1], path[2], "material.prony=[[9.0, 2.0]]"];
-        assert!(err(&criterion).contains("needs a finite-range law"));
+        let message = err(&criterion);
+        assert!(
+            message.contains("needs a finite-range law")
+                && message.ends_with("\"dugdale\", \"exponential\" or \"lennard_jones\""),
+            "{message}"
+        );
         let no_speed = [
             exp[0],
             exp[1],
