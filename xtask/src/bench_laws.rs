@@ -132,6 +132,13 @@ fn run(law: AdhesionLaw, n: usize) -> Result<(f64, usize, usize, f64, usize)> {
     ))
 }
 
+/// The table at 64² and 128² and the rough sphere's, into `rows`: `cargo xtask bench`'s last
+/// table, so `results/bench.json` carries every law's speed against error.
+pub fn tables(rows: &mut Vec<Row>) -> Result<()> {
+    table(false, rows)?;
+    rough_table(rows)
+}
+
 /// `cargo xtask bench-laws [--full]`: the table (64² and 128²; `--full` adds 256²) and the
 /// rough sphere's, printed and written to `results/bench_laws.json`.
 pub fn run_table(args: &[String]) -> Result<()> {

@@ -47,7 +47,7 @@ commands:
                           on the peers' case (R = 1, E* = 1, gamma = 1e-3, L = 1, mu = 3) at
                           64² and 128² (--full: 256²): time, FFT pairs, products and error
                           against the same law's converged pull-off, beside the peers' figures;
-                          writes results/bench_laws.json
+                          writes results/bench_laws.json (also table 11 of bench)
   bench-visco [N...]       viscoelastic pull-off (the example scene viscoelastic_sphere, no hold)
                           against the elastic one of the same grid and steps on N² (default
                           48 96 192): both times, their ratio, FFT pairs
@@ -106,7 +106,10 @@ fn main() -> Result<()> {
         Some("bench") => pool()?.install(|| {
             let visco: bench::Table = |rows| bench_visco::table(&[], rows);
             let title = "10. a viscoelastic pull-off against the elastic one (bench-visco's table)";
-            bench::all(&args[1..], &[(title, visco)])
+            let laws: bench::Table = bench_laws::tables;
+            let laws_title = "11. every adhesion law on the peers' case, speed against error \
+                              (bench-laws' tables, 64² and 128²)";
+            bench::all(&args[1..], &[(title, visco), (laws_title, laws)])
         }),
         Some("convergence") => pool()?.install(|| convergence::run(&args[1..])),
         Some("study") => pool()?.install(|| study::run(&args[1..])),
