@@ -803,24 +803,26 @@ fn finite_range_gamma(who: &str, gamma: f64) -> Result<(), SceneError> {
 /// The models of a finite range, quoted and joined: `"dugdale", "exponential" or
 /// "lennard_jones"`.
 fn finite_range_models() -> String {
+    models_where(|l| l.range(1.0).is_some())
+}
+
+/// The models whose parameter is `field`, quoted and joined: `"dugdale"`, or
+/// `"exponential" or "lennard_jones"`.
+fn readers(field: &str) -> String {
+    models_where(|l| l.parameter().0 == field)
+}
+
+/// The registry's models whose law (at parameter 1) passes `keep`, quoted and joined by `, `
+/// and a last ` or `.
+fn models_where(keep: impl Fn(&AdhesionLaw) -> bool) -> String {
     let quoted: Vec<String> = AdhesionLaw::models()
-        .filter(|m| AdhesionLaw::from_model(m, 1.0).is_some_and(|l| l.range(1.0).is_some()))
+        .filter(|m| AdhesionLaw::from_model(m, 1.0).is_some_and(|l| keep(&l)))
         .map(|m| format!("{m:?}"))
         .collect();
     match quoted.split_last() {
         Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
         _ => quoted.join(""),
     }
-}
-
-/// The models whose parameter is `field`, quoted and joined: `"dugdale"`, or
-/// `"exponential" or "lennard_jones"`.
-fn readers(field: &str) -> String {
-    let quoted: Vec<String> = AdhesionLaw::models()
-        .filter(|m| AdhesionLaw::from_model(m, 1.0).is_some_and(|l| l.parameter().0 == field))
-        .map(|m| format!("{m:?}"))
-        .collect();
-    quoted.join(" or ")
 }
 
 /// A rigid body given as heights in memory, added to a scene's body (`crate::heights::problem`,
