@@ -339,3 +339,50 @@ fn inputs_are_checked_once_in_order() {
     ));
     assert!(new(0.0, KAPPA, ok).is_none());
 }
+
+#[test]
+fn the_nested_start_solves_its_coarse_grids_to_the_first_rounds_tolerance() {
+    // A γ = 0 cold start on a 128² periodic rough surface (H = 0.8, about a third in contact):
+    // the coarse grids only seed the fine rounds, so they are solved to `round_tolerance`
+    // (fewer coarse iterations than solving them exactly), and the fine rounds still end on
+    // the same state as a start without them.
+    let grid = Grid::square(128, 1.0 / 128.0, Boundary::Periodic).unwrap();
+    let rough = tack_geometry::rough_surface(
+        grid,
+        &tack_geometry::RoughSpec::paper_defaults(grid, 1e-3, 0.8, 3),
+    )
+    .unwrap();
+    let surface = Surface::new(grid, rough.heights().clone()).unwrap();
+    let d = surface.min() + 0.6 * (surface.heights().mean().unwrap() - surface.min());
+    let solver = |options: AdhesiveOptions| {
+        let op = tack_kernels::operator_for(grid, 1.0).unwrap();
+        AdhesiveSolver::new(op, &surface, 0.0, 1.0, options).unwrap()
+    };
+    // The same start with the coarse grids solved to the CG tolerance (what it was before).
+    let mut s = solver(AdhesiveOptions::default());
+    let (coarse_surface, coarse_op) = s.base.coarsened().unwrap();
+    let exact_coarse = AdhesiveSolver::new(coarse_op, &coarse_surface, 0.0, 1.0, s.options)
+        .unwrap()
+        .step(d)
+        .unwrap();
+    let loose = s.start_from_coarse(d).unwrap();
+    let tight = exact_coarse.cg_iterations.div_ceil(4);
+    assert!(
+        loose > 0 && loose < tight,
+        "coarse iterations {loose} against {tight}"
+    );
+    let mut nested = solver(AdhesiveOptions::default());
+    let mut cold = solver(AdhesiveOptions {
+        nested_start: false,
+        ..AdhesiveOptions::default()
+    });
+    let (a, b) = (nested.step(d).unwrap(), cold.step(d).unwrap());
+    assert!(a.converged && b.converged);
+    assert_eq!(nested.bonded(), cold.bonded());
+    assert!(
+        (a.force - b.force).abs() <= 1e-9 * b.force.abs(),
+        "{} {}",
+        a.force,
+        b.force
+    );
+}
