@@ -343,10 +343,9 @@ fn inputs_are_checked_once_in_order() {
 #[test]
 fn the_nested_start_solves_its_coarse_grids_to_the_first_rounds_tolerance() {
     // A γ = 0 cold start on a 128² periodic rough surface (H = 0.8), pressed 60% of the way
-    // from its lowest point to its mean height: the coarse grids only seed the fine rounds,
-    // so they are solved to `round_tolerance`
-    // (fewer coarse iterations than solving them exactly), and the fine rounds still end on
-    // the same state as a start without them.
+    // from its lowest point to its mean height: the coarse grids only seed the fine rounds, so
+    // they are solved to `round_tolerance` (fewer coarse iterations than solving them exactly),
+    // and the fine rounds still end on the same state as a start without them.
     let grid = Grid::square(128, 1.0 / 128.0, Boundary::Periodic).unwrap();
     let rough = tack_geometry::rough_surface(
         grid,
