@@ -349,10 +349,21 @@ fn reference_lines(outcome: &RunOutcome) -> Vec<String> {
     }
     if let Some(mu) = get("tabor_mu") {
         lines.push(format!(
-            "            Tabor mu = {:.4} (JKR 1.5 pi gamma R as mu grows, DMT 2 pi gamma R as it \
+            "            Tabor mu = {} (JKR 1.5 pi gamma R as mu grows, DMT 2 pi gamma R as it \
              vanishes); process zone {} elements",
-            mu,
-            get("process_zone_elements").map_or_else(|| "?".to_owned(), |z| format!("{z:.2}"))
+            if mu < 1e4 {
+                format!("{mu:.4}")
+            } else {
+                format!("{mu:.4e}")
+            },
+            get("process_zone_elements").map_or_else(
+                || "?".to_owned(),
+                |z| if z < 0.01 {
+                    format!("{z:.1e}")
+                } else {
+                    format!("{z:.2}")
+                }
+            )
         ));
     }
     if let Some(fm) = get("f_mdr") {

@@ -16,6 +16,19 @@ pub enum SolverError {
         /// The allowed range.
         allowed: &'static str,
     },
+    /// A parameter below the least value this problem can honour (the least depends on the
+    /// problem: its mesh, modulus and work of adhesion).
+    #[error("{field} = {} is invalid: must be at least {} here: {why}", num(*value), tack_fields::rounded(*least))]
+    BelowLeast {
+        /// The offending field.
+        field: &'static str,
+        /// The value given.
+        value: f64,
+        /// The least value this problem accepts.
+        least: f64,
+        /// Why, and what to give instead.
+        why: String,
+    },
     /// An [`Observer`](crate::Observer) asked the path to stop.
     #[error("cancelled after {steps} steps")]
     Cancelled {

@@ -53,6 +53,32 @@ use crate::{AdhesiveSolver, SolverOptions, StepRecord};
 /// pressure error of 1e-7 of the peak; the last Newton iteration would cost as much as the two
 /// before it to go to 1e-9, for force changes below 1e-7).
 const NEWTON_TOLERANCE: f64 = 1e-7;
+/// The contact's gaps are solved to at most `NEWTON_TOLERANCE·RANGE_GAPS` of the law's length
+/// ρ: the residual's scale, the peak tension, becomes `min(peak, RANGE_GAPS·ρ/k)`. The gap
+/// tolerance `NEWTON_TOLERANCE·k·peak` is already below 1e-7·ρ/(1.05·elements per process
+/// zone), so this changes nothing down to 0.1 elements per zone; far below that `k·peak ≫ ρ`, and
+/// a loaded sphere at ρ = 1e-12 on 64² (2e-20 elements per zone) had passed as converged with
+/// no pressure at all (a residual of 1e-7 of its peak tension 1e9 is 100).
+pub(crate) const RANGE_GAPS: f64 = 10.0;
+/// The least residual tolerance, as a fraction of the peak tension, that round-off lets a
+/// solve reach (1000 machine epsilons): a law whose [`RANGE_GAPS`] scale asks for less is
+/// refused ([`tolerance_fraction`]).
+const TOLERANCE_FLOOR: f64 = 1e3 * f64::EPSILON;
+
+/// The residual tolerance of a smooth law as a fraction of its peak tension `peak`, for its
+/// length `range` on elements of self-compliance `k` ([`RANGE_GAPS`]); `Err(least range)`
+/// when it falls below [`TOLERANCE_FLOOR`] (the least range scales the given one by the
+/// square root of the shortfall: the peak of a law goes as γ/ρ).
+pub(crate) fn tolerance_fraction(range: f64, k: f64, peak: f64) -> Result<f64, f64> {
+    let x = RANGE_GAPS * range / (k * peak);
+    let fraction = NEWTON_TOLERANCE * x.min(1.0);
+    if fraction >= TOLERANCE_FLOOR {
+        Ok(fraction)
+    } else {
+        Err(range * (TOLERANCE_FLOOR / fraction).sqrt())
+    }
+}
+
 /// Newton runs from states whose residual is below this fraction of the peak tension; from
 /// farther (a predictor across a hop of the front) the step lands first. Measured on the peers'
 /// case at 128² (exponential law): 0.01–0.1 alike, 0.3 takes 1.2× the time and 1 (Newton first
@@ -140,6 +166,8 @@ pub(crate) struct SmoothState {
     pub(crate) zone: Array2<bool>,
     /// Whether the last step had to land on a new branch (the secant predictor restarts).
     pub(crate) landed: bool,
+    /// Newton's residual tolerance as a fraction of the peak tension ([`tolerance_fraction`]).
+    pub(crate) tolerance: f64,
     /// Each element's share `γ_ij/γ` of the law on a γ map (`None`: 1 everywhere).
     pub(crate) weights: Option<std::sync::Arc<[f64]>>,
     v: Vec<f64>,
@@ -159,12 +187,15 @@ pub(crate) struct SmoothState {
 }
 
 impl SmoothState {
-    pub(crate) fn new(traction: Traction, shape: (usize, usize)) -> Self {
+    /// The state of `traction` on a grid of `shape`, solved to `tolerance` of the peak
+    /// tension ([`tolerance_fraction`]).
+    pub(crate) fn new(traction: Traction, shape: (usize, usize), tolerance: f64) -> Self {
         let n = shape.0 * shape.1;
         Self {
             traction,
             zone: Array2::from_elem(shape, false),
             landed: false,
+            tolerance,
             weights: None,
             v: vec![0.0; n],
             c: vec![0.0; n],
@@ -204,6 +235,7 @@ impl AdhesiveSolver {
         self.predict_smooth(d);
         let k = self.base.op.self_compliance();
         let peak = self.sigma_c;
+        let tolerance = self.smooth.as_ref().expect("a smooth law").tolerance;
         let mut landings = 0;
         let mut landed = false;
         let mut merit = self.smooth_refresh(d, k);
@@ -214,7 +246,7 @@ impl AdhesiveSolver {
             NEWTON_REACH
         };
         loop {
-            match self.newton(d, k, (peak, reach), &mut merit, &mut tally) {
+            match self.newton(d, k, (peak, reach, tolerance), &mut merit, &mut tally) {
                 Ok(()) => break,
                 Err(()) if landings < LANDINGS => {
                     landings += 1;
@@ -224,10 +256,10 @@ impl AdhesiveSolver {
                     // After [`LANDINGS`] − 1 failures (an element that keeps switching between
                     // wall and law) the relaxation goes on to Newton's tolerance itself.
                     let last = landings == LANDINGS;
-                    let target = if last { NEWTON_TOLERANCE } else { LANDED };
+                    let target = if last { tolerance } else { LANDED };
                     let done = self.relax_smooth(d, k, peak, target, last, &mut tally);
                     merit = self.smooth_refresh(d, k);
-                    if last && done && merit.worst <= NEWTON_TOLERANCE * peak {
+                    if last && done && merit.worst <= tolerance * peak {
                         tally.worst = tally.worst.max(merit.worst / peak);
                         break;
                     }
@@ -244,20 +276,21 @@ impl AdhesiveSolver {
         self.record(d, &tally)
     }
 
-    /// Newton iterations from the current state until the residual meets
-    /// [`NEWTON_TOLERANCE`] (`Ok`), or the line search or the cap fails or the residual is beyond
+    /// Newton iterations from the current state until the residual meets `tolerance` of the
+    /// peak tension ([`tolerance_fraction`]: [`NEWTON_TOLERANCE`] unless the mesh is far coarser
+    /// than the law) (`Ok`), or the line search or the cap fails or the residual is beyond
     /// `reach` of the peak tension (`Err`; [`NEWTON_REACH`], or
     /// [`NEWTON_REACH_AFTER_LANDING`] on the step after a landing).
     fn newton(
         &mut self,
         d: f64,
         k: f64,
-        (peak, reach): (f64, f64),
+        (peak, reach, tolerance): (f64, f64, f64),
         merit: &mut Merit,
         tally: &mut Tally,
     ) -> Result<(), ()> {
         for _ in 0..NEWTON_CAP {
-            if merit.worst <= NEWTON_TOLERANCE * peak {
+            if merit.worst <= tolerance * peak {
                 tally.worst = tally.worst.max(merit.worst / peak);
                 return Ok(());
             }
@@ -290,7 +323,7 @@ impl AdhesiveSolver {
                 return Err(());
             }
         }
-        if merit.worst <= NEWTON_TOLERANCE * peak {
+        if merit.worst <= tolerance * peak {
             return Ok(());
         }
         Err(())

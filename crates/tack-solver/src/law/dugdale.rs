@@ -80,14 +80,16 @@ impl Law for Dugdale {
     fn mesh_warning(&self, e_star: f64, gamma: f64, dx: f64) -> Option<String> {
         let zone = self.zone_length(e_star, gamma)?;
         let shown = super::under_resolved(zone / dx, self.min_zone_elements())?;
+        let strength = format!("σ0 = {}", fields::num(self.sigma0));
         Some(format!(
             "under-resolved cohesive zone: its length πE*γ/(4σ0²) = {} spans {shown} elements \
              (at least {} needed); the Dugdale law then acts element by element and the forces \
-             depend on the mesh (refine {} or lower {})",
-            fields::num(zone),
+             depend on the mesh (refine {} or lower {}){}",
+            fields::rounded(zone),
             self.min_zone_elements(),
             fields::GRID_DX,
             fields::ADHESION_SIGMA0,
+            super::glued(zone / dx, &strength),
         ))
     }
 

@@ -235,14 +235,16 @@ impl<C: Curve> Law for C {
     fn mesh_warning(&self, e_star: f64, gamma: f64, dx: f64) -> Option<String> {
         let zone = self.zone_length(e_star, gamma)?;
         let shown = under_resolved(zone / dx, self.min_zone_elements())?;
+        let strength = format!("the peak tension {}", fields::rounded(self.peak(gamma)));
         Some(format!(
             "under-resolved process zone: its width (8/3π)E*ρ²/γ = {} spans {shown} elements \
              (at least {} needed); the front then moves element by element and the forces \
-             depend on the mesh (refine {} or raise {})",
+             depend on the mesh (refine {} or raise {}){}",
             fields::rounded(zone),
             self.min_zone_elements(),
             fields::GRID_DX,
             fields::ADHESION_RANGE,
+            glued(zone / dx, &strength),
         ))
     }
 
@@ -301,9 +303,47 @@ impl<C: Curve> Law for C {
     }
 }
 
-/// The elements across a zone, rounded to two decimals for a warning, when fewer than `least`.
+/// The elements across a zone for a warning, when fewer than `least`: two decimals, or two
+/// significant digits below 0.01 (not a bare 0).
 fn under_resolved(elements: f64, least: f64) -> Option<String> {
-    (elements < least).then(|| fields::num((elements * 100.0).round() / 100.0))
+    (elements < least).then(|| {
+        if elements < 0.01 {
+            format!("{elements:.1e}")
+        } else {
+            fields::num((elements * 100.0).round() / 100.0)
+        }
+    })
+}
+
+/// Below this many elements across a finite-range law's zone an element holds the law's whole
+/// strength whatever its neighbours do: the body glues, and the pull-off grows without bound as
+/// the zone shrinks on a fixed mesh (docs/theory.md §3.9). The warning then says so and names
+/// the zero-range criterion, whose strength is set by the mesh.
+pub(crate) const GLUED_ELEMENTS: f64 = 0.3;
+
+/// The zero-range criterion as a message names it: `the zero-range criterion (adhesion.model
+/// = "jkr_limit")`.
+pub(crate) fn zero_range_hint() -> String {
+    format!(
+        "the zero-range criterion ({} = \"{}\")",
+        fields::ADHESION_MODEL,
+        jkr_limit::NAME
+    )
+}
+
+/// The clause a mesh warning adds below [`GLUED_ELEMENTS`] (empty above); `strength` names the
+/// law's greatest tension.
+fn glued(elements: f64, strength: &str) -> String {
+    if elements < GLUED_ELEMENTS {
+        format!(
+            "; below {GLUED_ELEMENTS} elements across it each one holds up to {strength} \
+             whatever its neighbours do, so the body glues and the pull-off grows without bound \
+             as the zone shrinks on this mesh: for the JKR limit use {}",
+            zero_range_hint(),
+        )
+    } else {
+        String::new()
+    }
 }
 
 /// The largest `|f|` of the heights: the scale of their round-off.
