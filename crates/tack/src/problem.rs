@@ -1059,6 +1059,29 @@ fn default_branch(
         .unwrap_or_default();
     let range = body.law.reach(body.material.gamma);
     let (start, load) = crate::pull_off_path::load_plan(first_touch, max_approach, unload, range);
+    // A law whose reach is many retraction steps long would spend every step allowed before
+    // the first touch, and the result would hold no retraction at all.
+    let load_steps = ((max_approach - start) / load).ceil();
+    if let Some(reach) = range
+        && load_steps >= max_steps as f64
+    {
+        return Err(SceneError::Inconsistent(format!(
+            "the default path loads from out of the law's reach ({} before the first touch) in \
+             steps of the retraction step {}: {} load steps, not fewer than {max_steps} = \
+             {max_steps_value}, so it would never retract; give a path of your own \
+             ({max_approach}, {load_step} and {unload_step}), raise {max_steps}, or shorten the \
+             law's reach ({parameter})",
+            fields::rounded(reach),
+            fields::rounded(load),
+            fields::rounded(load_steps),
+            max_steps = fields::PROTOCOL_MAX_STEPS,
+            max_steps_value = max_steps,
+            max_approach = fields::PROTOCOL_MAX_APPROACH,
+            load_step = fields::PROTOCOL_LOAD_STEP,
+            unload_step = fields::PROTOCOL_UNLOAD_STEP,
+            parameter = body.law.parameter().0,
+        )));
+    }
     let path = ApproachPath {
         start,
         max_approach,

@@ -667,6 +667,20 @@ mod adhesion_tests {
                 .contains("solver.kappa = 0.5 is read by adhesion.model = \"jkr_limit\" only")
         );
         assert!(err(&[exp[0], exp[1], "material.gamma=0"]).contains("needs material.gamma > 0"));
+        // A reach so long that the default path would spend every allowed step before the first
+        // touch is refused, naming the cap and what to give instead; a lower cap with the same
+        // reach too, and a higher one takes it.
+        let long = ["adhesion.model=\"exponential\"", "adhesion.range=100"];
+        let message = err(&long);
+        assert!(
+            message.starts_with("the default path loads from out of the law's reach")
+                && message.contains("protocol.max_steps = 100000")
+                && message.contains("(adhesion.range)"),
+            "{message}"
+        );
+        let short = [exp[0], exp[1], "protocol.max_steps=100"];
+        assert!(err(&short).contains("protocol.max_steps = 100,"));
+        assert!(build(&[exp[0], exp[1], "protocol.max_steps=100000"]).is_ok());
     }
 
     #[test]
