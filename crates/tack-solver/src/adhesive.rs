@@ -201,25 +201,12 @@ impl AdhesiveSolver {
             Family::Cohesive { sigma0 } => {
                 (Some(Cohesive::new(gamma, sigma0, surface, shape)?), None)
             }
-            Family::Smooth(curve) => {
+            Family::Smooth(_) => {
                 law.check(gamma, surface)?;
-                let range = curve.length();
                 let k = base.op.self_compliance();
-                let tolerance =
-                    crate::smooth::tolerance_fraction(range, k, sigma_c).map_err(|least| {
-                        crate::SolverError::BelowLeast {
-                            field: tack_fields::ADHESION_RANGE,
-                            value: range,
-                            least,
-                            why: format!(
-                                "on a mesh this much coarser than the law's process zone the \
-                                 peak tension outgrows what round-off lets the solver resolve \
-                                 (refine {}, or for the JKR limit of a short range use {})",
-                                tack_fields::GRID_DX,
-                                crate::law::zero_range_hint(),
-                            ),
-                        }
-                    })?;
+                let tolerance = law
+                    .smooth_tolerance(gamma, e_star, base_dx, k)?
+                    .expect("a smooth law");
                 let traction = Traction::new(law.clone(), gamma).expect("a smooth law");
                 (None, Some(SmoothState::new(traction, shape, tolerance)))
             }

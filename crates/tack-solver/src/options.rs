@@ -18,7 +18,7 @@ pub enum SolverError {
     },
     /// A parameter below the least value this problem can honour (the least depends on the
     /// problem: its mesh, modulus and work of adhesion).
-    #[error("{field} = {} is invalid: must be at least {} here: {why}", num(*value), tack_fields::rounded(*least))]
+    #[error("{field} = {} is invalid: must be at least {} here: {why}", num(*value), rounded_up(*least))]
     BelowLeast {
         /// The offending field.
         field: &'static str,
@@ -118,4 +118,10 @@ impl SolverOptions {
         crate::validate::at_least_one(tack_fields::SOLVER_MAX_ITERATIONS, self.max_iterations)?;
         Ok(())
     }
+}
+
+/// `x > 0` rounded up to four significant digits, for a least value a user may type back.
+fn rounded_up(x: f64) -> String {
+    let unit = 10f64.powf(x.log10().floor() - 3.0);
+    tack_fields::rounded((x / unit).ceil() * unit)
 }

@@ -47,7 +47,7 @@ use tack_kernels::ElasticOperator;
 
 use crate::law::{Traction, ZONE_FRACTION};
 use crate::rounds::Tally;
-use crate::{AdhesiveSolver, SolverOptions, StepRecord};
+use crate::{AdhesiveSolver, SolverError, SolverOptions, StepRecord};
 
 /// Newton's stopping rule: every `|min(g/k, q)|` below this fraction of the peak tension (a
 /// pressure error of 1e-7 of the peak; the last Newton iteration would cost as much as the two
@@ -57,7 +57,7 @@ const NEWTON_TOLERANCE: f64 = 1e-7;
 /// ρ: the residual's scale, the peak tension, becomes `min(peak, RANGE_GAPS·ρ/k)`. The gap
 /// tolerance `NEWTON_TOLERANCE·k·peak` is already below 1e-7·ρ/(1.05·elements per process
 /// zone), so this changes nothing down to 0.1 elements per zone; far below that `k·peak ≫ ρ`, and
-/// a loaded sphere at ρ = 1e-12 on 64² (2e-20 elements per zone) had passed as converged with
+/// a loaded sphere at ρ = 1e-12 on 64² (5e-20 elements per zone) had passed as converged with
 /// no pressure at all (a residual of 1e-7 of its peak tension 1e9 is 100).
 pub(crate) const RANGE_GAPS: f64 = 10.0;
 /// The least residual tolerance, as a fraction of the peak tension, that round-off lets a
@@ -76,6 +76,44 @@ pub(crate) fn tolerance_fraction(range: f64, k: f64, peak: f64) -> Result<f64, f
         Ok(fraction)
     } else {
         Err(range * (TOLERANCE_FLOOR / fraction).sqrt())
+    }
+}
+
+/// The smooth laws' residual tolerance, with the solver it sets.
+impl crate::AdhesionLaw {
+    /// The residual tolerance a smooth law is solved to on elements of size `dx` and
+    /// self-compliance `k` (`smooth.rs`, `RANGE_GAPS`), as a fraction of its peak tension:
+    /// `Ok(None)` for the criterion and the Dugdale law; [`SolverError::BelowLeast`], naming
+    /// the range and the least one the grid takes, when round-off would hide it (the least
+    /// assumes a peak that goes as 1/range, as the built-in laws' does; a custom curve's may be
+    /// approximate). The solver checks with its operator's `k`; a scene checks before running
+    /// with the half-space's.
+    pub fn smooth_tolerance(
+        &self,
+        gamma: f64,
+        e_star: f64,
+        dx: f64,
+        k: f64,
+    ) -> Result<Option<f64>, SolverError> {
+        let Some(curve) = self.curve() else {
+            return Ok(None);
+        };
+        let range = curve.length();
+        let peak = self.peak_tension(gamma, e_star, dx);
+        tolerance_fraction(range, k, peak)
+            .map(Some)
+            .map_err(|least| SolverError::BelowLeast {
+                field: tack_fields::ADHESION_RANGE,
+                value: range,
+                least,
+                why: format!(
+                    "on a mesh this much coarser than the law's process zone the peak tension \
+                     outgrows what round-off lets the solver resolve (refine {}, or for the JKR \
+                     limit of a short range use {})",
+                    tack_fields::GRID_DX,
+                    crate::law::zero_range_hint(),
+                ),
+            })
     }
 }
 
@@ -667,7 +705,9 @@ struct LandingPatch {
 /// or the contact set changes), the contact set solved exactly each time, its membership
 /// updated (`p < w·P(0)` leaves, `g < 0` joins), until the residual is below `target` of the
 /// peak (true), or after [`RELAX_CAP`] iterations or a stall ([`STALL`]) (false). `at` is `(d, k, peak, target)`, `cg`
-/// the preconditioning switch and the contact solves' options.
+/// the preconditioning switch and the contact solves' options. The contact solves' tolerance
+/// follows the residual down to 1e-10, or to 1e-2 of a target below 1e-8 (a law far coarser
+/// than its mesh, [`tolerance_fraction`]).
 fn relax(
     patch: Patch,
     t: &Traction,
@@ -810,11 +850,11 @@ fn relax(
             (best, since) = (m.worst, 0);
         } else {
             since += 1;
-            if since >= STALL && best <= NEWTON_REACH * peak && target > NEWTON_TOLERANCE {
+            if since >= STALL && best <= NEWTON_REACH * peak && target >= LANDED {
                 return false;
             }
         }
-        level = (1e-2 * m.worst / peak).clamp(1e-10, LANDING_CG);
+        level = (1e-2 * m.worst / peak).clamp((1e-2 * target).min(1e-10), LANDING_CG);
     }
     false
 }

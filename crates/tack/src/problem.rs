@@ -229,6 +229,7 @@ impl Problem {
         let first_touch = surface.min();
         let law_in_memory = law.is_some();
         let (law, kappa) = law_stage(f, law, &surface)?;
+        resolvable(&law, (e_star, gamma), &grid, layer.is_none())?;
         let path_sphere = shape.path_sphere();
         let (path, path_rule) = approach_path(
             &f.protocol,
@@ -709,6 +710,23 @@ fn adhesion_law(f: &SceneSchema, kappa: f64, surface: &Surface) -> Result<Adhesi
     Ok(law)
 }
 
+/// A smooth law the grid cannot resolve to round-off ([`AdhesionLaw::smooth_tolerance`]) is
+/// refused before running, as the solver would refuse it: on a free half-space (`half_space`
+/// and a free grid) with the free operator's self-compliance, bit for bit; periodic grids and
+/// films are checked with their own operator's when run.
+fn resolvable(
+    law: &AdhesionLaw,
+    (e_star, gamma): (f64, f64),
+    grid: &Grid,
+    half_space: bool,
+) -> Result<(), SceneError> {
+    if half_space && grid.boundary() == tack_geometry::Boundary::Free {
+        let k = tack_kernels::SELF_COMPLIANCE * grid.dx() / e_star;
+        law.smooth_tolerance(gamma, e_star, grid.dx(), k)?;
+    }
+    Ok(())
+}
+
 /// The law and κ: `law` given in memory, or the scene's `[adhesion]` law; κ is checked either
 /// way (the problem carries it).
 fn law_stage(
@@ -1059,16 +1077,18 @@ fn default_branch(
         .unwrap_or_default();
     let range = body.law.reach(body.material.gamma);
     let (start, load) = crate::pull_off_path::load_plan(first_touch, max_approach, unload, range);
-    // A law whose reach is many retraction steps long would spend every step allowed before
-    // the first touch, and the result would hold no retraction at all.
+    // A law whose reach is many retraction steps long would spend every step the default cap
+    // allows loading, and the result would hold no retraction at all (a cap the scene sets is
+    // its own: a short look at the load is a run, stopped at the cap).
     let load_steps = ((max_approach - start) / load).ceil();
     if let Some(reach) = range
+        && p.max_steps.is_none()
         && load_steps >= max_steps as f64
     {
         return Err(SceneError::Inconsistent(format!(
             "the default path loads from out of the law's reach ({} before the first touch) in \
-             steps of the retraction step {}: {} load steps, not fewer than {max_steps} = \
-             {max_steps_value}, so it would never retract; give a path of your own \
+             steps of the retraction step {}: {} load steps, not fewer than the default \
+             {max_steps} = {max_steps_value}, so it would never retract; give a path of your own \
              ({max_approach}, {load_step} and {unload_step}), raise {max_steps}, or shorten the \
              law's reach ({parameter})",
             fields::rounded(reach),

@@ -667,20 +667,30 @@ mod adhesion_tests {
                 .contains("solver.kappa = 0.5 is read by adhesion.model = \"jkr_limit\" only")
         );
         assert!(err(&[exp[0], exp[1], "material.gamma=0"]).contains("needs material.gamma > 0"));
-        // A reach so long that the default path would spend every allowed step before the first
-        // touch is refused, naming the cap and what to give instead; a lower cap with the same
-        // reach too, and a higher one takes it.
+        // A reach so long that the default path would spend every step of the default cap
+        // loading is refused, naming the cap and what to give instead; a cap the scene sets is
+        // its own (a short look at the load: range 0.05, 18.4 ρ = 0.92 of reach, in 100 steps),
+        // and range 100 with the cap raised past its load steps is taken too.
         let long = ["adhesion.model=\"exponential\"", "adhesion.range=100"];
         let message = err(&long);
         assert!(
             message.starts_with("the default path loads from out of the law's reach")
-                && message.contains("protocol.max_steps = 100000")
+                && message.contains("the default protocol.max_steps = 100000")
                 && message.contains("(adhesion.range)"),
             "{message}"
         );
-        let short = [exp[0], exp[1], "protocol.max_steps=100"];
-        assert!(err(&short).contains("protocol.max_steps = 100,"));
-        assert!(build(&[exp[0], exp[1], "protocol.max_steps=100000"]).is_ok());
+        let p = build(&[exp[0], exp[1], "protocol.max_steps=100"]).unwrap();
+        assert_eq!(p.path.max_steps, 100);
+        let p = build(&[long[0], long[1], "protocol.max_steps=2000000"]).unwrap();
+        assert_eq!(p.path.max_steps, 2_000_000);
+        // A range the grid cannot resolve to round-off is refused before running (Δx = 0.02,
+        // γ = 0.1: the least is 2.7e-5), naming the least; the least itself is taken.
+        let message = err(&["adhesion.model=\"exponential\"", "adhesion.range=1e-6"]);
+        assert!(
+            message.starts_with("adhesion.range = 1e-6 is invalid: must be at least ")
+                && message.contains("\"jkr_limit\""),
+            "{message}"
+        );
     }
 
     #[test]
