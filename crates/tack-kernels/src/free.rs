@@ -41,9 +41,16 @@ impl FreeOperator {
             grid,
             e_star,
             &quadrant,
-            SELF_COMPLIANCE * dx / e_star,
+            FreeOperator::self_compliance_of(dx, e_star),
             |px, py| stiffness_spectrum(px, py, dx, e_star),
         ))
+    }
+
+    /// The displacement of an element's centre per unit pressure on it, for elements of size
+    /// `dx` on a half-space of modulus `e_star`: this operator's
+    /// [`ElasticOperator::self_compliance`], without building it.
+    pub fn self_compliance_of(dx: f64, e_star: f64) -> f64 {
+        SELF_COMPLIANCE * dx / e_star
     }
 
     /// The operator of the even influence coefficients `quadrant[[|i|, |j|]]` (offsets in

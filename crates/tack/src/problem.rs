@@ -712,8 +712,9 @@ fn adhesion_law(f: &SceneSchema, kappa: f64, surface: &Surface) -> Result<Adhesi
 
 /// A smooth law the grid cannot resolve to round-off ([`AdhesionLaw::smooth_tolerance`]) is
 /// refused before running, as the solver would refuse it: on a free half-space (`half_space`
-/// and a free grid) with the free operator's self-compliance, bit for bit; periodic grids and
-/// films are checked with their own operator's when run.
+/// and a free grid) with the free operator's self-compliance
+/// ([`tack_kernels::FreeOperator::self_compliance_of`]); periodic grids and films are checked
+/// with their own operator's when run.
 fn resolvable(
     law: &AdhesionLaw,
     (e_star, gamma): (f64, f64),
@@ -721,7 +722,7 @@ fn resolvable(
     half_space: bool,
 ) -> Result<(), SceneError> {
     if half_space && grid.boundary() == tack_geometry::Boundary::Free {
-        let k = tack_kernels::SELF_COMPLIANCE * grid.dx() / e_star;
+        let k = tack_kernels::FreeOperator::self_compliance_of(grid.dx(), e_star);
         law.smooth_tolerance(gamma, e_star, grid.dx(), k)?;
     }
     Ok(())
