@@ -356,14 +356,7 @@ fn reference_lines(outcome: &RunOutcome) -> Vec<String> {
             } else {
                 format!("{mu:.4e}")
             },
-            get("process_zone_elements").map_or_else(
-                || "?".to_owned(),
-                |z| if z < 0.01 {
-                    format!("{z:.1e}")
-                } else {
-                    format!("{z:.2}")
-                }
-            )
+            get("process_zone_elements").map_or_else(|| "?".to_owned(), fields::elements)
         ));
     }
     if let Some(fm) = get("f_mdr") {

@@ -513,6 +513,24 @@ pub fn num(x: f64) -> String {
     }
 }
 
+/// A count of elements (across a law's process zone, say) as warnings and reports show it: two
+/// decimals, trailing zeros dropped, and two significant digits below 0.01, where two decimals
+/// would read as none.
+///
+/// ```
+/// assert_eq!(tack_fields::elements(1.2704), "1.27");
+/// assert_eq!(tack_fields::elements(0.6), "0.6");
+/// assert_eq!(tack_fields::elements(543.2549), "543.25");
+/// assert_eq!(tack_fields::elements(5.41e-6), "5.4e-6");
+/// ```
+pub fn elements(x: f64) -> String {
+    if x.abs() < 0.01 && x != 0.0 {
+        format!("{x:.1e}")
+    } else {
+        num((x * 100.0).round() / 100.0)
+    }
+}
+
 /// A number as a report shows it: 6 significant digits, in plain notation for magnitudes in
 /// [1e-3, 1e6), trailing zeros dropped (`0.00984745`, not `0.009847450218426965`). Messages that
 /// quote a value a user gave use [`num`] instead, which keeps every digit.

@@ -303,16 +303,10 @@ impl<C: Curve> Law for C {
     }
 }
 
-/// The elements across a zone for a warning, when fewer than `least`: two decimals, or two
-/// significant digits below 0.01 (not a bare 0).
+/// The elements across a zone for a warning, when fewer than `least`, as
+/// [`fields::elements`] writes them (the run's report too).
 fn under_resolved(elements: f64, least: f64) -> Option<String> {
-    (elements < least).then(|| {
-        if elements < 0.01 {
-            format!("{elements:.1e}")
-        } else {
-            fields::num((elements * 100.0).round() / 100.0)
-        }
-    })
+    (elements < least).then(|| fields::elements(elements))
 }
 
 /// Below this many elements across a finite-range law's zone an element holds the law's whole
