@@ -126,6 +126,27 @@ enum Command {
     },
 }
 
+/// Writes `text` to standard output. A reader that closed the pipe early (`tack check … |
+/// head -1`) ends the output quietly, as for any Unix tool, where `println!` panicked.
+fn out(text: &str) -> anyhow::Result<()> {
+    use std::io::Write;
+    let mut stdout = std::io::stdout().lock();
+    match stdout
+        .write_all(text.as_bytes())
+        .and_then(|()| stdout.flush())
+    {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        r => Ok(r?),
+    }
+}
+
+/// `println!` through [`out`].
+macro_rules! say {
+    ($($arg:tt)*) => {
+        out(&format!("{}\n", format_args!($($arg)*)))?
+    };
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match execute(cli.command) {
@@ -155,7 +176,7 @@ fn execute(command: Command) -> anyhow::Result<()> {
             let scene = Scene::load(&scene, &set)?;
             let outcome =
                 engine::run_to_file(&scene, &output, &options, &mut Progress::new(quiet))?;
-            print!("{}", report::report(&scene, &outcome, Some(&output)));
+            out(&report::report(&scene, &outcome, Some(&output)))?;
         }
         Command::Surface { scene, output, set } => {
             let scene = Scene::load(&scene, &set)?;
@@ -164,7 +185,7 @@ fn execute(command: Command) -> anyhow::Result<()> {
             let prov = provenance::provenance(&scene, &problem, provenance::command_line());
             tack_io::write_result(&output, &tack::summary::surface_file(&problem, prov))?;
             let g = problem.grid;
-            println!(
+            say!(
                 "wrote {}: {} x {} heights, dx = {}, min {}, max {}",
                 output.display(),
                 g.nx(),
@@ -177,23 +198,23 @@ fn execute(command: Command) -> anyhow::Result<()> {
         Command::Check { scene, set } => {
             let loaded = Scene::load(&scene, &set)?;
             let p = Problem::from_scene(&loaded)?;
-            println!(
+            say!(
                 "{}: ok\n  grid {} x {}, dx = {}",
                 scene.display(),
                 p.grid.nx(),
                 p.grid.ny(),
                 rounded(p.grid.dx()),
             );
-            println!(
+            say!(
                 "  first touch at d = {}; path: {}",
                 rounded(p.first_touch),
                 report::describe_planned_path(&p.path)
             );
             if let Some(rule) = &p.path_rule {
-                println!("  {rule}");
+                say!("  {rule}");
             }
             if let Some((prony, rates)) = &p.viscoelastic {
-                println!("  {}", report::describe_viscoelastic(prony, rates));
+                say!("  {}", report::describe_viscoelastic(prony, rates));
             }
             let steps = p.path.step_bound();
             let bound = if steps < p.path.max_steps {
@@ -204,7 +225,7 @@ fn execute(command: Command) -> anyhow::Result<()> {
                     tack::fields::PROTOCOL_MAX_STEPS
                 )
             };
-            println!(
+            say!(
                 "  memory: at most about {} ({bound})",
                 tack::memory::bytes(p.memory_estimate().total()),
             );
@@ -224,7 +245,7 @@ fn execute(command: Command) -> anyhow::Result<()> {
             };
             let report =
                 tack_sweep::run_sweep(&loaded, &output, &options, &SweepProgress::new(quiet))?;
-            println!("{report}");
+            say!("{report}");
             if !report.failed.is_empty() {
                 anyhow::bail!(
                     "{} of {} points failed (errors above and in {}/points/*.err); the other \
@@ -247,7 +268,7 @@ fn execute(command: Command) -> anyhow::Result<()> {
             let report = tack_sweep::merge(&dir, &output, &options)?;
             eprint!("{}", report.issues());
             if report.written {
-                println!("{report}; wrote {}", output.display());
+                say!("{report}; wrote {}", output.display());
             } else {
                 anyhow::bail!(
                     "{report}; nothing written: run `tack sweep` on {} again for the missing \
@@ -258,12 +279,12 @@ fn execute(command: Command) -> anyhow::Result<()> {
         }
         Command::Info { file } => {
             let text = tack_io::describe(&file)?;
-            print!("{text}");
+            out(&text)?;
         }
         Command::Plot { file, output } => {
             plot::plot_file(&file, &output)
                 .with_context(|| format!("plotting {}", file.display()))?;
-            println!("wrote {}", output.display());
+            say!("wrote {}", output.display());
         }
     }
     Ok(())

@@ -316,3 +316,39 @@ fn interrupted_run_leaves_no_result_under_the_final_name() {
         );
     }
 }
+
+#[test]
+fn a_reader_that_closes_the_pipe_early_ends_the_output_quietly() {
+    // `tack check … | head -1`: the reader is gone before the first write (its end of the
+    // pipe dropped at once), so every write meets a broken pipe. `println!` panicked there
+    // (exit 101); the output now ends quietly with the command's own status.
+    let scratch = Scratch::new("pipe");
+    let scene = examples_dir().join("smooth_jkr_sphere.toml");
+    let surface = scratch.join("s.h5");
+    let commands: [&[&std::ffi::OsStr]; 2] = [
+        &["check".as_ref(), scene.as_os_str()],
+        &[
+            "surface".as_ref(),
+            scene.as_os_str(),
+            "-o".as_ref(),
+            surface.as_os_str(),
+        ],
+    ];
+    for args in commands {
+        let mut child = tack()
+            .args(args)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("the tack binary could not be started");
+        drop(child.stdout.take());
+        let out = child.wait_with_output().expect("tack ran");
+        let (_, err) = text(&out);
+        assert!(out.status.success(), "{args:?}: {:?}\n{err}", out.status);
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+    }
+    assert!(
+        surface.is_file(),
+        "the surface file is written all the same"
+    );
+}

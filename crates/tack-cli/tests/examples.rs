@@ -204,6 +204,22 @@ example!(exponential_sphere, |r, info| {
             .law_column("n_cohesive")
             .is_some_and(|z| z.values.iter().any(|&n| n > 0))
     );
+    // The jump in is the snap into contact (the first step in contact), with most of the
+    // pull-off's tension (−4.64e-3 against −5.2e-3), not the first step whose tension passes
+    // 1% of the peak, 28 steps earlier at −6.4e-5, where it was reported before.
+    let first = r
+        .curve
+        .n_bonded
+        .iter()
+        .position(|&n| n > 0)
+        .expect("contact");
+    assert_eq!(s.extra["jump_in_approach"], r.curve.approach[first]);
+    assert!(
+        s.extra["jump_in_force"] < 0.5 * s.pull_off_force,
+        "{} against {}",
+        s.extra["jump_in_force"],
+        s.pull_off_force
+    );
 });
 
 example!(cone, |r, _| {

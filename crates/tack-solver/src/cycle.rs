@@ -11,16 +11,18 @@ pub struct Cycle {
     /// quadrature). `None` unless the path starts out of contact and ends detached (an open
     /// curve has no loop).
     pub dissipated_energy: Option<f64>,
-    /// The first loading step that carries load after steps that did not: its approach and
-    /// force (a tensile force: the surfaces snapped in). `None` when the path starts loaded.
+    /// The first loading step that is joined ([`CycleStep::joined`]) after steps that were not:
+    /// its approach and force (a tensile force: the surfaces snapped in). `None` when the path
+    /// starts joined.
     pub jump_in: Option<(f64, f64)>,
-    /// The last retraction step that carries load before the steps that do not: its approach
-    /// and force (the force lost in the jump out). `None` when the path ends loaded.
+    /// The last retraction step that is joined before the steps that are not: its approach and
+    /// force (the force lost in the jump out). `None` when the path ends joined.
     pub jump_out: Option<(f64, f64)>,
 }
 
 /// A step of a curve as [`cycle`] reads it: approach, force, whether anything carries load
-/// (elements in contact or in a cohesive zone), and whether it is a loading step.
+/// (elements in contact or in a cohesive zone), whether the surfaces are joined (where the
+/// jumps are), and whether it is a loading step.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CycleStep {
     /// Approach `d`.
@@ -29,6 +31,13 @@ pub struct CycleStep {
     pub force: f64,
     /// Some element carries load.
     pub loaded: bool,
+    /// The surfaces are joined: some element carries load under the zero-range criterion and
+    /// the Dugdale law (whose zone carries the law's whole tension σ0: it may jump onto a
+    /// separated branch), some element is in contact under a smooth law (every element within
+    /// its reach carries a traction, growing smoothly as the surfaces approach, so the jump is
+    /// the snap into contact; at small Tabor μ contact forms without a jump, and this is where
+    /// it forms).
+    pub joined: bool,
     /// The step belongs to the loading branch.
     pub loading: bool,
 }
@@ -48,19 +57,34 @@ pub fn cycle(steps: &[CycleStep]) -> Cycle {
     }
     out.jump_in = steps
         .windows(2)
-        .find(|w| w[1].loading && !w[0].loaded && w[1].loaded)
+        .find(|w| w[1].loading && !w[0].joined && w[1].joined)
         .map(|w| (w[1].approach, w[1].force));
     out.jump_out = steps
         .windows(2)
         .rev()
-        .find(|w| !w[1].loading && w[0].loaded && !w[1].loaded)
+        .find(|w| !w[1].loading && w[0].joined && !w[1].joined)
         .map(|w| (w[0].approach, w[0].force));
     out
 }
 
 impl PathResult {
-    /// The cycle quantities of the path ([`cycle`]).
+    /// The cycle quantities of the path ([`cycle`]) under the zero-range criterion or the
+    /// Dugdale law: joined where some element carries load ([`CycleStep::joined`]).
     pub fn cycle(&self) -> Cycle {
+        self.cycle_joined_by(|r| r.n_bonded + r.n_cohesive > 0)
+    }
+
+    /// The cycle quantities of the path ([`cycle`]) under `law`: under a smooth law the jumps
+    /// are where contact forms and is lost ([`CycleStep::joined`]).
+    pub fn cycle_under(&self, law: &crate::AdhesionLaw) -> Cycle {
+        if law.curve().is_some() {
+            self.cycle_joined_by(|r| r.n_bonded > 0)
+        } else {
+            self.cycle()
+        }
+    }
+
+    fn cycle_joined_by(&self, joined: impl Fn(&crate::StepRecord) -> bool) -> Cycle {
         let steps: Vec<CycleStep> = self
             .records
             .iter()
@@ -69,6 +93,7 @@ impl PathResult {
                 approach: r.approach,
                 force: r.force,
                 loaded: r.n_bonded + r.n_cohesive > 0,
+                joined: joined(r),
                 loading: phase == Phase::Load,
             })
             .collect();
@@ -85,6 +110,7 @@ mod tests {
             approach,
             force,
             loaded: force != 0.0,
+            joined: force != 0.0,
             loading,
         }
     }

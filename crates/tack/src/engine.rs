@@ -242,7 +242,8 @@ pub fn run_to_file(
 /// Runs the problem's approach path on a fresh solver.
 ///
 /// With a crop window the path runs on the window; snapshots, and the fields the observer
-/// sees in [`Observer::on_fields`], are on the full grid either way. Should contact ever reach
+/// sees in [`Observer::on_fields`], are on the full grid either way, and so is every record's
+/// mean pressure (the force over the full grid's area, as without the crop). Should contact ever reach
 /// the window's edge (the crop rule is conservative, so this means a surprise), the observer
 /// is told ([`Observer::on_restart`]) and the path is solved again on the full grid.
 pub fn solve(problem: &Problem, observer: &mut dyn Observer) -> Result<PathResult, SceneError> {
@@ -252,9 +253,13 @@ pub fn solve(problem: &Problem, observer: &mut dyn Observer) -> Result<PathResul
             inner: &mut *observer,
             window: *w,
             shape: problem.grid.shape(),
+            area: problem.grid.lx() * problem.grid.ly(),
         };
         let mut result = solver.run_path(&problem.path, &problem.snapshots, &mut embed)?;
         if !result.records.iter().any(|r| r.edge_contact) {
+            for r in &mut result.records {
+                *r = embed.record(r);
+            }
             for snap in &mut result.snapshots {
                 (snap.pressure, snap.bonded) = embed.fields(&snap.pressure, &snap.bonded);
             }
@@ -272,9 +277,20 @@ struct OnFullGrid<'a> {
     inner: &'a mut dyn Observer,
     window: tack_geometry::Window,
     shape: (usize, usize),
+    /// The full grid's area `Lx·Ly`.
+    area: f64,
 }
 
 impl OnFullGrid<'_> {
+    /// A cropped run's record with the mean pressure of the full grid (the solver divides the
+    /// force by the window's area).
+    fn record(&self, r: &StepRecord) -> StepRecord {
+        StepRecord {
+            mean_pressure: r.force / self.area,
+            ..*r
+        }
+    }
+
     fn fields(
         &self,
         pressure: &ndarray::Array2<f64>,
@@ -292,7 +308,8 @@ impl OnFullGrid<'_> {
 
 impl Observer for OnFullGrid<'_> {
     fn on_step(&mut self, index: usize, phase: Phase, record: &StepRecord) {
-        self.inner.on_step(index, phase, record);
+        let record = self.record(record);
+        self.inner.on_step(index, phase, &record);
     }
     fn on_fields(
         &mut self,
@@ -303,8 +320,9 @@ impl Observer for OnFullGrid<'_> {
         bonded: &ndarray::Array2<bool>,
     ) {
         let (pressure, bonded) = self.fields(pressure, bonded);
+        let record = self.record(record);
         self.inner
-            .on_fields(index, phase, record, &pressure, &bonded);
+            .on_fields(index, phase, &record, &pressure, &bonded);
     }
     fn on_restart(&mut self) {
         self.inner.on_restart();

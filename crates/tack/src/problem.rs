@@ -117,15 +117,17 @@ pub struct PathRule {
     pub origin: &'static str,
     /// The rule's numbers.
     pub path: crate::pull_off_path::PullOffPath,
-    /// Loaded in retraction steps from out of range (a finite-range law), not in one step.
-    pub stepped_load: bool,
+    /// The load step when loaded in steps from out of range (a finite-range law), `None` when
+    /// loaded in one step ([`crate::pull_off_path::load_plan`]).
+    pub stepped_load: Option<f64>,
     /// The refined retraction (`protocol.refine_pull_off`): coarse steps all the way.
     pub refined: bool,
 }
 
 impl std::fmt::Display for PathRule {
     /// One line, numbers rounded (`tack_fields::rounded`): `default pull-off path of R = 1
-    /// (given), d_s = …: one load step to d = …, retraction by … while compressive, then by …`.
+    /// (given), d_s = …: one load step to d = …, retraction by … while compressive, then by …`
+    /// (`loaded in steps of … from out of range` under a finite-range law).
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let p = &self.path;
         let r = tack_fields::rounded;
@@ -136,10 +138,9 @@ impl std::fmt::Display for PathRule {
             r(self.radius),
             if self.fitted { "fitted" } else { self.origin },
             r(p.d_s),
-            if self.stepped_load {
-                "loaded in retraction steps from out of range"
-            } else {
-                "one load step"
+            match self.stepped_load {
+                Some(step) => format!("loaded in steps of {} from out of range", r(step)),
+                None => "one load step".to_owned(),
             },
             r(p.max_approach),
             r(p.coarse_unload_step),
@@ -230,6 +231,7 @@ impl Problem {
         let law_in_memory = law.is_some();
         let (law, kappa) = law_stage(f, law, &surface)?;
         resolvable(&law, (e_star, gamma), &grid, layer.is_none())?;
+        criterion_mesh_rule(&law, &mut warnings);
         let path_sphere = shape.path_sphere();
         let (path, path_rule) = approach_path(
             &f.protocol,
@@ -743,7 +745,7 @@ fn law_stage(
             "a finite number > 0",
         ));
     }
-    match law {
+    let (law, kappa) = match law {
         Some(law) => {
             let law = checked_law_in_memory(f, law, surface)?;
             // The zero-range criterion given in memory brings its own κ.
@@ -751,9 +753,58 @@ fn law_stage(
                 Family::Criterion { kappa } => kappa,
                 _ => kappa,
             };
-            Ok((law, kappa))
+            (law, kappa)
         }
-        None => Ok((adhesion_law(f, kappa, surface)?, kappa)),
+        None => (adhesion_law(f, kappa, surface)?, kappa),
+    };
+    unread_by_smooth_laws(f, &law)?;
+    Ok((law, kappa))
+}
+
+/// The pull-off radius' mesh rule ([`crate::shape::under_resolved`]) is the zero-range
+/// criterion's (its error grows like Δx/a_c): a finite-range law drops its warning, its own
+/// warning judges its zone.
+fn criterion_mesh_rule(law: &AdhesionLaw, warnings: &mut Vec<String>) {
+    if !matches!(law.family(), Family::Criterion { .. }) {
+        warnings.retain(|w| !w.starts_with(crate::shape::UNDER_RESOLVED_PULL_OFF));
+    }
+}
+
+/// The `[solver]` settings of the round loop (the zero-range criterion's and the Dugdale
+/// law's) are refused under a smooth law, which has no rounds: its Newton iteration solves
+/// every element to a fixed fraction of the peak tension (docs/theory.md §3.9), so a given
+/// value would be silently ignored.
+fn unread_by_smooth_laws(f: &SceneSchema, law: &AdhesionLaw) -> Result<(), SceneError> {
+    if law.curve().is_none() {
+        return Ok(());
+    }
+    let s = &f.solver;
+    let show = |v: Option<f64>| v.map(num);
+    let given = [
+        (fields::SOLVER_TOLERANCE, show(s.tolerance)),
+        (
+            fields::SOLVER_MAX_ACTIVE_SET_ITERATIONS,
+            s.max_active_set_iterations.map(|n| n.to_string()),
+        ),
+        (fields::SOLVER_ROUND_TOLERANCE, show(s.round_tolerance)),
+        (
+            fields::SOLVER_LOCAL_RELAXATION,
+            s.local_relaxation.map(|b| b.to_string()),
+        ),
+        (fields::SOLVER_CASCADE, s.cascade.map(|b| b.to_string())),
+    ];
+    match given
+        .into_iter()
+        .find_map(|(field, v)| v.map(|v| (field, v)))
+    {
+        Some((field, value)) => Err(SceneError::Inconsistent(format!(
+            "{field} = {value} is read by the round loop of {} = \"jkr_limit\" and \"dugdale\" \
+             only: the smooth law \"{}\" solves every element by Newton's method to 1e-7 of its \
+             peak tension (docs/theory.md §3.9); leave {field} out",
+            fields::ADHESION_MODEL,
+            law.name(),
+        ))),
+        None => Ok(()),
     }
 }
 
@@ -1018,8 +1069,8 @@ fn approach_path(
 /// [`crate::pull_off_path`] for a body with a radius, to the rule's depth or to
 /// `protocol.max_approach` when given; a body without a radius needs `max_approach` and
 /// `unload_step` (the coarse step is then [`crate::pull_off_path::COARSE_PER_UNLOAD_STEP`]
-/// times the fine one). It loads in one step under the zero-range law and in retraction steps
-/// from out of range under a finite-range law ([`crate::pull_off_path::load_plan`]).
+/// times the fine one). It loads in one step under the zero-range law and in steps from out of
+/// range under a finite-range law ([`crate::pull_off_path::load_plan`]).
 fn default_branch(
     p: &Protocol,
     body: &PathBody<'_>,
@@ -1077,7 +1128,9 @@ fn default_branch(
         .or(rule.map(|r| r.path.max_approach))
         .unwrap_or_default();
     let range = body.law.reach(body.material.gamma);
-    let (start, load) = crate::pull_off_path::load_plan(first_touch, max_approach, unload, range);
+    let length = body.law.curve().map(|c| c.length());
+    let (start, load) =
+        crate::pull_off_path::load_plan(first_touch, max_approach, unload, range, length);
     // A law whose reach is many retraction steps long would spend every step the default cap
     // allows loading, and the result would hold no retraction at all (a cap the scene sets is
     // its own: a short look at the load is a run, stopped at the cap).
@@ -1088,7 +1141,7 @@ fn default_branch(
     {
         return Err(SceneError::Inconsistent(format!(
             "the default path loads from out of the law's reach ({} before the first touch) in \
-             steps of the retraction step {}: {} load steps, not fewer than the default \
+             steps of {}: {} load steps, not fewer than the default \
              {max_steps} = {max_steps_value}, so it would never retract; give a path of your own \
              ({max_approach}, {load_step} and {unload_step}), raise {max_steps}, or shorten the \
              law's reach ({parameter})",
@@ -1120,7 +1173,7 @@ fn default_branch(
             max_approach,
             ..rule.path
         },
-        stepped_load: range.is_some(),
+        stepped_load: range.is_some().then_some(load),
         refined: path.refine_pull_off,
         ..rule
     });
@@ -1170,7 +1223,7 @@ fn default_path(body: &PathBody<'_>, depth: Option<f64>) -> Result<PathRule, NoR
             .map(|((i, j), h)| h - shape.height(grid.x(i), grid.y(j)))
             .fold(f64::NEG_INFINITY, f64::max);
         return Ok(PathRule {
-            stepped_load: false,
+            stepped_load: None,
             refined: false,
             radius,
             fitted: false,
@@ -1268,7 +1321,7 @@ fn finish_default_path(
         )?;
     }
     Ok(PathRule {
-        stepped_load: false,
+        stepped_load: None,
         refined: false,
         radius,
         fitted,

@@ -236,12 +236,16 @@ impl FitCheck<'_> {
     }
 }
 
+/// How the warning of [`under_resolved`] starts: the zero-range criterion's mesh rule, which a
+/// finite-range law's run drops (its own warning judges its zone).
+pub(crate) const UNDER_RESOLVED_PULL_OFF: &str = "under-resolved pull-off:";
+
 /// Flags a pull-off radius of fewer than [`MIN_PULL_OFF_RADIUS_ELEMENTS`] elements.
 pub fn under_resolved(warnings: &mut Vec<String>, what: &str, radius: f64, dx: f64) {
     let elements = radius / dx;
     if elements < MIN_PULL_OFF_RADIUS_ELEMENTS {
         warnings.push(format!(
-            "under-resolved pull-off: {what} spans {elements:.3} elements (fewer than \
+            "{UNDER_RESOLVED_PULL_OFF} {what} spans {elements:.3} elements (fewer than \
              {MIN_PULL_OFF_RADIUS_ELEMENTS}), where the detachment criterion's error on a sphere \
              exceeds +33%; refine {dx}",
             dx = fields::GRID_DX

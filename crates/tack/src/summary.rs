@@ -71,7 +71,7 @@ pub fn summary(problem: &Problem, path: &PathResult) -> tack_io::Summary {
         extra.insert("unload_speed".to_owned(), rates.unload_speed);
         extra.insert("dwell".to_owned(), rates.dwell);
     }
-    let cycle = path.cycle();
+    let cycle = path.cycle_under(&problem.law);
     // The refined retraction samples the retraction only every coarse step away from the
     // pull-off's brackets: the loop integral and the jump-out are not measured by it (the
     // trapezoids span coarse steps, and the contact may be lost anywhere in the last one), so

@@ -160,12 +160,19 @@ fn a_patterned_sphere_crops_to_the_same_answer() {
         let sets = vec![format!("grid.crop={crop}")];
         let scene = Scene::parse(text, ".", &sets).unwrap();
         let out = run(&scene, &RunOptions::default(), &mut ()).unwrap();
+        let mean = out
+            .result
+            .curve
+            .mean_pressure
+            .clone()
+            .expect("a mean pressure column");
         (
             out.result.curve.force.clone(),
+            mean,
             out.result.summary.extra.clone(),
         )
     };
-    let ((cropped, extra), (full, _)) = (run_crop(true), run_crop(false));
+    let ((cropped, mean, extra), (full, full_mean, full_extra)) = (run_crop(true), run_crop(false));
     assert!(
         extra.contains_key("crop_rows"),
         "the window must crop: {extra:?}"
@@ -175,6 +182,18 @@ fn a_patterned_sphere_crops_to_the_same_answer() {
     for (a, b) in cropped.iter().zip(&full) {
         assert!((a - b).abs() < 1e-8 * scale, "{a} vs {b}");
     }
+    // The mean pressure is over the full grid either way (it was over the window's area).
+    let area = 140.0 * 131.0 * 0.025 * 0.025;
+    for ((m, f), fm) in mean.iter().zip(&cropped).zip(&full_mean) {
+        assert!(
+            (m - f / area).abs() <= 1e-14 * (f / area).abs(),
+            "{m} vs {}",
+            f / area
+        );
+        assert!((m - fm).abs() < 1e-8 * scale / area, "{m} vs {fm}");
+    }
+    let least = |e: &std::collections::BTreeMap<String, f64>| e["min_mean_pressure"];
+    assert!((least(&extra) / least(&full_extra) - 1.0).abs() < 1e-8);
 }
 
 #[test]

@@ -667,22 +667,70 @@ mod adhesion_tests {
                 .contains("solver.kappa = 0.5 is read by adhesion.model = \"jkr_limit\" only")
         );
         assert!(err(&[exp[0], exp[1], "material.gamma=0"]).contains("needs material.gamma > 0"));
-        // A reach so long that the default path would spend every step of the default cap
-        // loading is refused, naming the cap and what to give instead; a cap the scene sets is
-        // its own (a short look at the load: range 0.05, 18.4 ρ = 0.92 of reach, in 100 steps),
-        // and range 100 with the cap raised past its load steps is taken too.
+        // A smooth law loads from out of reach in steps of at least ρ/50
+        // (`STEPS_PER_LENGTH`): range 100, reach 1842, in 923 steps of 2, where the retraction
+        // step would have taken 100 000 or more (and been refused, below).
         let long = ["adhesion.model=\"exponential\"", "adhesion.range=100"];
+        let p = build(&long).unwrap();
+        assert_eq!(p.path.load_step, 2.0);
+        assert!(p.path.unload_step < 0.01, "{}", p.path.unload_step);
+        let steps = ((p.path.max_approach - p.path.start) / p.path.load_step).ceil();
+        assert_eq!(steps, 923.0);
+        // Range 0.05: ρ/50 = 1e-3 is shorter than the retraction step, which stays.
+        let p = build(&exp).unwrap();
+        assert_eq!(p.path.load_step, p.path.unload_step);
+        // A reach so long that the default path would spend every step of the default cap
+        // loading is refused, naming the cap and what to give instead (a Dugdale law of σ0 =
+        // 1e-4, range γ/σ0 = 1000, loads in retraction steps); a cap the scene sets is its own
+        // (a short look at the load: range 0.05, 18.4 ρ = 0.92 of reach, in 100 steps), and
+        // with the cap raised past its load steps the long reach is taken too.
+        let long = ["adhesion.model=\"dugdale\"", "adhesion.sigma0=1e-4"];
         let message = err(&long);
         assert!(
             message.starts_with("the default path loads from out of the law's reach")
                 && message.contains("the default protocol.max_steps = 100000")
-                && message.contains("(adhesion.range)"),
+                && message.contains("(adhesion.sigma0)"),
             "{message}"
         );
         let p = build(&[exp[0], exp[1], "protocol.max_steps=100"]).unwrap();
         assert_eq!(p.path.max_steps, 100);
         let p = build(&[long[0], long[1], "protocol.max_steps=2000000"]).unwrap();
         assert_eq!(p.path.max_steps, 2_000_000);
+        // The round loop's settings are refused under a smooth law, which has none.
+        for set in [
+            "solver.tolerance=1e-12",
+            "solver.max_active_set_iterations=1",
+            "solver.round_tolerance=0",
+            "solver.local_relaxation=false",
+            "solver.cascade=false",
+        ] {
+            let message = err(&[exp[0], exp[1], set]);
+            let field = set.split('=').next().unwrap();
+            assert!(
+                message.starts_with(&format!("{field} = "))
+                    && message.contains("read by the round loop")
+                    && message.ends_with(&format!("leave {field} out")),
+                "{message}"
+            );
+        }
+        assert!(build(&[exp[0], exp[1], "solver.max_iterations=100"]).is_ok());
+        // The pull-off radius' mesh rule is the criterion's: a_c = 0.707 spans 3.5 elements at
+        // Δx = 0.2; the smooth law warns of its own zone only.
+        let flagged = |p: &Problem| {
+            p.warnings
+                .iter()
+                .any(|w| w.starts_with("under-resolved pull-off:"))
+        };
+        assert!(flagged(&build(&["grid.dx=0.2"]).unwrap()));
+        let p = build(&[exp[0], exp[1], "grid.dx=0.2"]).unwrap();
+        assert!(!flagged(&p), "{:?}", p.warnings);
+        assert!(
+            p.warnings
+                .iter()
+                .any(|w| w.starts_with("under-resolved process zone")),
+            "{:?}",
+            p.warnings
+        );
         // A range the grid cannot resolve to round-off is refused before running (Δx = 0.02,
         // γ = 0.1: the least is 2.7e-5), naming the least; the least itself is taken.
         let message = err(&["adhesion.model=\"exponential\"", "adhesion.range=1e-6"]);
