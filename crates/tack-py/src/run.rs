@@ -49,7 +49,21 @@ const PULL_OFF_NAMES: Names = &[
         concat!(field_name!(adhesion.model), " = \"dugdale\""),
         "law=tack.Dugdale(sigma0=...)",
     ),
+    (
+        concat!(field_name!(adhesion.model), " = \"jkr_limit\""),
+        "law=tack.JkrLimit()",
+    ),
     (fields::ADHESION_MODEL, "law"),
+    // `pull_off` has no step cap of its own: a longer path is a scene's, run by `tack.run`.
+    (
+        concat!("the default ", field_name!(protocol.max_steps)),
+        "pull_off's step cap",
+    ),
+    (
+        concat!("raise ", field_name!(protocol.max_steps)),
+        "run the body as a scene through tack.run with a higher [protocol] max_steps",
+    ),
+    (fields::PROTOCOL_MAX_STEPS, "pull_off's step cap"),
     (fields::OUTPUT_SNAPSHOTS, "snapshots"),
     // `body.thickness` and `body.poisson` stay as they are: the attributes of `body=tack.Layer(...)`.
     (fields::GRID_N, "heights.shape"),

@@ -2,6 +2,7 @@
 argument and the type it expects, a bad value TackError (a ValueError) naming the argument,
 never a scene field (`material.gamma`, `grid.nx`) or a Rust path (`tack_solver::...`)."""
 
+import math
 import os
 import re
 
@@ -105,6 +106,66 @@ def test_laws_and_bodies_check_values_and_show_themselves():
         tack.pull_off(SPHERE, **PULL_OFF, law="dugdale")
     with pytest.raises(TypeError, match=r"^body: expected tack.HalfSpace"):
         tack.contact(SMALL, **CONTACT, body=tack.Dugdale(sigma0=1.0))
+
+
+# Tabor's relation (R gamma^2 / (E*^2 l^3))^(1/3) = R^(1/3) (gamma/E*)^(2/3) / l, read either
+# way: arguments whose powers leave the floats (gamma^2, mu^3) while the result does not.
+TABOR_IN_RANGE = [
+    (1e-300, dict(radius=1.0, e_star=1.0, gamma=1e-3)),  # mu^3 underflows: range 1e298
+    (1.0, dict(radius=1.0, e_star=1e200, gamma=1.0)),  # e_star^2 overflows: range 4.6e-134
+    (1.0, dict(radius=1.0, e_star=1.0, gamma=1e-200)),  # gamma^2 underflows: range 4.6e-134
+    (1e200, dict(radius=1e250, e_star=1e-100, gamma=1e150)),  # range 1e100
+    (0.37, dict(radius=2.0, e_star=3.0, gamma=0.5)),
+]
+
+
+def tabor_log(length, radius, e_star, gamma):
+    return (math.log(radius) + 2 * math.log(gamma) - 2 * math.log(e_star)) / 3 - math.log(length)
+
+
+@pytest.mark.parametrize("law", [tack.Exponential, tack.LennardJones])
+@pytest.mark.parametrize("mu, sphere", TABOR_IN_RANGE)
+def test_tabor_relation_holds_wherever_its_result_is_a_float(law, mu, sphere):
+    made = law.from_tabor(mu, **sphere)
+    assert math.isclose(math.log(made.range), tabor_log(mu, **sphere), abs_tol=1e-13)
+    assert math.isclose(made.tabor(**sphere), mu, rel_tol=1e-14)
+
+
+@pytest.mark.parametrize("law", [tack.Exponential, tack.LennardJones])
+def test_tabor_of_a_range_whose_cube_underflows(law):
+    assert math.isclose(law(range=1e-120).tabor(radius=1.0, e_star=1.0, gamma=1e-3), 1e118,
+                        rel_tol=1e-14)
+    assert law.from_tabor(1.0, radius=1.0, e_star=1.0, gamma=1.0) == law(range=1.0)
+
+
+@pytest.mark.parametrize(
+    "call, named",
+    [
+        # range about 1e800 and 1e-800; named in the order of their share.
+        (lambda: tack.Exponential.from_tabor(1e-300, radius=1e300, e_star=1e-300, gamma=1e300),
+         "mu = 1e-300, gamma = 1e+300, e_star = 1e-300 and radius = 1e+300 put the range "),
+        (lambda: tack.LennardJones.from_tabor(1e300, radius=1e-300, e_star=1e300, gamma=1e-300),
+         "mu = 1e+300, gamma = 1e-300, e_star = 1e+300 and radius = 1e-300 put the range "),
+        # range about 1e-333: below the normal floats; mu = 1 is not to blame.
+        (lambda: tack.Exponential.from_tabor(1.0, radius=1e-200, e_star=1e200, gamma=1e-200),
+         "gamma = 1e-200, e_star = 1e+200 and radius = 1e-200 put the range "),
+        (lambda: tack.Exponential.from_tabor(5e-324, radius=1.0, e_star=1.0, gamma=1.0),
+         "mu = 5e-324 puts the range "),
+        # Tabor's mu about 1e323 and 1e-600.
+        (lambda: tack.LennardJones(range=5e-324).tabor(radius=1.0, e_star=1.0, gamma=1.0),
+         "this law's range = 5e-324 puts Tabor's mu "),
+        (lambda: tack.Exponential(range=1e300).tabor(radius=1e-300, e_star=1e300, gamma=1.0),
+         "this law's range = 1e+300, e_star = 1e+300 and radius = 1e-300 put Tabor's mu "),
+    ],
+)
+def test_tabor_results_beyond_the_floats_name_the_arguments(call, named):
+    with pytest.raises(ValueError) as info:
+        call()
+    message = str(info.value)
+    assert isinstance(info.value, tack.TackError)
+    assert message.startswith(named + "beyond what a float holds"), message
+    assert re.search(r"would be about 1e[+-]\d+, (above|below) the (largest|least normal) float",
+                     message), message
 
 
 def test_contact_interface_refuses_other_types():

@@ -75,6 +75,22 @@ def test_pull_off_errors_name_the_field():
         tack.pull_off(np.zeros(5), dx=0.45, e_star=1.0, gamma=0.125)
 
 
+def test_pull_off_errors_give_python_advice():
+    # Advice in a message is spelled as Python takes it: the JKR limit is law=tack.JkrLimit(),
+    # and pull_off has no step cap of its own (a longer path is a scene's, run by tack.run).
+    heights = tack.surface.sphere(64, dx=1 / 64, radius=1.0)
+    with pytest.raises(ValueError) as info:
+        tack.pull_off(heights, dx=1 / 64, e_star=1.0, gamma=1e-3,
+                      law=tack.Exponential(range=1e-9))
+    message = str(info.value)
+    assert "law=tack.JkrLimit()" in message and "jkr_limit" not in message, message
+    with pytest.raises(ValueError) as info:
+        tack.pull_off(heights, dx=1 / 64, e_star=1.0, gamma=1e-3, law=tack.Dugdale(sigma0=1e-7))
+    message = str(info.value)
+    assert "pull_off's step cap" in message and "tack.run" in message, message
+    assert "protocol." not in message, message
+
+
 def test_contact_errors_name_the_field():
     heights = tack.surface.sphere(16, dx=0.1, radius=1.0)
     with pytest.raises(ValueError, match="e_star"):

@@ -2,8 +2,9 @@
 
 A boundary-element solver for an elastic half-space (or film) pressed against, and pulled off,
 a rigid rough body, with JKR-limit adhesion (the Pohrt-Popov detachment criterion; Li, Pohrt &
-Popov 2019) or a Dugdale cohesive zone. The numerical work runs in Rust (the ``tack`` crates) with the GIL released; arrays go
-in and come out as numpy arrays.
+Popov 2019), a Dugdale cohesive zone or a smooth law (exponential, Lennard-Jones). The
+numerical work runs in Rust (the ``tack`` crates) with the GIL released; arrays go in and come
+out as numpy arrays.
 
 - :func:`run` runs a scene (a TOML file or text, ``docs/scenes.md``) and returns a
   :class:`Result`; :func:`read` reads a result file.
@@ -397,16 +398,25 @@ def pull_off(
             list of step indices.
         threads, progress: as for :func:`run`.
 
-    The default path (the paper's rough-sphere runs): with d_s = (R gamma^2/E*^2)^(1/3), one
-    load step to ``max_approach = apex + top of the roughness + 3 d_s`` (apex and roughness
+    The default path (the paper's rough-sphere runs): with d_s = (R gamma^2/E*^2)^(1/3), a
+    load to ``max_approach = apex + top of the roughness + 3 d_s`` (apex and roughness
     relative to the fitted paraboloid; a smooth sphere bonds a disc of about 1.6 a_c, deep
     enough for the JKR pull-off), then retraction by 0.2 d_s while the force is compressive
     and by min(0.02, 0.2 dx/a_c) d_s through the tensile part (a_c the JKR pull-off radius)
-    until nothing is bonded. On a free grid the Hertz
-    radius at that depth plus 30% must fit in the array. A body without a radius (flat, wavy)
-    needs ``max_approach`` and ``unload_step``. The summary's ``f_jkr`` and
-    ``pull_off_ratio`` refer to the sphere of radius R; ``provenance["scene"]`` records the
-    rule's numbers, and the heights are stored in ``result.surface``.
+    until nothing is bonded. Under the zero-range law (:class:`tack.JkrLimit`) the load is one
+    step from the first touch. Under a finite-range law (:class:`tack.Dugdale`,
+    :class:`tack.Exponential`, :class:`tack.LennardJones`) it starts out of the law's reach
+    (the Dugdale range gamma/sigma0; a smooth law's reach, where its tension has fallen to
+    1e-8 of the peak) before the first touch and steps in by the fine retraction step, under a
+    smooth law by at least its ``range``/50, so the curve holds the approach branch and the
+    jump in. A reach so long that this load would take 100 000 steps or more (the path's cap;
+    ``pull_off`` has no argument to raise it) is refused with a :class:`tack.SceneError`: give
+    a path of your own (``max_approach``, ``load_step`` and ``unload_step``) or a shorter
+    range (a scene run by :func:`tack.run` may set its own ``[protocol] max_steps``). On a
+    free grid the Hertz radius at that depth plus 30% must fit in the array. A body without a
+    radius (flat, wavy) needs ``max_approach`` and ``unload_step``. The summary's ``f_jkr``
+    and ``pull_off_ratio`` refer to the sphere of radius R; ``provenance["scene"]`` records
+    the rule's numbers, and the heights are stored in ``result.surface``.
 
     Raises:
         TypeError: an argument of the wrong type (a str, bytes, None, bool or complex number

@@ -1,5 +1,7 @@
 """The adhesion laws and elastic bodies that :func:`tack.pull_off` and :func:`tack.contact`
-take as ``law=`` and ``body=``: :class:`JkrLimit`, :class:`Dugdale`, :class:`HalfSpace`,
+take as ``law=`` and ``body=``: the laws :class:`JkrLimit` (zero range), :class:`Dugdale` (a
+cohesive zone) and the smooth laws :class:`Exponential` and :class:`LennardJones` (made from
+their ``range``, or from Tabor's mu with ``from_tabor``); the bodies :class:`HalfSpace` and
 :class:`Layer`.
 
 Each object checks its arguments when it is made (``TypeError`` naming the argument and the
@@ -13,6 +15,8 @@ A viscoelastic solid is one more object of this family, :class:`Viscoelastic`, p
 
 from __future__ import annotations
 
+import math
+import sys
 from typing import Any, Optional, Tuple
 
 from . import _check
@@ -121,26 +125,86 @@ class _Smooth(_Value):
 
     def tabor(self, *, radius: float, e_star: float, gamma: float) -> float:
         """Tabor's parameter mu = (R gamma^2 / (E*^2 range^3))^(1/3) of this law for a sphere of
-        ``radius`` (all finite, > 0)."""
+        ``radius`` (all finite, > 0). A mu beyond the floats (above 1.8e308, or below the
+        normal floats' 2.2e-308) raises :class:`tack.TackError` naming the arguments that make
+        it so."""
         radius = _check.positive("radius", radius)
         e_star = _check.positive("e_star", e_star)
         gamma = _check.positive("gamma", gamma)
-        return (radius * gamma**2 / (e_star**2 * self.range**3)) ** (1.0 / 3.0)
+        return _tabor_length(
+            ("range", self.range, "this law's "), radius, e_star, gamma, "Tabor's mu"
+        )
 
     @classmethod
     def from_tabor(
         cls, mu: float, *, radius: float, e_star: float, gamma: float
     ) -> "_Smooth":
         """The law whose Tabor parameter is ``mu`` for a sphere of ``radius`` (all finite, >
-        0): range = (R gamma^2 / (E*^2 mu^3))^(1/3)."""
+        0): range = (R gamma^2 / (E*^2 mu^3))^(1/3). A range beyond the floats (above 1.8e308,
+        or below the normal floats' 2.2e-308) raises :class:`tack.TackError` naming the
+        arguments that make it so."""
         mu = _check.positive("mu", mu)
         radius = _check.positive("radius", radius)
         e_star = _check.positive("e_star", e_star)
         gamma = _check.positive("gamma", gamma)
-        return cls((radius * gamma**2 / (e_star**2 * mu**3)) ** (1.0 / 3.0))
+        return cls(_tabor_length(("mu", mu, ""), radius, e_star, gamma, "the range"))
 
     def _arguments(self) -> dict:
         return {"model": self.model, "kappa": None, "sigma0": None, "range": self.range}
+
+
+def _tabor_length(
+    x: Tuple[str, float, str], radius: float, e_star: float, gamma: float, result: str
+) -> float:
+    """(R gamma^2 / (E*^2 x^3))^(1/3), Tabor's relation read either way (x the range: mu; x
+    mu: the range), for finite positive arguments. It equals R^(1/3) (gamma/E*)^(2/3) / x, so
+    it is a float whenever that is, whatever its factors' powers: the mantissas and the powers
+    of two are taken apart (exactly), so no intermediate overflows or underflows and the cube
+    root is taken of a number near 1. ``x`` is (name, value, what the name is: "" for an
+    argument); ``result`` the name of what is computed. A result that is inf, or below the
+    normal floats (whose digits it would lose, down to 0), raises ``TackError`` naming the
+    arguments that push it there."""
+    name, value, whose = x
+    # v = m 2^k with m in [0.5, 1): the mantissas' quotient lies in [1/8, 32].
+    (m_r, k_r), (m_g, k_g), (m_e, k_e), (m_x, k_x) = (
+        math.frexp(v) for v in (radius, gamma, e_star, value)
+    )
+    q, r = divmod(k_r + 2 * k_g - 2 * k_e - 3 * k_x, 3)
+    root = (m_r * m_g**2 / (m_e**2 * m_x**3) * 2.0**r) ** (1.0 / 3.0)
+    try:
+        out = math.ldexp(root, q)
+    except OverflowError:
+        out = math.inf
+    if sys.float_info.min <= out < math.inf:
+        return out
+    # Name the arguments whose factors push the result out of the floats, largest first.
+    logs = {
+        "radius": (radius, math.log(radius) / 3.0),
+        "gamma": (gamma, 2.0 * math.log(gamma) / 3.0),
+        "e_star": (e_star, -2.0 * math.log(e_star) / 3.0),
+        name: (value, -math.log(value)),
+    }
+    log_out = sum(term for _, term in logs.values())
+    above = out == math.inf
+    sign = 1.0 if above else -1.0
+    pushing = sorted(
+        ((n, v) for n, (v, term) in logs.items() if sign * term > 0.0),
+        key=lambda item: -sign * logs[item[0]][1],
+    )
+    shown = [f"{whose if n == name else ''}{n} = {_check.num(v)}" for n, v in pushing]
+    listed = shown[0] if len(shown) == 1 else ", ".join(shown[:-1]) + " and " + shown[-1]
+    formula = f"(radius gamma^2 / (e_star^2 {name}^3))^(1/3)"
+    edge = (
+        f"above the largest float ({sys.float_info.max:.3g})"
+        if above
+        else f"below the least normal float ({sys.float_info.min:.3g}; below it floats lose "
+        "their digits, down to 0)"
+    )
+    about = f"1e{log_out / math.log(10.0):+.0f}"
+    raise _check.TackError(
+        f"{listed} {'puts' if len(shown) == 1 else 'put'} {result} beyond what a float holds: "
+        f"{formula} would be about {about}, {edge}"
+    )
 
 
 class Exponential(_Smooth):
