@@ -139,7 +139,7 @@ pub fn coarse_problem(scene: &Scene, problem: &Problem) -> Result<Problem, Scene
     };
     // A law held in memory is not in the scene: the coarse run takes the fine one's.
     let law = problem.law_in_memory.then_some(&problem.law);
-    match &coarse_map {
+    let built = match &coarse_map {
         Some((map, range)) => Problem::build(
             &coarse,
             Some(&crate::problem::HeightBody {
@@ -151,7 +151,16 @@ pub fn coarse_problem(scene: &Scene, problem: &Problem) -> Result<Problem, Scene
             law,
         ),
         None => Problem::build(&coarse, None, law),
-    }
+    };
+    // A limit the fine grid meets may not hold on the coarse one (a smooth law's least range
+    // grows with Δx): the message says which grid refused.
+    built.map_err(|e| {
+        refuse(format!(
+            "runs the scene again on a coarse grid of {} = {}, which refuses it: {e}",
+            fields::GRID_DX,
+            crate::scene::num(2.0 * grid.dx())
+        ))
+    })
 }
 
 /// The coarse grid must hold the same γ pattern: a period of 2 coarse elements, a correlation

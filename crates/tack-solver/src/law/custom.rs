@@ -132,7 +132,6 @@ pub(super) fn check_shape(curve: &dyn Curve) -> Result<(), SolverError> {
     let length = positive("Curve::length", curve.length())?;
     let peak = positive("Curve::peak", curve.peak(1.0))?;
     let reach = positive("Curve::reach", curve.reach())?;
-    check_tail(curve, peak, reach)?;
     let top = (1.0 + reach / length).ln();
     let dt = top / SAMPLES as f64;
     let gap = |i: usize| {
@@ -147,6 +146,9 @@ pub(super) fn check_shape(curve: &dyn Curve) -> Result<(), SolverError> {
         let g = gap(i);
         samples.push((g, point(curve, g, length, peak)?));
     }
+    // After the samples up to the reach: a curve that fails inside its reach is named at the
+    // gap where it fails, not at the reach.
+    check_tail(curve, peak, reach)?;
     check_scaling(curve, &samples, peak)?;
     let (mut work, mut most) = (0.0, f64::NEG_INFINITY);
     for (i, &(g, (p, _))) in samples.iter().enumerate() {

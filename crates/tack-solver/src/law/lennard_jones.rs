@@ -33,6 +33,10 @@ impl Curve for LennardJones {
         "the equilibrium separation ε > 0 of the 9–3 law"
     }
 
+    fn symbol(&self) -> &'static str {
+        "ε"
+    }
+
     #[inline]
     fn pressure(&self, gamma: f64, g: f64) -> f64 {
         let r = self.range;

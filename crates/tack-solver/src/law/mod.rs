@@ -158,6 +158,11 @@ pub trait Curve: std::fmt::Debug + Send + Sync {
     fn length(&self) -> f64;
     /// What the length is, for a message that asks for it (e.g. `the range ρ > 0 of …`).
     fn meaning(&self) -> &'static str;
+    /// The length's symbol in messages: `ρ` unless the curve says otherwise (`ε` of the
+    /// Lennard-Jones law).
+    fn symbol(&self) -> &'static str {
+        "ρ"
+    }
     /// The pressure at gap `g ≥ 0` for work of adhesion `gamma` (negative: tension).
     fn pressure(&self, gamma: f64, g: f64) -> f64;
     /// `dp/dg` at gap `g ≥ 0`: positive where the law softens (destabilises).
@@ -236,10 +241,11 @@ impl<C: Curve> Law for C {
         let zone = self.zone_length(e_star, gamma)?;
         let shown = under_resolved(zone / dx, self.min_zone_elements())?;
         let strength = format!("the peak tension {}", fields::rounded(self.peak(gamma)));
+        let symbol = Curve::symbol(self);
         Some(format!(
-            "under-resolved process zone: its width (8/3π)E*ρ²/γ = {} spans {shown} elements \
-             (at least {} needed); the front then moves element by element and the forces \
-             depend on the mesh (refine {} or raise {}){}",
+            "under-resolved process zone: its width (8/3π)E*{symbol}²/γ = {} spans {shown} \
+             elements (at least {} needed); the front then moves element by element and the \
+             forces depend on the mesh (refine {} or raise {}){}",
             fields::rounded(zone),
             self.min_zone_elements(),
             fields::GRID_DX,

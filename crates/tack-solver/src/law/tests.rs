@@ -147,6 +147,8 @@ struct Broken {
     ignore_gamma: bool,
     /// NaN beyond twice the reach.
     nan_beyond: bool,
+    /// NaN beyond a third of the reach (inside it).
+    nan_inside: bool,
     /// Factor of the pressure `pressure_and_stiffness` gives.
     pair: f64,
 }
@@ -163,6 +165,7 @@ impl Broken {
             stiffens: None,
             ignore_gamma: false,
             nan_beyond: false,
+            nan_inside: false,
             pair: 1.0,
         }
     }
@@ -182,7 +185,9 @@ impl Curve for Broken {
         "a test curve"
     }
     fn pressure(&self, gamma: f64, g: f64) -> f64 {
-        if self.nan_beyond && g > 2.0 * Curve::reach(self) {
+        if (self.nan_beyond && g > 2.0 * Curve::reach(self))
+            || (self.nan_inside && g > Curve::reach(self) / 3.0)
+        {
             return f64::NAN;
         }
         let gamma = if self.ignore_gamma { 1.0 } else { gamma };
@@ -230,7 +235,7 @@ fn the_built_in_curves_pass_the_custom_checks() {
 fn a_custom_curve_that_breaks_a_statement_is_refused_naming_the_method() {
     let exp = AdhesionLaw::from(Exponential { range: 2.0 });
     let lj = AdhesionLaw::from(LennardJones { range: 2.0 });
-    let cases: [(Broken, &str, &str); 15] = [
+    let cases: [(Broken, &str, &str); 16] = [
         (
             Broken {
                 name: "",
@@ -254,6 +259,16 @@ fn a_custom_curve_that_breaks_a_statement_is_refused_naming_the_method() {
             },
             "Curve::reach",
             "not finite",
+        ),
+        // Inside the reach the failing method is named at the gap where it fails (it was
+        // blamed on the reach).
+        (
+            Broken {
+                nan_inside: true,
+                ..Broken::of(exp.clone())
+            },
+            "Curve::pressure",
+            "is not finite at g = ",
         ),
         (
             Broken {

@@ -492,6 +492,23 @@ fn richardson_refuses_grid_dependent_geometry() {
 }
 
 #[test]
+fn richardson_says_when_its_coarse_grid_refuses_the_scene() {
+    // A smooth law's least range grows with Δx: 2.5e-6 is taken at Δx = 1/64 (least 1.97e-6)
+    // and refused at 2Δx (least 2.79e-6); the message names the coarse grid.
+    let text = "version = 1\n[material]\ne_star = 1.0\ngamma = 1e-3\n[adhesion]\nmodel = \
+                \"exponential\"\nrange = 2.5e-6\n[geometry]\nshape = \"sphere\"\nradius = 1.0\n\
+                [grid]\nn = 64\ndx = 0.015625\n";
+    let s = scene(text);
+    let p = Problem::from_scene(&s).unwrap();
+    let err = coarse_problem(&s, &p).unwrap_err().to_string();
+    assert!(
+        err.starts_with("--richardson runs the scene again on a coarse grid of grid.dx = 0.03125")
+            && err.contains("adhesion.range = 2.5e-6 is invalid: must be at least"),
+        "{err}"
+    );
+}
+
+#[test]
 fn every_summary_quantity_is_listed() {
     let text = r#"
 version = 1
