@@ -63,6 +63,10 @@ const PULL_OFF_NAMES: Names = &[
         concat!("raise ", field_name!(protocol.max_steps)),
         "run the body as a scene through tack.run with a higher [protocol] max_steps",
     ),
+    (
+        concat!("lower ", field_name!(protocol.max_steps)),
+        "give a shorter path (a larger unload_step or a smaller max_approach)",
+    ),
     (fields::PROTOCOL_MAX_STEPS, "pull_off's step cap"),
     (fields::OUTPUT_SNAPSHOTS, "snapshots"),
     // `body.thickness` and `body.poisson` stay as they are: the attributes of `body=tack.Layer(...)`.

@@ -117,9 +117,9 @@ pub use extrapolate::{
     richardson_first_order,
 };
 pub use law::{
-    AdhesionLaw, Curve, CustomCurve, Dugdale, Exponential, Family, JkrLimit, Law, LennardJones,
-    MIN_COHESIVE_ZONE_ELEMENTS, MIN_PROCESS_ZONE_ELEMENTS, RANGE_ROUND_OFF, REACH_FRACTION,
-    StepColumn, ZONE_COLUMN,
+    APPROACH_FRACTION, AdhesionLaw, Curve, CustomCurve, Dugdale, Exponential, Family, JkrLimit,
+    Law, LennardJones, MIN_COHESIVE_ZONE_ELEMENTS, MIN_PROCESS_ZONE_ELEMENTS, RANGE_ROUND_OFF,
+    REACH_FRACTION, StepColumn, ZONE_COLUMN,
 };
 pub use options::{SolverError, SolverOptions};
 pub use path::{

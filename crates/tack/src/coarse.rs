@@ -153,14 +153,18 @@ pub fn coarse_problem(scene: &Scene, problem: &Problem) -> Result<Problem, Scene
         None => Problem::build(&coarse, None, law),
     };
     // A limit the fine grid meets may not hold on the coarse one (a smooth law's least range
-    // grows with Δx): the message says which grid refused.
-    built.map_err(|e| {
-        refuse(format!(
-            "runs the scene again on a coarse grid of {} = {}, which refuses it: {e}",
-            fields::GRID_DX,
-            crate::scene::num(2.0 * grid.dx())
-        ))
-    })
+    // grows with Δx): the message says which grid refused. What only the operator tells (that
+    // least range on a periodic grid or a film) is checked by building the coarse solver,
+    // before the fine solve.
+    built
+        .and_then(|coarse| coarse.solver(None).map(|_| coarse))
+        .map_err(|e| {
+            refuse(format!(
+                "runs the scene again on a coarse grid of {} = {}, which refuses it: {e}",
+                fields::GRID_DX,
+                crate::scene::num(2.0 * grid.dx())
+            ))
+        })
 }
 
 /// The coarse grid must hold the same γ pattern: a period of 2 coarse elements, a correlation

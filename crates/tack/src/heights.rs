@@ -105,8 +105,9 @@ pub struct PullOffSpec {
     pub refine_pull_off: bool,
     /// Pohrt–Popov constant κ; `None`: `tack_solver::KAPPA`.
     pub kappa: Option<f64>,
-    /// The adhesion law (`[adhesion]`): the zero-range criterion (default) or a Dugdale
-    /// cohesive zone, which approaches from out of contact in retraction steps.
+    /// The adhesion law (`[adhesion]`): the zero-range criterion (default), a Dugdale
+    /// cohesive zone or a smooth law; a finite-range law approaches from out of its reach in
+    /// steps (`crate::pull_off_path::load_plan`).
     pub adhesion: AdhesionSpec,
     /// Which steps keep their fields (default: the pull-off step and the last contact).
     pub snapshots: Snapshots,

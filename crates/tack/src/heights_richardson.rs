@@ -200,7 +200,10 @@ pub fn pull_off_richardson(
     };
     // Both problems are checked before the (longer) fine solve.
     let coarse_problem = pull_off_scene(&coarse, &coarse_spec)
-        .and_then(|plan| crate::heights::problem(&plan.scene, &plan.body(&coarse)));
+        .and_then(|plan| crate::heights::problem(&plan.scene, &plan.body(&coarse)))
+        // What only the operator tells (a smooth law's least range on a periodic grid or a
+        // film) is checked by building the coarse solver.
+        .and_then(|problem| problem.solver(None).map(|_| problem));
     if let Err(e) = coarse_problem {
         let (nx, ny) = coarse.dim();
         return Err(SceneError::Inconsistent(format!(

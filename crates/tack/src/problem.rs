@@ -757,7 +757,7 @@ fn law_stage(
         }
         None => (adhesion_law(f, kappa, surface)?, kappa),
     };
-    unread_by_smooth_laws(f, &law)?;
+    unread_by_law(f, &law)?;
     Ok((law, kappa))
 }
 
@@ -770,42 +770,66 @@ fn criterion_mesh_rule(law: &AdhesionLaw, warnings: &mut Vec<String>) {
     }
 }
 
-/// The `[solver]` settings of the round loop (the zero-range criterion's and the Dugdale
-/// law's) are refused under a smooth law, which has no rounds: its Newton iteration solves
-/// every element to a fixed fraction of the peak tension (docs/theory.md §3.9), so a given
-/// value would be silently ignored.
-fn unread_by_smooth_laws(f: &SceneSchema, law: &AdhesionLaw) -> Result<(), SceneError> {
-    if law.curve().is_none() {
-        return Ok(());
-    }
+/// The `[solver]` settings a law does not read are refused, so none is silently ignored: the
+/// round loop's (`tolerance`, `max_active_set_iterations`, `round_tolerance`: the zero-range
+/// criterion and the Dugdale law) under a smooth law, which has no rounds (its Newton
+/// iteration solves every element to a fixed fraction of the peak tension, docs/theory.md
+/// §3.9); the local relaxation's (`local_relaxation`, `cascade`: the criterion's detachments
+/// only) under both finite-range laws.
+fn unread_by_law(f: &SceneSchema, law: &AdhesionLaw) -> Result<(), SceneError> {
+    let smooth = law.curve().is_some();
+    let criterion = matches!(law.family(), Family::Criterion { .. });
     let s = &f.solver;
     let show = |v: Option<f64>| v.map(num);
+    let flag = |v: Option<bool>| v.map(|b| b.to_string());
+    let rounds = "\"jkr_limit\" and \"dugdale\"";
     let given = [
-        (fields::SOLVER_TOLERANCE, show(s.tolerance)),
+        (fields::SOLVER_TOLERANCE, show(s.tolerance), rounds, smooth),
         (
             fields::SOLVER_MAX_ACTIVE_SET_ITERATIONS,
             s.max_active_set_iterations.map(|n| n.to_string()),
+            rounds,
+            smooth,
         ),
-        (fields::SOLVER_ROUND_TOLERANCE, show(s.round_tolerance)),
+        (
+            fields::SOLVER_ROUND_TOLERANCE,
+            show(s.round_tolerance),
+            rounds,
+            smooth,
+        ),
         (
             fields::SOLVER_LOCAL_RELAXATION,
-            s.local_relaxation.map(|b| b.to_string()),
+            flag(s.local_relaxation),
+            "\"jkr_limit\"",
+            !criterion,
         ),
-        (fields::SOLVER_CASCADE, s.cascade.map(|b| b.to_string())),
+        (
+            fields::SOLVER_CASCADE,
+            flag(s.cascade),
+            "\"jkr_limit\"",
+            !criterion,
+        ),
     ];
-    match given
-        .into_iter()
-        .find_map(|(field, v)| v.map(|v| (field, v)))
-    {
-        Some((field, value)) => Err(SceneError::Inconsistent(format!(
-            "{field} = {value} is read by the round loop of {} = \"jkr_limit\" and \"dugdale\" \
-             only: the smooth law \"{}\" solves every element by Newton's method to 1e-7 of its \
-             peak tension (docs/theory.md §3.9); leave {field} out",
-            fields::ADHESION_MODEL,
-            law.name(),
-        ))),
-        None => Ok(()),
-    }
+    let Some((field, value, readers)) =
+        given.into_iter().find_map(|(field, v, readers, refused)| {
+            v.filter(|_| refused).map(|v| (field, v, readers))
+        })
+    else {
+        return Ok(());
+    };
+    let why = if smooth {
+        format!(
+            "the smooth law \"{}\" has no detach/attach rounds: Newton's method solves every \
+             element to 1e-7 of its peak tension or tighter (docs/theory.md §3.9)",
+            law.name()
+        )
+    } else {
+        "the Dugdale law's rounds relax no detachments locally".to_owned()
+    };
+    Err(SceneError::Inconsistent(format!(
+        "{field} = {value} is read by {} = {readers} only: {why}; leave {field} out",
+        fields::ADHESION_MODEL,
+    )))
 }
 
 /// A law given in memory ([`Problem::with_law`]), checked: the scene names none of its own
@@ -972,12 +996,23 @@ fn approach_path(
             Err(SceneError::out_of_range(field, v, "a finite number"))
         }
     };
-    let never_touches = |field: &str, d: f64, step: f64| {
-        SceneError::Inconsistent(format!(
+    // A finite-range law acts ahead of the surface: a path that stays out of contact but
+    // within the law's reach is a path (the tension of the approach, a non-contact pull-off).
+    let reach = body.law.reach(body.material.gamma);
+    let nearest = first_touch - reach.unwrap_or(0.0);
+    let never_touches = |field: &str, d: f64, step: f64| match reach {
+        None => SceneError::Inconsistent(format!(
             "{field} = {d} never touches the surface: the first touch is at approach \
              {first_touch} (the lowest surface height); {field} must be > {first_touch}, e.g. {}",
             first_touch + step
-        ))
+        )),
+        Some(reach) => SceneError::Inconsistent(format!(
+            "{field} = {d} never comes within the law's reach of the surface: the first touch \
+             is at approach {first_touch} (the lowest surface height) and the law reaches {} \
+             ahead of it; {field} must be > {}",
+            fields::rounded(reach),
+            num(nearest)
+        )),
     };
     if let Some(d) = p.indent {
         let others = [
@@ -1003,7 +1038,7 @@ fn approach_path(
             )));
         }
         let d = finite(fields::PROTOCOL_INDENT, d)?;
-        if d <= first_touch {
+        if d <= nearest {
             return Err(never_touches(
                 fields::PROTOCOL_INDENT,
                 d,
@@ -1026,7 +1061,7 @@ fn approach_path(
                         "a finite number > 0",
                     ));
                 }
-                if max_approach <= first_touch {
+                if max_approach <= nearest {
                     return Err(never_touches(
                         fields::PROTOCOL_MAX_APPROACH,
                         max_approach,
@@ -1127,10 +1162,11 @@ fn default_branch(
     let max_approach = depth
         .or(rule.map(|r| r.path.max_approach))
         .unwrap_or_default();
-    let range = body.law.reach(body.material.gamma);
+    // From where the law's tension is 1e-4 of the peak (a smooth law) or its range (Dugdale).
+    let range = body.law.approach_reach(body.material.gamma);
     let length = body.law.curve().map(|c| c.length());
     let (start, load) =
-        crate::pull_off_path::load_plan(first_touch, max_approach, unload, range, length);
+        crate::pull_off_path::load_plan(first_touch, max_approach, (unload, coarse), range, length);
     // A law whose reach is many retraction steps long would spend every step the default cap
     // allows loading, and the result would hold no retraction at all (a cap the scene sets is
     // its own: a short look at the load is a run, stopped at the cap).

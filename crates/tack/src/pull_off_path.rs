@@ -38,10 +38,10 @@ pub const UNLOAD_STEP: f64 = 0.02;
 pub const UNLOAD_STEP_PER_ELEMENT: f64 = 0.2;
 
 /// Under a smooth law (exponential, Lennard-Jones, a custom curve) the default path's load
-/// steps from out of range are at least the law's length ρ over this ([`load_plan`]): the
-/// approach changes the law's forces over ρ, and a law long against the JKR scale (small Tabor
-/// μ) loaded in retraction steps spent most of its run approaching (μ = 0.1 on 128²: 18 253
-/// load steps of its 22 925, 62 s).
+/// steps from out of range are at least the law's length ρ over this, up to the coarse
+/// retraction step ([`load_plan`]): the approach changes the law's forces over ρ, and a law
+/// long against the JKR scale (small Tabor μ) loaded in fine retraction steps spent most of its
+/// run approaching (μ = 0.1 on 128²: 18 253 load steps of its 22 925, 62 s; now 939).
 pub const STEPS_PER_LENGTH: f64 = 50.0;
 
 /// Coarse retraction step over the fine one when no radius sets the scale.
@@ -318,35 +318,39 @@ pub(crate) fn bonded_on_edge(heights: &Array2<f64>, max_approach: f64) -> usize 
         .count()
 }
 
-/// How the default path loads, as `(start, load_step)`: under the zero-range law one step from
-/// the first touch straight to `max_approach` (at least `step`, the retraction step); with a
-/// finite `range` (the Dugdale law's γ/σ0, a smooth law's reach) from just before the first
-/// element comes within range, `first_touch − range − load_step`, in steps of the retraction
-/// step (quasi-static: the approach branch is physical), or of a smooth law's `length` ρ over
-/// [`STEPS_PER_LENGTH`] where that is longer.
+/// How the default path loads, as `(start, load_step)`, from its retraction steps `(fine,
+/// coarse)`: under the zero-range law one step from the first touch straight to
+/// `max_approach` (at least the fine step); with a finite `range` (the Dugdale law's γ/σ0, a
+/// smooth law's reach) from just before the first element comes within range,
+/// `first_touch − range − load_step`, in fine steps (quasi-static: the approach branch is
+/// physical), or in steps of a smooth law's `length` ρ over [`STEPS_PER_LENGTH`] where that is
+/// longer, but no longer than the coarse step (the loaded contact and the jump in stay
+/// resolved as the compressive retraction is).
 ///
 /// ```
 /// use tack::pull_off_path::load_plan;
 /// // The zero-range criterion: one step from the first touch at 0 to 0.03.
-/// assert_eq!(load_plan(0.0, 0.03, 2e-4, None, None), (0.03, 0.03));
+/// assert_eq!(load_plan(0.0, 0.03, (2e-4, 2e-3), None, None), (0.03, 0.03));
 /// // The Dugdale law (no length): retraction steps from out of its range 0.1.
-/// let (start, step) = load_plan(0.0, 0.03, 2e-4, Some(0.1), None);
+/// let (start, step) = load_plan(0.0, 0.03, (2e-4, 2e-3), Some(0.1), None);
 /// assert!((start + 0.1002).abs() < 1e-15 && step == 2e-4);
-/// // A smooth law of length 0.1 (reach 1.84): steps of 0.1/50 = 0.002.
-/// let (start, step) = load_plan(0.0, 0.03, 2e-4, Some(1.84), Some(0.1));
-/// assert!((start + 1.842).abs() < 1e-15 && step == 0.002);
+/// // A smooth law of length 0.05 (reach 0.92): steps of 0.05/50 = 0.001.
+/// let (start, step) = load_plan(0.0, 0.03, (2e-4, 2e-3), Some(0.92), Some(0.05));
+/// assert!((start + 0.921).abs() < 1e-15 && step == 0.001);
+/// // Of length 1: the coarse step 0.002, not 1/50.
+/// assert_eq!(load_plan(0.0, 0.03, (2e-4, 2e-3), Some(18.4), Some(1.0)).1, 2e-3);
 /// ```
 pub fn load_plan(
     first_touch: f64,
     max_approach: f64,
-    step: f64,
+    (fine, coarse): (f64, f64),
     range: Option<f64>,
     length: Option<f64>,
 ) -> (f64, f64) {
     match range {
-        None => (max_approach, (max_approach - first_touch).max(step)),
+        None => (max_approach, (max_approach - first_touch).max(fine)),
         Some(range) => {
-            let step = length.map_or(step, |l| step.max(l / STEPS_PER_LENGTH));
+            let step = length.map_or(fine, |l| fine.max((l / STEPS_PER_LENGTH).min(coarse)));
             (first_touch - range - step, step)
         }
     }

@@ -406,9 +406,9 @@ def pull_off(
     until nothing is bonded. Under the zero-range law (:class:`tack.JkrLimit`) the load is one
     step from the first touch. Under a finite-range law (:class:`tack.Dugdale`,
     :class:`tack.Exponential`, :class:`tack.LennardJones`) it starts out of the law's reach
-    (the Dugdale range gamma/sigma0; a smooth law's reach, where its tension has fallen to
-    1e-8 of the peak) before the first touch and steps in by the fine retraction step, under a
-    smooth law by at least its ``range``/50, so the curve holds the approach branch and the
+    (the Dugdale range gamma/sigma0; under a smooth law where its tension has fallen to 1e-4
+    of the peak) before the first touch and steps in by the fine retraction step, under a
+    smooth law by ``range``/50 where that is longer (up to the coarse step), so the curve holds the approach branch and the
     jump in. A reach so long that this load would take 100 000 steps or more (the path's cap;
     ``pull_off`` has no argument to raise it) is refused with a :class:`tack.SceneError`: give
     a path of your own (``max_approach``, ``load_step`` and ``unload_step``) or a shorter

@@ -48,6 +48,13 @@ pub const MIN_PROCESS_ZONE_ELEMENTS: f64 = 1.0;
 /// peak: what a crop leaves out is a tension below it.
 pub const REACH_FRACTION: f64 = 1e-8;
 
+/// A path approaching under a smooth law starts where the law's tension falls to this fraction
+/// of the peak ([`AdhesionLaw::approach_reach`]), not at its reach: beyond, the body barely
+/// moves (a tension of 1e-4 of the peak on the nearest element) and the steps out there took
+/// most of a run under the Lennard-Jones law, whose g⁻³ tail reaches 637 ε (at 1e-4: 29 ε; the
+/// exponential law's 18.4 ρ, at 1e-4: 9.2 ρ).
+pub const APPROACH_FRACTION: f64 = 1e-4;
+
 /// The smallest range allowed, relative to the largest height: below it the gap test
 /// `g < h0` is decided by the round-off of `f − d + u`.
 pub const RANGE_ROUND_OFF: f64 = 1e-12;
@@ -445,6 +452,25 @@ impl AdhesionLaw {
             .iter()
             .find(|m| m.0 == model)
             .map(|(_, make)| make(value))
+    }
+
+    /// How far ahead of the first touch an approach starts: the Dugdale law's range γ/σ0 (its
+    /// tension is σ0 up to it); a smooth law's gap where its tension falls to
+    /// [`APPROACH_FRACTION`] of the peak for work `gamma` (scanned down from its reach in
+    /// steps of 1%: the outermost such gap); `None` for the zero-range criterion.
+    pub fn approach_reach(&self, gamma: f64) -> Option<f64> {
+        let Some(curve) = self.curve() else {
+            return self.reach(gamma);
+        };
+        let cut = APPROACH_FRACTION * curve.peak(gamma);
+        let mut g = curve.reach();
+        for _ in 0..2_000 {
+            if curve.pressure(gamma, g).abs() >= cut {
+                break;
+            }
+            g *= 0.99;
+        }
+        Some(g)
     }
 
     /// Whether every element carries the traction of its own gap (a smooth law).

@@ -506,6 +506,20 @@ fn richardson_says_when_its_coarse_grid_refuses_the_scene() {
             && err.contains("adhesion.range = 2.5e-6 is invalid: must be at least"),
         "{err}"
     );
+    // On a periodic grid only the operator knows the least range: the coarse solver is built
+    // to check it before the fine solve (it was refused only after the whole fine run).
+    let periodic = scene(&text.replace(
+        "dx = 0.015625\n",
+        "dx = 0.015625\nboundary = \"periodic\"\n",
+    ));
+    let p = Problem::from_scene(&periodic).unwrap();
+    assert!(p.solver(None).is_ok(), "the fine grid takes the range");
+    let err = coarse_problem(&periodic, &p).unwrap_err().to_string();
+    assert!(
+        err.starts_with("--richardson runs the scene again on a coarse grid")
+            && err.contains("must be at least"),
+        "{err}"
+    );
 }
 
 #[test]

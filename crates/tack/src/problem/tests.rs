@@ -625,8 +625,14 @@ mod adhesion_tests {
         // Tabor's μ of the sphere R = 1 (E* = 1, γ = 0.1): (Rγ²/(E*²ρ³))^(1/3) = 0.1^(2/3)/0.05.
         let mu = p.references.tabor_mu.unwrap();
         assert!((mu - 0.1f64.powf(2.0 / 3.0) / 0.05).abs() < 1e-12, "{mu}");
-        // The default path starts out of reach (18.4 ρ before the first touch).
-        assert!(p.path.start < -18.0 * 0.05, "{}", p.path.start);
+        // The default path starts where the law's tension is 1e-4 of the peak, ln(1e4) ρ = 9.2 ρ
+        // before the first touch (the reach, 18.4 ρ, is where it is 1e-8), to 1% (the scan).
+        let ahead = -(p.path.start + p.path.load_step);
+        assert!(
+            (ahead / (1e4f64.ln() * 0.05) - 1.0).abs() < 0.01,
+            "{}",
+            p.path.start
+        );
         let lj = build(&["adhesion.model=\"lennard_jones\"", "adhesion.range=0.05"]).unwrap();
         assert_eq!(
             lj.law,
@@ -668,14 +674,20 @@ mod adhesion_tests {
         );
         assert!(err(&[exp[0], exp[1], "material.gamma=0"]).contains("needs material.gamma > 0"));
         // A smooth law loads from out of reach in steps of at least ρ/50
-        // (`STEPS_PER_LENGTH`): range 100, reach 1842, in 923 steps of 2, where the retraction
-        // step would have taken 100 000 or more (and been refused, below).
-        let long = ["adhesion.model=\"exponential\"", "adhesion.range=100"];
+        // (`STEPS_PER_LENGTH`), up to the coarse retraction step: range 20, from 9.2 ρ = 184,
+        // in steps of min(20/50, coarse) = the coarse step, where the fine step would have
+        // taken 100 000 or more (and been refused, below).
+        let long = ["adhesion.model=\"exponential\"", "adhesion.range=20"];
         let p = build(&long).unwrap();
-        assert_eq!(p.path.load_step, 2.0);
-        assert!(p.path.unload_step < 0.01, "{}", p.path.unload_step);
+        let coarse = p.path.coarse_unload_step.unwrap();
+        assert!(coarse < 20.0 / 50.0, "{coarse}");
+        assert_eq!(p.path.load_step, coarse);
         let steps = ((p.path.max_approach - p.path.start) / p.path.load_step).ceil();
-        assert_eq!(steps, 923.0);
+        let fine = ((p.path.max_approach - p.path.start) / p.path.unload_step).ceil();
+        assert!(
+            steps < 0.1 * fine && fine >= 100_000.0,
+            "{steps} against {fine}"
+        );
         // Range 0.05: ρ/50 = 1e-3 is shorter than the retraction step, which stays.
         let p = build(&exp).unwrap();
         assert_eq!(p.path.load_step, p.path.unload_step);
@@ -708,12 +720,54 @@ mod adhesion_tests {
             let field = set.split('=').next().unwrap();
             assert!(
                 message.starts_with(&format!("{field} = "))
-                    && message.contains("read by the round loop")
+                    && message.contains("is read by adhesion.model = \"jkr_limit\"")
+                    && message.contains("has no detach/attach rounds")
                     && message.ends_with(&format!("leave {field} out")),
                 "{message}"
             );
         }
+        // The local relaxation is the criterion's: refused under the Dugdale law too, whose
+        // rounds read the round loop's settings.
+        let dugdale = ["adhesion.model=\"dugdale\"", "adhesion.sigma0=1.0"];
+        for set in ["solver.local_relaxation=false", "solver.cascade=true"] {
+            let message = err(&[dugdale[0], dugdale[1], set]);
+            assert!(
+                message.contains("is read by adhesion.model = \"jkr_limit\" only: the Dugdale"),
+                "{message}"
+            );
+        }
+        assert!(build(&[dugdale[0], dugdale[1], "solver.round_tolerance=0"]).is_ok());
+        assert!(build(&["solver.cascade=false"]).is_ok());
         assert!(build(&[exp[0], exp[1], "solver.max_iterations=100"]).is_ok());
+        // A path out of contact but within a finite-range law's reach (18.4 ρ = 0.92 here) is
+        // a path; one that never comes within the reach is refused, and under the criterion a
+        // path at or below the first touch still never touches.
+        let near = [
+            "protocol.start=-0.5",
+            "protocol.max_approach=-0.1",
+            "protocol.load_step=0.01",
+        ];
+        let p = build(&[exp[0], exp[1], near[0], near[1], near[2]]).unwrap();
+        assert_eq!((p.path.start, p.path.max_approach), (-0.5, -0.1));
+        let p = build(&[exp[0], exp[1], "protocol.indent=-0.1"]).unwrap();
+        assert!(p.path.is_indentation());
+        let far = [
+            "protocol.start=-1.5",
+            "protocol.max_approach=-1.0",
+            "protocol.load_step=0.01",
+        ];
+        let message = err(&[exp[0], exp[1], far[0], far[1], far[2]]);
+        assert!(
+            message.starts_with(
+                "protocol.max_approach = -1 never comes within the law's reach of the surface"
+            ) && message.contains("must be > -0.92"),
+            "{message}"
+        );
+        let message = err(&near);
+        assert!(
+            message.starts_with("protocol.max_approach = -0.1 never touches the surface"),
+            "{message}"
+        );
         // The pull-off radius' mesh rule is the criterion's: a_c = 0.707 spans 3.5 elements at
         // Δx = 0.2; the smooth law warns of its own zone only.
         let flagged = |p: &Problem| {
