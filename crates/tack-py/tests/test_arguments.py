@@ -609,3 +609,14 @@ def test_threads_are_checked_the_same_everywhere(kind, small_sphere):
         )
     assert run_threads(kind, small_sphere, np.int64(1)) is not None
     assert run_threads(kind, small_sphere, None) is not None
+
+
+def test_maugis_sigma0_beyond_the_floats_names_the_material():
+    # E* = 1e200: K^2 overflows, so lambda per unit sigma0 is 0 (a ZeroDivisionError before).
+    with pytest.raises(ValueError, match=r"^e_star = 1e\+?200, gamma = 1 and radius = 1 put"):
+        tack.analytics.maugis_sigma0(lam=1.0, e_star=1e200, gamma=1.0, radius=1.0)
+    with pytest.raises(ValueError, match="beyond the floats"):
+        tack.Dugdale.from_lambda(1.0, radius=1.0, e_star=1e200, gamma=1.0)
+    # Ordinary materials are unchanged.
+    sigma0 = tack.analytics.maugis_sigma0(lam=1.0, e_star=1.0, gamma=1.0, radius=1.0)
+    assert abs(tack.analytics.maugis_lambda(e_star=1.0, gamma=1.0, radius=1.0, sigma0=sigma0) - 1.0) < 1e-12

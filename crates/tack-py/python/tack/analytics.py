@@ -279,6 +279,20 @@ def maugis_sigma0(
     sigma0=1)``)."""
     values, _ = _check.closed_form_args("maugis_sigma0", ("lam",), (lam,))
     unit = maugis_lambda(e_star=e_star, gamma=gamma, radius=radius, sigma0=1.0)
+    # lambda per unit sigma0, 2 (R / (pi gamma K^2))^(1/3), leaves the floats for extreme
+    # materials (E* = 1e200: K^2 overflows, the unit is 0): a ValueError naming them, not a
+    # ZeroDivisionError.
+    if not np.all(np.isfinite(unit) & (np.asarray(unit) > 0.0)):
+
+        def shown(v: ArrayLike) -> str:
+            return _check.num(float(v)) if np.ndim(v) == 0 else "(an array)"
+
+        raise _check.TackError(
+            f"e_star = {shown(e_star)}, gamma = {shown(gamma)} and radius = {shown(radius)} "
+            "put Maugis' lambda per unit sigma0, 2 (R / (pi gamma K^2))^(1/3) with K = "
+            "4 e_star / 3, beyond the floats (0 or not finite); scale the units of the "
+            "material"
+        )
     return values[0] / unit
 
 
