@@ -214,9 +214,18 @@ pub fn describe_path(p: &Problem, path: &PathResult) -> String {
     let retraction = match last {
         Some(d) => {
             let how = match (p.path.refine_pull_off, p.path.coarse_unload_step) {
-                (true, Some(_)) => " (refined: coarse steps, the pull-off's brackets retraced)",
-                (false, Some(_)) => " (coarse while compressive)",
-                _ => "",
+                (true, Some(_)) => {
+                    " (refined: coarse steps, the pull-off's brackets retraced)".to_owned()
+                }
+                (false, Some(c)) => match tail_step(&p.law, &p.path, c) {
+                    Some(t) => format!(
+                        " (coarse while compressive; by {} past the pull-off once nothing \
+                         touches)",
+                        rounded(t)
+                    ),
+                    None => " (coarse while compressive)".to_owned(),
+                },
+                _ => String::new(),
             };
             format!(
                 "{unloads} retraction step{} to d = {}{how}",
@@ -231,7 +240,10 @@ pub fn describe_path(p: &Problem, path: &PathResult) -> String {
 
 /// The path a scene asks for, before it runs (`tack check`): `indentation: one step to d = …`,
 /// or the load (`one load step to d = …`, `load from d = … to … by …`) and the retraction.
-pub fn describe_planned_path(path: &tack::solver::ApproachPath) -> String {
+pub fn describe_planned_path(
+    path: &tack::solver::ApproachPath,
+    law: &tack::solver::AdhesionLaw,
+) -> String {
     if path.is_indentation() {
         return format!(
             "indentation: one step to d = {}",
@@ -255,9 +267,13 @@ pub fn describe_planned_path(path: &tack::solver::ApproachPath) -> String {
             rounded(path.unload_step)
         ),
         (false, Some(c)) => format!(
-            "by {} while compressive, then by {}",
+            "by {} while compressive, then by {}{}",
             rounded(c),
-            rounded(path.unload_step)
+            rounded(path.unload_step),
+            tail_step(law, path, c).map_or(String::new(), |t| format!(
+                " (by {} past the pull-off once nothing touches)",
+                rounded(t)
+            ))
         ),
         _ => format!("by {}", rounded(path.unload_step)),
     };
@@ -267,6 +283,17 @@ pub fn describe_planned_path(path: &tack::solver::ApproachPath) -> String {
         None => "until contact is lost".to_owned(),
     };
     format!("{load}, retraction {steps} {end}")
+}
+
+/// A smooth law's retraction step past the pull-off on `path` with the coarse step `coarse`,
+/// when it is longer than the fine step (`tack::solver::AdhesionLaw::tail_step`).
+fn tail_step(
+    law: &tack::solver::AdhesionLaw,
+    path: &tack::solver::ApproachPath,
+    coarse: f64,
+) -> Option<f64> {
+    law.tail_step(path.unload_step, coarse)
+        .filter(|&t| t > path.unload_step)
 }
 
 /// The force of an indentation, or the pull-off (or, without adhesion, the peak load).

@@ -31,7 +31,12 @@ pub struct ApproachPath {
     /// (> 0); `None`: `unload_step` throughout. The retraction steps back from `max_approach` by
     /// this step; once a step's force is ≤ 0 the path re-anchors at that step's approach `d₀`
     /// and continues at `d₀ − k·unload_step`, k = 1, 2, … (the pull-off lies in the tensile
-    /// part). A coarse step that jumps over the whole tensile part misses the pull-off.
+    /// part). A coarse step that jumps over the whole tensile part misses the pull-off. Under a
+    /// smooth law, once a step leaves nothing touching the wall and its tension is below the
+    /// step before's (past the pull-off), the path re-anchors there and steps by the law's
+    /// length ρ/50, within `unload_step` … `coarse_unload_step`
+    /// ([`crate::AdhesionLaw::tail_step`]): the rest follows the law alone, and fine steps
+    /// there took most of a long range's run.
     pub coarse_unload_step: Option<f64>,
     /// Refined retraction (needs `coarse_unload_step`): coarse steps throughout the retraction,
     /// and every coarse bracket that may hold the pull-off retraced in steps of `unload_step`
@@ -557,6 +562,18 @@ impl PathResult {
     }
 }
 
+/// Which step a plain retraction takes ([`ApproachPath::coarse_unload_step`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Stage {
+    /// The coarse step, while the force is compressive.
+    Coarse,
+    /// The unload step, through the tensile part.
+    Fine,
+    /// A smooth law's tail step ([`crate::AdhesionLaw::tail_step`]), once nothing touches and the
+    /// tension falls.
+    Tail,
+}
+
 impl AdhesiveSolver {
     /// Runs `path` from the solver's current state.
     pub fn run_path(
@@ -619,18 +636,36 @@ impl AdhesiveSolver {
             return Ok(out);
         }
         // Retract from `anchor` in steps of `stride`: the coarse step while the force is
-        // compressive, then the unload step from the approach where it stopped being so.
+        // compressive, then the unload step from the approach where it stopped being so, and
+        // under a smooth law, past its pull-off, the law's tail step ([`Stage::Tail`]).
         let (mut anchor, mut stride) = (
             path.max_approach,
             path.coarse_unload_step.unwrap_or(path.unload_step),
         );
+        let mut stage = if path.coarse_unload_step.is_some() {
+            Stage::Coarse
+        } else {
+            Stage::Fine
+        };
+        let tail = path
+            .coarse_unload_step
+            .and_then(|c| self.law().tail_step(path.unload_step, c))
+            .filter(|&t| t > path.unload_step);
         let mut k = 1usize;
         loop {
-            if stride != path.unload_step
+            if stage == Stage::Coarse
                 && let Some(last) = out.records.last()
                 && last.force <= 0.0
             {
-                (anchor, stride, k) = (last.approach, path.unload_step, 1);
+                (anchor, stride, k, stage) = (last.approach, path.unload_step, 1, Stage::Fine);
+            }
+            if stage == Stage::Fine
+                && let Some(t) = tail
+                && let [.., before, last] = out.records.as_slice()
+                && last.n_bonded == 0
+                && last.force > before.force
+            {
+                (anchor, stride, k, stage) = (last.approach, t, 1, Stage::Tail);
             }
             let d = anchor - k as f64 * stride;
             // The path's own end first: a path that ends at `retract_to` on its last allowed

@@ -2,8 +2,10 @@
 //! (`tests/axisym`, checked itself against Hertz and Maugis in `tests/axisym_reference.rs`):
 //! the exponential law on a smooth sphere, the pull-off and both branches of the
 //! force–approach curve, and the order of convergence against elements per process zone; the
-//! same for the Lennard-Jones law, and that law at Tabor μ = 3 on coarse grids; the DMT limit of a small Tabor parameter; Johnson's 1D waviness as the range shrinks; the same
-//! bits on one and two threads; a restored state retakes each step exactly.
+//! same for the Lennard-Jones law, and that law at Tabor μ = 3 on coarse grids; the DMT limit
+//! of a small Tabor parameter; Johnson's 1D waviness as the range shrinks; the same bits on one
+//! and two threads; a restored state retakes each step exactly; the retraction's tail past the
+//! pull-off in the law's own steps; a weak law's landings in fine steps.
 
 mod axisym;
 mod sphere_run;
@@ -14,7 +16,7 @@ use tack_geometry::{Boundary, Grid, Sphere, Surface};
 use tack_kernels::operator_for;
 use tack_solver::{
     AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, Exponential, LennardJones,
-    PathResult, SnapshotRequest,
+    PathResult, Phase, SnapshotRequest,
 };
 
 /// The reference's points at the same approaches, in the same order (so it follows the same
@@ -250,12 +252,7 @@ fn lennard_jones_at_tabor_3_converges_on_coarse_grids() {
     eprintln!("ring continuation: F/(πγR) = {reference:.6}");
     let mut errors = Vec::new();
     for n in [64, 128] {
-        let grid = Grid::square(n, 1.0 / n as f64, Boundary::Free).unwrap();
-        let surface = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
-        let op = operator_for(grid, 1.0).unwrap();
-        let mut solver =
-            AdhesiveSolver::with_law(op, &surface, gamma, law.clone(), AdhesiveOptions::default())
-                .unwrap();
+        let mut solver = peers_sphere(n, gamma, &law);
         let result = solver
             .run_path(&path, &SnapshotRequest::None, &mut ())
             .unwrap();
@@ -274,6 +271,15 @@ fn lennard_jones_at_tabor_3_converges_on_coarse_grids() {
         "{errors:?}"
     );
     assert!(order > 2.0, "{errors:?}");
+}
+
+/// A solver of the sphere R = 1 on E* = 1 with work `gamma` under `law`, on a free `n²` grid
+/// of the unit square (the peers' domain).
+fn peers_sphere(n: usize, gamma: f64, law: &AdhesionLaw) -> AdhesiveSolver {
+    let grid = Grid::square(n, 1.0 / n as f64, Boundary::Free).unwrap();
+    let surface = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
+    let op = operator_for(grid, 1.0).unwrap();
+    AdhesiveSolver::with_law(op, &surface, gamma, law.clone(), AdhesiveOptions::default()).unwrap()
 }
 
 /// Runs `law` on `n` elements of `dx` along `path` (as [`run`]) in a pool of one thread and in
@@ -473,4 +479,107 @@ fn the_traced_ring_solution_meets_the_active_set_one() {
         "{traced} {}",
         cycle.pull_off
     );
+}
+
+/// Past its pull-off, once nothing touches the wall and the tension falls, a retraction with a
+/// coarse step takes the law's tail step, its length ρ/50 (`AdhesionLaw::tail_step`), where
+/// fine steps took most of a long range's run: Tabor μ = 0.1 (ρ = 0.1, γ = 1e-3, R = 1) on 32²,
+/// fine step 1e-4, against the same path with the coarse step equal to the fine one (fine
+/// steps throughout). The pull-off lies in contact, in fine steps on both paths at approaches
+/// at most one fine step apart: its force agrees to ½(Δ/ρ)² ≈ 5e-7 of itself for a peak curved
+/// over ρ, so 1e-5 bounds it; the tail steps are 0.002 to round-off and both paths end where
+/// the last tension falls below the zone's fraction, within one tail step.
+#[test]
+fn smooth_tail_steps_by_the_law_length() {
+    let (gamma, rho) = (1e-3, 0.1);
+    let law = AdhesionLaw::Exponential(Exponential { range: rho });
+    let n = 32;
+    let run = |coarse: f64| {
+        let mut solver = peers_sphere(n, gamma, &law);
+        let path = ApproachPath {
+            start: -0.2,
+            max_approach: 0.03,
+            load_step: 0.002,
+            unload_step: 1e-4,
+            coarse_unload_step: Some(coarse),
+            refine_pull_off: false,
+            retract_to: None,
+            max_steps: 100_000,
+        };
+        let result = solver
+            .run_path(&path, &SnapshotRequest::None, &mut ())
+            .unwrap();
+        assert!(
+            result.completed && result.all_converged(),
+            "coarse {coarse}"
+        );
+        result
+    };
+    let (fine, tail) = (run(1e-4), run(5e-3));
+    let (f_fine, f_tail) = (fine.pull_off_force(), tail.pull_off_force());
+    eprintln!(
+        "fine tail: {} steps, F = {f_fine:e}; law's tail: {} steps, F = {f_tail:e}",
+        fine.records.len(),
+        tail.records.len()
+    );
+    assert!((f_tail / f_fine - 1.0).abs() < 1e-5, "{f_tail} vs {f_fine}");
+    // The tail: from the first retraction step with nothing touching and a falling tension.
+    let retraction = &tail.records[tail
+        .phases
+        .iter()
+        .position(|&p| p == Phase::Unload)
+        .unwrap()..];
+    let start = (1..retraction.len())
+        .find(|&i| retraction[i].n_bonded == 0 && retraction[i].force > retraction[i - 1].force)
+        .expect("the contact is lost");
+    let steps: Vec<f64> = retraction[start..]
+        .windows(2)
+        .map(|w| w[0].approach - w[1].approach)
+        .collect();
+    assert!(steps.len() > 50, "{} tail steps", steps.len());
+    for s in &steps {
+        assert!((s - rho / 50.0).abs() < 1e-12, "tail step {s}");
+    }
+    let last = |r: &PathResult| r.records.last().unwrap().approach;
+    assert!((last(&tail) - last(&fine)).abs() <= rho / 50.0);
+    assert!(tail.records.len() * 5 < fine.records.len());
+}
+
+/// A weak law loaded in fine steps: Tabor μ = 0.1 (ρ = 0.1, peak tension 0.01) on 128², where
+/// an element's `k·peak` (9e-5) is 1e-2 of the contact's heights, so a contact solve relative
+/// to its right-hand side must be 100 times tighter than the landing's residual relative to
+/// the peak says. Before the landing measured its solves in their own units, the step to
+/// d = 0.0238 ran its four landings to their caps (12 000 iterations) at 0.12 of the peak and
+/// did not converge; now every step lands in a few iterations.
+#[test]
+fn weak_law_landings_converge() {
+    let (gamma, rho, n) = (1e-3, 0.1, 128);
+    let law = AdhesionLaw::Exponential(Exponential { range: rho });
+    let mut solver = peers_sphere(n, gamma, &law);
+    let step = 1.02578e-4;
+    let path = ApproachPath {
+        start: 0.0237,
+        max_approach: 0.0239,
+        load_step: step,
+        unload_step: step,
+        coarse_unload_step: None,
+        refine_pull_off: false,
+        retract_to: Some(0.0239),
+        max_steps: 10,
+    };
+    let result = solver
+        .run_path(&path, &SnapshotRequest::None, &mut ())
+        .unwrap();
+    for r in &result.records {
+        eprintln!(
+            "d = {:.6}: converged {}, {} landing iterations",
+            r.approach, r.converged, r.active_set_iterations
+        );
+        assert!(
+            r.converged && r.active_set_iterations < 100,
+            "d = {}",
+            r.approach
+        );
+    }
+    assert_eq!(result.records.len(), 3);
 }

@@ -122,19 +122,23 @@ pub struct PathRule {
     pub stepped_load: Option<f64>,
     /// The refined retraction (`protocol.refine_pull_off`): coarse steps all the way.
     pub refined: bool,
+    /// A smooth law's step past the pull-off once nothing touches
+    /// ([`tack_solver::AdhesionLaw::tail_step`]), when longer than the fine step.
+    pub tail_step: Option<f64>,
 }
 
 impl std::fmt::Display for PathRule {
     /// One line, numbers rounded (`tack_fields::rounded`): `default pull-off path of R = 1
     /// (given), d_s = …: one load step to d = …, retraction by … while compressive, then by …`
-    /// (`loaded in steps of … from out of range` under a finite-range law).
+    /// (`loaded in steps of … from out of range` under a finite-range law; `, past the
+    /// pull-off by …` under a smooth law whose tail step is longer than the fine one).
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let p = &self.path;
         let r = tack_fields::rounded;
         write!(
             f,
             "default pull-off path of R = {} ({}), d_s = {}: {} to d = {}, retraction by {} {}, \
-             {} {}",
+             {} {}{}",
             r(self.radius),
             if self.fitted { "fitted" } else { self.origin },
             r(p.d_s),
@@ -154,7 +158,11 @@ impl std::fmt::Display for PathRule {
             } else {
                 "then by"
             },
-            r(p.unload_step)
+            r(p.unload_step),
+            match self.tail_step {
+                Some(t) if !self.refined => format!(", past the pull-off by {}", r(t)),
+                _ => String::new(),
+            }
         )
     }
 }
@@ -1211,6 +1219,7 @@ fn default_branch(
         },
         stepped_load: range.is_some().then_some(load),
         refined: path.refine_pull_off,
+        tail_step: body.law.tail_step(unload, coarse).filter(|&t| t > unload),
         ..rule
     });
     Ok((path, rule))
@@ -1261,6 +1270,7 @@ fn default_path(body: &PathBody<'_>, depth: Option<f64>) -> Result<PathRule, NoR
         return Ok(PathRule {
             stepped_load: None,
             refined: false,
+            tail_step: None,
             radius,
             fitted: false,
             origin: body.origin,
@@ -1359,6 +1369,7 @@ fn finish_default_path(
     Ok(PathRule {
         stepped_load: None,
         refined: false,
+        tail_step: None,
         radius,
         fitted,
         origin: "given",

@@ -55,6 +55,13 @@ pub const REACH_FRACTION: f64 = 1e-8;
 /// exponential law's 18.4 ρ, at 1e-4: 9.2 ρ).
 pub const APPROACH_FRACTION: f64 = 1e-4;
 
+/// A smooth law changes its forces over its length ρ: where the solution follows the law
+/// alone (nothing touches the wall) a path need not step finer than ρ over this. The default
+/// path loads from out of reach in such steps (`tack::pull_off_path::load_plan`), and a
+/// retraction with a coarse step takes them once nothing touches and the tension falls
+/// ([`AdhesionLaw::tail_step`]).
+pub const STEPS_PER_LENGTH: f64 = 50.0;
+
 /// The smallest range allowed, relative to the largest height: below it the gap test
 /// `g < h0` is decided by the round-off of `f − d + u`.
 pub const RANGE_ROUND_OFF: f64 = 1e-12;
@@ -471,6 +478,24 @@ impl AdhesionLaw {
             g *= 0.99;
         }
         Some(g)
+    }
+
+    /// The retraction step of a smooth law past its pull-off, once nothing touches the wall
+    /// and the tension falls: its length ρ over [`STEPS_PER_LENGTH`], at least `fine` and at
+    /// most `coarse`; `None` for the criterion and the Dugdale law (whose cohesive zone moves
+    /// by elements: their fine step throughout).
+    ///
+    /// ```
+    /// use tack_solver::{AdhesionLaw, Dugdale, Exponential};
+    /// let law = AdhesionLaw::from(Exponential { range: 0.1 });
+    /// assert_eq!(law.tail_step(1e-4, 1e-3), Some(1e-3));
+    /// assert_eq!(law.tail_step(1e-4, 1.0), Some(0.1 / 50.0));
+    /// assert_eq!(law.tail_step(0.01, 1.0), Some(0.01));
+    /// assert_eq!(AdhesionLaw::from(Dugdale { sigma0: 1.0 }).tail_step(1e-4, 1e-3), None);
+    /// ```
+    pub fn tail_step(&self, fine: f64, coarse: f64) -> Option<f64> {
+        self.curve()
+            .map(|c| fine.max((c.length() / STEPS_PER_LENGTH).min(coarse)))
     }
 
     /// Whether every element carries the traction of its own gap (a smooth law).
