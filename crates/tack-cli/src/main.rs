@@ -229,6 +229,16 @@ fn execute(command: Command) -> anyhow::Result<()> {
                 "  memory: at most about {} ({bound})",
                 tack::memory::bytes(p.memory_estimate().total()),
             );
+            let loads = p.path.load_steps();
+            if loads > p.path.max_steps as f64 {
+                say!(
+                    "  note: the load takes {} steps, more than {} = {}: the run stops there, \
+                     before retracting",
+                    rounded(loads),
+                    tack::fields::PROTOCOL_MAX_STEPS,
+                    p.path.max_steps
+                );
+            }
         }
         Command::Sweep {
             sweep,

@@ -209,16 +209,30 @@ impl ApproachPath {
         })
     }
 
+    /// How many steps the load phase takes, its first at `start` and its last at
+    /// `max_approach` (a float: a path may ask for more than any cap allows).
+    ///
+    /// ```
+    /// use tack_solver::ApproachPath;
+    /// assert_eq!(ApproachPath::load_retract(0.0, 1.0, 0.25, 0.1)?.load_steps(), 5.0);
+    /// assert_eq!(ApproachPath::load_retract(0.0, 1.0, 0.3, 0.1)?.load_steps(), 5.0);
+    /// assert_eq!(ApproachPath::pull_off_only(1.0, 0.1, 0.01)?.load_steps(), 1.0);
+    /// # Ok::<(), tack_solver::SolverError>(())
+    /// ```
+    pub fn load_steps(&self) -> f64 {
+        if self.max_approach > self.start {
+            ((self.max_approach - self.start) / self.load_step).ceil() + 1.0
+        } else {
+            1.0
+        }
+    }
+
     /// The most steps the path can take: exact for the load phase; for the retraction, the
     /// steps down to `retract_to` when it is set (with a coarse step, as many as fine steps
     /// would take: an upper bound), else `max_steps` (retraction ends when contact is lost,
     /// which only the solve tells). Never above `max_steps`. Memory bounds use it.
     pub fn step_bound(&self) -> usize {
-        let load = if self.max_approach > self.start {
-            ((self.max_approach - self.start) / self.load_step).ceil() + 1.0
-        } else {
-            1.0
-        };
+        let load = self.load_steps();
         let total = match self.retract_to {
             Some(r) => {
                 let fine = self

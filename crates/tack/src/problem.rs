@@ -1105,6 +1105,22 @@ fn approach_path(
         retract_to: p.retract_to,
         max_steps,
     };
+    // A path whose load alone takes the default cap would stop before retracting (a cap the
+    // scene sets is its own: a short look at the load).
+    let load_steps = path.load_steps();
+    if p.max_steps.is_none() && load_steps >= max_steps as f64 {
+        return Err(SceneError::Inconsistent(format!(
+            "the path loads from d = {} to {} in steps of {}: {} load steps, not fewer than the \
+             default {max_steps_field} = {max_steps}, so it would stop before retracting; \
+             raise {load_step}, or set {max_steps_field} (a cap of your own stops the run there)",
+            fields::rounded(path.start),
+            fields::rounded(path.max_approach),
+            fields::rounded(path.load_step),
+            fields::rounded(load_steps),
+            max_steps_field = fields::PROTOCOL_MAX_STEPS,
+            load_step = fields::PROTOCOL_LOAD_STEP,
+        )));
+    }
     Ok((path, None))
 }
 

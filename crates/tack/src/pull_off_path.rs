@@ -44,7 +44,7 @@ pub const UNLOAD_STEP_PER_ELEMENT: f64 = 0.2;
 /// run approaching (μ = 0.1 on 128²: 18 253 load steps of its 22 925, 62 s; now 478 of 5 150,
 /// 13.5 s, from where the tension is 1e-4 of the peak, `AdhesionLaw::approach_reach`). The
 /// retraction's tail past the pull-off takes the same steps (`AdhesionLaw::tail_step`: 957
-/// steps in all, 6.3 s).
+/// steps in all, 6.3 s by the tail alone).
 pub use tack_solver::STEPS_PER_LENGTH;
 
 /// Coarse retraction step over the fine one when no radius sets the scale.

@@ -968,3 +968,27 @@ mod adhesion_tests {
         );
     }
 }
+
+/// A path of the scene's own whose load alone takes the default cap would stop before
+/// retracting: refused, naming the count, the cap and what to change; a cap the scene sets is
+/// its own (a short look at the load runs).
+#[test]
+fn a_load_longer_than_the_default_cap_is_refused() {
+    // From the first touch 0 + 5e-6 to 0.5 in steps of 5e-6: 100 000 load steps.
+    let message = err(&["protocol.load_step=5e-6"]);
+    assert!(
+        message
+            .starts_with("the path loads from d = 5e-6 to 0.5 in steps of 5e-6: 100000 load steps")
+            && message.contains("the default protocol.max_steps = 100000")
+            && message.contains("raise protocol.load_step"),
+        "{message}"
+    );
+    // One step fewer than the cap runs (its retraction has one step).
+    assert!(build(SPHERE, &["protocol.load_step=5.00006e-6"]).is_ok());
+    let p = build(
+        SPHERE,
+        &["protocol.load_step=5e-6", "protocol.max_steps=10"],
+    )
+    .unwrap();
+    assert_eq!((p.path.max_steps, p.path.load_steps()), (10, 100_000.0));
+}
