@@ -208,7 +208,7 @@ fn execute(command: Command) -> anyhow::Result<()> {
             say!(
                 "  first touch at d = {}; path: {}",
                 rounded(p.first_touch),
-                report::describe_planned_path(&p.path, &p.law)
+                report::describe_planned_path(&p.path, &p.law, p.viscoelastic.is_some())
             );
             if let Some(rule) = &p.path_rule {
                 say!("  {rule}");

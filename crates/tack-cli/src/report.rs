@@ -217,7 +217,7 @@ pub fn describe_path(p: &Problem, path: &PathResult) -> String {
                 (true, Some(_)) => {
                     " (refined: coarse steps, the pull-off's brackets retraced)".to_owned()
                 }
-                (false, Some(c)) => match tail_step(&p.law, &p.path, c) {
+                (false, Some(_)) => match p.path.tail_step(&p.law, p.viscoelastic.is_some()) {
                     Some(t) => format!(
                         " (coarse while compressive; by {} past the pull-off once nothing \
                          touches)",
@@ -243,6 +243,7 @@ pub fn describe_path(p: &Problem, path: &PathResult) -> String {
 pub fn describe_planned_path(
     path: &tack::solver::ApproachPath,
     law: &tack::solver::AdhesionLaw,
+    viscoelastic: bool,
 ) -> String {
     if path.is_indentation() {
         return format!(
@@ -270,10 +271,11 @@ pub fn describe_planned_path(
             "by {} while compressive, then by {}{}",
             rounded(c),
             rounded(path.unload_step),
-            tail_step(law, path, c).map_or(String::new(), |t| format!(
-                " (by {} past the pull-off once nothing touches)",
-                rounded(t)
-            ))
+            path.tail_step(law, viscoelastic)
+                .map_or(String::new(), |t| format!(
+                    " (by {} past the pull-off once nothing touches)",
+                    rounded(t)
+                ))
         ),
         _ => format!("by {}", rounded(path.unload_step)),
     };
@@ -283,17 +285,6 @@ pub fn describe_planned_path(
         None => "until contact is lost".to_owned(),
     };
     format!("{load}, retraction {steps} {end}")
-}
-
-/// A smooth law's retraction step past the pull-off on `path` with the coarse step `coarse`,
-/// when it is longer than the fine step (`tack::solver::AdhesionLaw::tail_step`).
-fn tail_step(
-    law: &tack::solver::AdhesionLaw,
-    path: &tack::solver::ApproachPath,
-    coarse: f64,
-) -> Option<f64> {
-    law.tail_step(path.unload_step, coarse)
-        .filter(|&t| t > path.unload_step)
 }
 
 /// The force of an indentation, or the pull-off (or, without adhesion, the peak load).

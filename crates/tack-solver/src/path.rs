@@ -36,7 +36,8 @@ pub struct ApproachPath {
     /// step before's (past the pull-off), the path re-anchors there and steps by the law's
     /// length ρ/50, within `unload_step` … `coarse_unload_step`
     /// ([`crate::AdhesionLaw::tail_step`]): the rest follows the law alone, and fine steps
-    /// there took most of a long range's run.
+    /// there took most of a long range's run. Not on a viscoelastic solid, whose steps are its
+    /// time steps.
     pub coarse_unload_step: Option<f64>,
     /// Refined retraction (needs `coarse_unload_step`): coarse steps throughout the retraction,
     /// and every coarse bracket that may hold the pull-off retraced in steps of `unload_step`
@@ -207,6 +208,30 @@ impl ApproachPath {
             k += 1;
             Some(d)
         })
+    }
+
+    /// The step a plain retraction (not refined) under `law` takes past the pull-off, once
+    /// nothing touches and the tension falls ([`ApproachPath::coarse_unload_step`],
+    /// [`crate::AdhesionLaw::tail_step`]): `None` without a coarse step, when it would be no
+    /// longer than `unload_step`, and on a `viscoelastic` solid (its steps are its time steps).
+    ///
+    /// ```
+    /// use tack_solver::{AdhesionLaw, ApproachPath, Exponential, JkrLimit, KAPPA};
+    /// let law = AdhesionLaw::from(Exponential { range: 0.1 });
+    /// let path = ApproachPath::pull_off_only(0.03, 0.01, 1e-4)?;
+    /// assert_eq!(path.tail_step(&law, false), Some(0.002));
+    /// assert_eq!(path.tail_step(&law, true), None);
+    /// let criterion = AdhesionLaw::from(JkrLimit { kappa: KAPPA });
+    /// assert_eq!(path.tail_step(&criterion, false), None);
+    /// # Ok::<(), tack_solver::SolverError>(())
+    /// ```
+    pub fn tail_step(&self, law: &crate::AdhesionLaw, viscoelastic: bool) -> Option<f64> {
+        if self.refine_pull_off || viscoelastic {
+            return None;
+        }
+        self.coarse_unload_step
+            .and_then(|c| law.tail_step(self.unload_step, c))
+            .filter(|&t| t > self.unload_step)
     }
 
     /// How many steps the load phase takes, its first at `start` and its last at
@@ -661,10 +686,7 @@ impl AdhesiveSolver {
         } else {
             Stage::Fine
         };
-        let tail = path
-            .coarse_unload_step
-            .and_then(|c| self.law().tail_step(path.unload_step, c))
-            .filter(|&t| t > path.unload_step);
+        let tail = path.tail_step(self.law(), self.visco.is_some());
         let mut k = 1usize;
         loop {
             if stage == Stage::Coarse

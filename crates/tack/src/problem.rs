@@ -127,6 +127,17 @@ pub struct PathRule {
     pub tail_step: Option<f64>,
 }
 
+impl PathRule {
+    /// The rule on a `viscoelastic` solid or an elastic one: a viscoelastic solid's steps are
+    /// its time steps, so it takes no tail step ([`ApproachPath::tail_step`]).
+    fn on_solid(self, viscoelastic: bool) -> Self {
+        Self {
+            tail_step: self.tail_step.filter(|_| !viscoelastic),
+            ..self
+        }
+    }
+}
+
 impl std::fmt::Display for PathRule {
     /// One line, numbers rounded (`tack_fields::rounded`): `default pull-off path of R = 1
     /// (given), d_s = …: one load step to d = …, retraction by … while compressive, then by …`
@@ -314,6 +325,7 @@ impl Problem {
             layer.is_some(),
         );
         Ok(Self {
+            path_rule: path_rule.map(|r| r.on_solid(viscoelastic.is_some())),
             grid,
             surface,
             e_star,
@@ -335,7 +347,6 @@ impl Problem {
             warnings,
             heights_in_memory: body.is_some(),
             law_in_memory,
-            path_rule,
         })
     }
 
@@ -1235,7 +1246,8 @@ fn default_branch(
         },
         stepped_load: range.is_some().then_some(load),
         refined: path.refine_pull_off,
-        tail_step: body.law.tail_step(unload, coarse).filter(|&t| t > unload),
+        // Elastic here: cleared on a viscoelastic solid when it is known (`PathRule::on_solid`).
+        tail_step: path.tail_step(body.law, false),
         ..rule
     });
     Ok((path, rule))
