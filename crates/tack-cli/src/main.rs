@@ -230,9 +230,9 @@ fn execute(command: Command) -> anyhow::Result<()> {
                 tack::memory::bytes(p.memory_estimate().total()),
             );
             let loads = p.path.load_steps();
-            if loads > p.path.max_steps as f64 {
+            if loads >= p.path.max_steps as f64 {
                 say!(
-                    "  note: the load takes {} steps, more than {} = {}: the run stops there, \
+                    "  note: the load takes {} steps, at least {} = {}: the run stops there, \
                      before retracting",
                     rounded(loads),
                     tack::fields::PROTOCOL_MAX_STEPS,

@@ -217,7 +217,7 @@ pub fn describe_path(p: &Problem, path: &PathResult) -> String {
                 (true, Some(_)) => {
                     " (refined: coarse steps, the pull-off's brackets retraced)".to_owned()
                 }
-                (false, Some(_)) => match p.path.tail_step(&p.law, p.viscoelastic.is_some()) {
+                (false, Some(_)) => match tail_taken(p, path) {
                     Some(t) => format!(
                         " (coarse while compressive; by {} past the pull-off once nothing \
                          touches)",
@@ -285,6 +285,23 @@ pub fn describe_planned_path(
         None => "until contact is lost".to_owned(),
     };
     format!("{load}, retraction {steps} {end}")
+}
+
+/// The tail step of `p`'s path ([`tack::solver::ApproachPath::tail_step`]) when the run took
+/// one: two retraction steps that far apart, the second touching nothing.
+fn tail_taken(p: &Problem, path: &PathResult) -> Option<f64> {
+    let t = p.path.tail_step(&p.law, p.viscoelastic.is_some())?;
+    let unloads: Vec<_> = path
+        .records
+        .iter()
+        .zip(&path.phases)
+        .filter(|(_, ph)| **ph == Phase::Unload)
+        .map(|(r, _)| r)
+        .collect();
+    unloads
+        .windows(2)
+        .any(|w| w[1].n_bonded == 0 && ((w[0].approach - w[1].approach) - t).abs() <= 1e-9 * t)
+        .then_some(t)
 }
 
 /// The force of an indentation, or the pull-off (or, without adhesion, the peak load).

@@ -64,6 +64,15 @@ const PULL_OFF_NAMES: Names = &[
         "run the body as a scene through tack.run with a higher [protocol] max_steps",
     ),
     (
+        concat!(
+            "set ",
+            field_name!(protocol.max_steps),
+            " (a cap of your own stops the run there)"
+        ),
+        "run the body as a scene through tack.run with a [protocol] max_steps of its own \
+         (the run stops there)",
+    ),
+    (
         concat!("lower ", field_name!(protocol.max_steps)),
         "give a shorter path (a larger unload_step or a smaller max_approach)",
     ),

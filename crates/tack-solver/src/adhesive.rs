@@ -208,7 +208,9 @@ impl AdhesiveSolver {
                     .smooth_tolerance(gamma, e_star, base_dx, k)?
                     .expect("a smooth law");
                 let traction = Traction::new(law.clone(), gamma).expect("a smooth law");
-                (None, Some(SmoothState::new(traction, shape, tolerance)))
+                let peak_gap = law.peak_gap().expect("a smooth law");
+                let state = SmoothState::new(traction, shape, tolerance, peak_gap);
+                (None, Some(state))
             }
         };
         Ok(Self {

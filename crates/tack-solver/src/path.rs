@@ -32,12 +32,13 @@ pub struct ApproachPath {
     /// this step; once a step's force is ≤ 0 the path re-anchors at that step's approach `d₀`
     /// and continues at `d₀ − k·unload_step`, k = 1, 2, … (the pull-off lies in the tensile
     /// part). A coarse step that jumps over the whole tensile part misses the pull-off. Under a
-    /// smooth law, once a step leaves nothing touching the wall and its tension is below the
-    /// step before's (past the pull-off), the path re-anchors there and steps by the law's
-    /// length ρ/50, within `unload_step` … `coarse_unload_step`
-    /// ([`crate::AdhesionLaw::tail_step`]): the rest follows the law alone, and fine steps
-    /// there took most of a long range's run. Not on a viscoelastic solid, whose steps are its
-    /// time steps.
+    /// smooth law, once a step leaves nothing touching the wall, every gap past the law's
+    /// peak ([`crate::AdhesionLaw::peak_gap`]: a Lennard-Jones front peels with nothing on its
+    /// wall) and its tension below the step before's (past the pull-off), the path re-anchors
+    /// there and steps by the law's length ρ/50, within `unload_step` … `coarse_unload_step`
+    /// ([`ApproachPath::tail_step`]): the rest follows the law alone, and fine steps there took
+    /// most of a long range's run. Not on a refined retraction, nor on a viscoelastic solid,
+    /// whose steps are its time steps.
     pub coarse_unload_step: Option<f64>,
     /// Refined retraction (needs `coarse_unload_step`): coarse steps throughout the retraction,
     /// and every coarse bracket that may hold the pull-off retraced in steps of `unload_step`
@@ -608,8 +609,8 @@ enum Stage {
     Coarse,
     /// The unload step, through the tensile part.
     Fine,
-    /// A smooth law's tail step ([`crate::AdhesionLaw::tail_step`]), once nothing touches and the
-    /// tension falls.
+    /// A smooth law's tail step ([`crate::AdhesionLaw::tail_step`]), once nothing touches,
+    /// every gap is past the law's peak and the tension falls.
     Tail,
 }
 
@@ -681,7 +682,11 @@ impl AdhesiveSolver {
             path.max_approach,
             path.coarse_unload_step.unwrap_or(path.unload_step),
         );
-        let mut stage = if path.coarse_unload_step.is_some() {
+        // A coarse step equal to the fine one is no coarse step (no re-anchoring: the same bits).
+        let mut stage = if path
+            .coarse_unload_step
+            .is_some_and(|c| c != path.unload_step)
+        {
             Stage::Coarse
         } else {
             Stage::Fine
@@ -700,6 +705,7 @@ impl AdhesiveSolver {
                 && let [.., before, last] = out.records.as_slice()
                 && last.n_bonded == 0
                 && last.force > before.force
+                && self.past_peak()
             {
                 (anchor, stride, k, stage) = (last.approach, t, 1, Stage::Tail);
             }

@@ -208,6 +208,8 @@ pub(crate) struct SmoothState {
     pub(crate) tolerance: f64,
     /// Each element's share `γ_ij/γ` of the law on a γ map (`None`: 1 everywhere).
     pub(crate) weights: Option<std::sync::Arc<[f64]>>,
+    /// The gap of the law's greatest tension, from above ([`crate::AdhesionLaw::peak_gap`]).
+    pub(crate) peak_gap: f64,
     v: Vec<f64>,
     c: Vec<f64>,
     b: Vec<f64>,
@@ -227,9 +229,15 @@ pub(crate) struct SmoothState {
 impl SmoothState {
     /// The state of `traction` on a grid of `shape`, solved to `tolerance` of the peak
     /// tension ([`tolerance_fraction`]).
-    pub(crate) fn new(traction: Traction, shape: (usize, usize), tolerance: f64) -> Self {
+    pub(crate) fn new(
+        traction: Traction,
+        shape: (usize, usize),
+        tolerance: f64,
+        peak_gap: f64,
+    ) -> Self {
         let n = shape.0 * shape.1;
         Self {
+            peak_gap,
             traction,
             zone: Array2::from_elem(shape, false),
             landed: false,
@@ -653,6 +661,16 @@ impl AdhesiveSolver {
         self.last_approach = Some(d);
     }
 
+    /// Whether every gap lies past the smooth law's greatest tension
+    /// ([`crate::AdhesionLaw::peak_gap`]), where the tension only falls as gaps open (false for
+    /// the other laws).
+    pub(crate) fn past_peak(&self) -> bool {
+        let Some(s) = self.smooth.as_ref() else {
+            return false;
+        };
+        self.base.gap.iter().all(|&g| g > s.peak_gap)
+    }
+
     /// The zone mask: out of contact with tension beyond [`ZONE_FRACTION`] of the element's peak.
     fn mark_zone(&mut self) {
         let peak = self.sigma_c;
@@ -841,7 +859,11 @@ fn relax(
         // the heights) had stalled on the solve's round-off (μ = 0.1 on 128² loaded in fine
         // steps: landings at the cap at 0.12 of the peak, 7 of 488 steps not converged in 40 s;
         // now all in 2.3 s).
-        let unit = (k / scale).min(1.0 / peak);
+        let unit = if scale.is_finite() {
+            (k / scale).min(1.0 / peak)
+        } else {
+            1.0 / peak
+        };
         level = (1e-2 * m.worst * unit).clamp(
             (1e-2 * target * peak * unit).clamp(1e-13, 1e-10),
             LANDING_CG,

@@ -250,7 +250,7 @@ impl Problem {
         let law_in_memory = law.is_some();
         let (law, kappa) = law_stage(f, law, &surface)?;
         resolvable(&law, (e_star, gamma), &grid, layer.is_none())?;
-        criterion_mesh_rule(&law, &mut warnings);
+        criterion_mesh_rule(&law, &references, grid.dx(), &mut warnings);
         let path_sphere = shape.path_sphere();
         let (path, path_rule) = approach_path(
             &f.protocol,
@@ -780,12 +780,19 @@ fn law_stage(
     Ok((law, kappa))
 }
 
-/// The pull-off radius' mesh rule ([`crate::shape::under_resolved`]) is the zero-range
-/// criterion's (its error grows like Δx/a_c): a finite-range law drops its warning, its own
-/// warning judges its zone.
-fn criterion_mesh_rule(law: &AdhesionLaw, warnings: &mut Vec<String>) {
-    if !matches!(law.family(), Family::Criterion { .. }) {
-        warnings.retain(|w| !w.starts_with(crate::shape::UNDER_RESOLVED_PULL_OFF));
+/// The pull-off radius' mesh rule ([`References::criterion_mesh`],
+/// [`crate::shape::under_resolved`]) is the zero-range criterion's (its error grows like
+/// Δx/a_c): a finite-range law's own warning judges its zone.
+fn criterion_mesh_rule(
+    law: &AdhesionLaw,
+    references: &References,
+    dx: f64,
+    warnings: &mut Vec<String>,
+) {
+    if let (Family::Criterion { .. }, Some((radius, what))) =
+        (law.family(), references.criterion_mesh)
+    {
+        crate::shape::under_resolved(warnings, what, radius, dx);
     }
 }
 
@@ -1205,7 +1212,8 @@ fn default_branch(
     // A law whose reach is many retraction steps long would spend every step the default cap
     // allows loading, and the result would hold no retraction at all (a cap the scene sets is
     // its own: a short look at the load is a run, stopped at the cap).
-    let load_steps = ((max_approach - start) / load).ceil();
+    // As `ApproachPath::load_steps` counts them: the first at `start`, the last at the depth.
+    let load_steps = ((max_approach - start) / load).ceil() + 1.0;
     if let Some(reach) = range
         && p.max_steps.is_none()
         && load_steps >= max_steps as f64

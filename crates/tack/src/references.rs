@@ -34,6 +34,11 @@ pub struct References {
     /// (a_c of a sphere, a punch's radius, a power law's a_F, an ellipse's shorter semi-axis):
     /// the error floor of a Richardson extrapolation.
     pub pull_off_radius: Option<f64>,
+    /// The length the zero-range criterion's mesh rule judges and what it is (the pull-off
+    /// contact radius a_c of a sphere, a punch's radius, …): a problem under the criterion
+    /// warns when it spans too few elements (`crate::shape::under_resolved`); a finite-range
+    /// law's own warning judges its zone instead.
+    pub criterion_mesh: Option<(f64, &'static str)>,
 }
 
 impl References {

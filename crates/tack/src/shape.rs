@@ -33,9 +33,10 @@ pub trait SceneShape {
     /// with errors naming the scene field.
     fn surface(&self, grid: Grid) -> Result<Surface, SceneError>;
 
-    /// Sets the closed-form references of an adhesive pull-off (called with `γ > 0` only) and
-    /// warns where they do not apply (a strip, a periodic array) or where the mesh is too
-    /// coarse for the pull-off ([`under_resolved`]).
+    /// Sets the closed-form references of an adhesive pull-off (called with `γ > 0` only),
+    /// with the length the zero-range criterion's mesh rule judges
+    /// ([`References::criterion_mesh`], warned of by [`under_resolved`] under that law), and
+    /// warns where they do not apply (a strip, a periodic array).
     fn references(
         &self,
         _material: Material,
@@ -236,16 +237,13 @@ impl FitCheck<'_> {
     }
 }
 
-/// How the warning of [`under_resolved`] starts: the zero-range criterion's mesh rule, which a
-/// finite-range law's run drops (its own warning judges its zone).
-pub(crate) const UNDER_RESOLVED_PULL_OFF: &str = "under-resolved pull-off:";
-
-/// Flags a pull-off radius of fewer than [`MIN_PULL_OFF_RADIUS_ELEMENTS`] elements.
+/// Flags a pull-off radius of fewer than [`MIN_PULL_OFF_RADIUS_ELEMENTS`] elements: the
+/// zero-range criterion's mesh rule ([`References::criterion_mesh`], which the shapes set).
 pub fn under_resolved(warnings: &mut Vec<String>, what: &str, radius: f64, dx: f64) {
     let elements = radius / dx;
     if elements < MIN_PULL_OFF_RADIUS_ELEMENTS {
         warnings.push(format!(
-            "{UNDER_RESOLVED_PULL_OFF} {what} spans {elements:.3} elements (fewer than \
+            "under-resolved pull-off: {what} spans {elements:.3} elements (fewer than \
              {MIN_PULL_OFF_RADIUS_ELEMENTS}), where the detachment criterion's error on a sphere \
              exceeds +33%; refine {dx}",
             dx = fields::GRID_DX
@@ -343,12 +341,7 @@ impl SceneShape for SphereBody {
         } else {
             references.set_jkr(m.e_star, m.gamma, radius);
         }
-        under_resolved(
-            warnings,
-            "the JKR pull-off contact radius a_c",
-            a_c,
-            grid.dx(),
-        );
+        references.criterion_mesh = Some((a_c, "the JKR pull-off contact radius a_c"));
     }
 
     fn path_sphere(&self) -> Option<(f64, Box<dyn Shape>)> {
@@ -437,14 +430,14 @@ impl SceneShape for PunchBody {
     fn references(
         &self,
         m: Material,
-        grid: &Grid,
+        _grid: &Grid,
         references: &mut References,
-        warnings: &mut Vec<String>,
+        _warnings: &mut Vec<String>,
     ) {
         if let (PunchKind::Circle, Some(a)) = (self.punch, self.radius) {
             references.f_kendall = Some(-tack_analytics::kendall_pull_off(m.e_star, m.gamma, a));
             references.pull_off_radius = Some(a);
-            under_resolved(warnings, "the punch radius a", a, grid.dx());
+            references.criterion_mesh = Some((a, "the punch radius a"));
         }
     }
 
@@ -529,12 +522,7 @@ impl SceneShape for PowerLawBody {
             references.f_mdr = Some(f);
             references.pull_off_radius = Some(a_f);
         }
-        under_resolved(
-            warnings,
-            "the power law's pull-off radius a_F",
-            a_f,
-            grid.dx(),
-        );
+        references.criterion_mesh = Some((a_f, "the power law's pull-off radius a_F"));
     }
 
     fn check_fit(&self, fit: &FitCheck<'_>) -> Result<(), SceneError> {
@@ -620,12 +608,8 @@ impl SceneShape for EllipsoidBody {
             references.f_elliptic = Some(jg.force);
             references.pull_off_radius = Some(shorter);
         }
-        under_resolved(
-            warnings,
-            "the elliptic pull-off contact's shorter semi-axis",
-            shorter,
-            grid.dx(),
-        );
+        references.criterion_mesh =
+            Some((shorter, "the elliptic pull-off contact's shorter semi-axis"));
     }
 
     /// The default path of the sphere of the same Gaussian curvature, √(RxRy); the roughness's

@@ -58,8 +58,8 @@ pub const APPROACH_FRACTION: f64 = 1e-4;
 /// A smooth law changes its forces over its length ρ: where the solution follows the law
 /// alone (nothing touches the wall) a path need not step finer than ρ over this. The default
 /// path loads from out of reach in such steps (`tack::pull_off_path::load_plan`), and a
-/// retraction with a coarse step takes them once nothing touches and the tension falls
-/// ([`AdhesionLaw::tail_step`]).
+/// plain retraction with a coarse step takes them once every gap is past the law's peak and
+/// the tension falls ([`AdhesionLaw::tail_step`]).
 pub const STEPS_PER_LENGTH: f64 = 50.0;
 
 /// The smallest range allowed, relative to the largest height: below it the gap test
@@ -480,8 +480,8 @@ impl AdhesionLaw {
         Some(g)
     }
 
-    /// The retraction step of a smooth law past its pull-off, once nothing touches the wall
-    /// and the tension falls: its length ρ over [`STEPS_PER_LENGTH`], at least `fine` and at
+    /// The retraction step of a smooth law past its pull-off, once every gap is past its peak
+    /// ([`AdhesionLaw::peak_gap`]) and the tension falls: its length ρ over [`STEPS_PER_LENGTH`], at least `fine` and at
     /// most `coarse`; `None` for the criterion and the Dugdale law (whose cohesive zone moves
     /// by elements: their fine step throughout).
     ///
@@ -496,6 +496,35 @@ impl AdhesionLaw {
     pub fn tail_step(&self, fine: f64, coarse: f64) -> Option<f64> {
         self.curve()
             .map(|c| fine.max((c.length() / STEPS_PER_LENGTH).min(coarse)))
+    }
+
+    /// The gap of a smooth law's greatest tension, from above: the first of a geometric scan
+    /// (1% apart, from 1e-6 of its length to its reach) past the largest sampled tension, so
+    /// that every gap beyond it is past the peak (0 when the tension is greatest at the wall,
+    /// the exponential law's); `None` for the criterion and the Dugdale law. The built-in and
+    /// custom curves scale as γ, so the gap does not depend on it.
+    ///
+    /// ```
+    /// use tack_solver::{AdhesionLaw, Exponential, LennardJones};
+    /// assert_eq!(AdhesionLaw::from(Exponential { range: 0.1 }).peak_gap(), Some(0.0));
+    /// let g = AdhesionLaw::from(LennardJones { range: 1.0 }).peak_gap().unwrap();
+    /// assert!(g > 0.0 && g < 0.3, "{g}");
+    /// ```
+    pub fn peak_gap(&self) -> Option<f64> {
+        let curve = self.curve()?;
+        let tension = |g: f64| -curve.pressure(1.0, g);
+        let (mut best, mut at) = (tension(0.0), 0.0);
+        let mut g = 1e-6 * curve.length();
+        let mut past = g;
+        while g < curve.reach() {
+            let t = tension(g);
+            if t > best {
+                (best, at) = (t, g);
+                past = g * 1.01;
+            }
+            g *= 1.01;
+        }
+        Some(if at == 0.0 { 0.0 } else { past })
     }
 
     /// Whether every element carries the traction of its own gap (a smooth law).
