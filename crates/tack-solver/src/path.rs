@@ -212,7 +212,8 @@ impl ApproachPath {
     }
 
     /// The step a plain retraction (not refined) under `law` takes past the pull-off, once
-    /// nothing touches and the tension falls ([`ApproachPath::coarse_unload_step`],
+    /// nothing touches, every gap lies past the law's greatest tension and the tension falls
+    /// ([`ApproachPath::coarse_unload_step`],
     /// [`crate::AdhesionLaw::tail_step`]): `None` without a coarse step, when it would be no
     /// longer than `unload_step`, and on a `viscoelastic` solid (its steps are its time steps).
     ///
