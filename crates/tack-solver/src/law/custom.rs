@@ -8,6 +8,15 @@ use std::sync::Arc;
 use super::{Curve, Law};
 use crate::SolverError;
 
+/// A number in a message as the scene fields print it (`tack_fields::num`: `1`, not `1e0`).
+struct Num(f64);
+
+impl std::fmt::Display for Num {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&tack_fields::num(self.0))
+    }
+}
+
 /// Intervals of the graded sampling `g = ℓ(eᵗ − 1)`, `t ∈ [0, ln(1 + reach/ℓ)]`, on which a
 /// curve is checked (even, for Simpson's rule): spacing about `1e-3(g + ℓ)` for a reach of
 /// 10⁸ℓ, so a curve must vary on scales above `1e-3ℓ` near its wall, its [`Curve::length`]
@@ -173,11 +182,15 @@ pub(super) fn check_shape(curve: &dyn Curve) -> Result<(), SolverError> {
                 curve,
                 "Curve::pressure",
                 format!(
-                    "changes by {:e} from g = {g0:e} to {g2:e} but its slope integrates to \
-                     {integral:e}: the pressure must be continuous, its slope dp/dg, and the \
-                     curve must vary on scales above about 1e-3 of its length {length:e} \
+                    "changes by {} from g = {g0} to {g2} but its slope integrates to \
+                     {integral}: the pressure must be continuous, its slope dp/dg, and the \
+                     curve must vary on scales above about 1e-3 of its length {length} \
                      (length() is its smallest length)",
-                    p2 - p0
+                    Num(p2 - p0),
+                    g0 = Num(g0),
+                    g2 = Num(g2),
+                    integral = Num(integral),
+                    length = Num(length)
                 ),
             ));
         }
@@ -188,8 +201,9 @@ pub(super) fn check_shape(curve: &dyn Curve) -> Result<(), SolverError> {
             "Curve::pressure",
             format!(
                 "has work −∫p dg = {work:.6}·γ from the wall to the reach: a law must spread \
-                 exactly γ (within {WORK_TOLERANCE:e}) before its reach, the references and the \
-                 γ scaling read it so"
+                 exactly γ (within {WORK_TOLERANCE}) before its reach, the references and the \
+                 γ scaling read it so",
+                WORK_TOLERANCE = Num(WORK_TOLERANCE)
             ),
         ));
     }
@@ -198,8 +212,10 @@ pub(super) fn check_shape(curve: &dyn Curve) -> Result<(), SolverError> {
             curve,
             "Curve::peak",
             format!(
-                "= {peak:e} at γ = 1 but the greatest tension sampled is {most:e}: it sets the \
-                 process zone, the mesh rule and the landing's step"
+                "= {peak} at γ = 1 but the greatest tension sampled is {most}: it sets the \
+                 process zone, the mesh rule and the landing's step",
+                peak = Num(peak),
+                most = Num(most)
             ),
         ));
     }
@@ -214,7 +230,10 @@ fn point(curve: &dyn Curve, g: f64, length: f64, peak: f64) -> Result<(f64, f64)
         return Err(refuse(
             curve,
             "Curve::pressure",
-            format!("or Curve::stiffness is not finite at g = {g:e} (p = {p}, dp/dg = {k})"),
+            format!(
+                "or Curve::stiffness is not finite at g = {g} (p = {p}, dp/dg = {k})",
+                g = Num(g)
+            ),
         ));
     }
     let both = curve.pressure_and_stiffness(1.0, g);
@@ -224,9 +243,11 @@ fn point(curve: &dyn Curve, g: f64, length: f64, peak: f64) -> Result<(f64, f64)
             curve,
             "Curve::pressure_and_stiffness",
             format!(
-                "gives ({}, {}) at g = {g:e} but the two calls give ({p}, {k}): it must return \
+                "gives ({}, {}) at g = {g} but the two calls give ({p}, {k}): it must return \
                  their values",
-                both.0, both.1
+                both.0,
+                both.1,
+                g = Num(g)
             ),
         ));
     }
@@ -235,8 +256,10 @@ fn point(curve: &dyn Curve, g: f64, length: f64, peak: f64) -> Result<(f64, f64)
             curve,
             "Curve::stiffens",
             format!(
-                "is false but the stiffness is {k:e} < 0 at g = {g:e}: the landing then leaves \
-                 the stiff elements out of its contact solve"
+                "is false but the stiffness is {k} < 0 at g = {g}: the landing then leaves \
+                 the stiff elements out of its contact solve",
+                k = Num(k),
+                g = Num(g)
             ),
         ));
     }
@@ -253,8 +276,11 @@ fn point(curve: &dyn Curve, g: f64, length: f64, peak: f64) -> Result<(f64, f64)
             curve,
             "Curve::stiffness",
             format!(
-                "= {k:e} at g = {g:e} but the pressure's slope there is {slope:e}: it must be \
-                 dp/dg (positive where the tension falls with the gap)"
+                "= {k} at g = {g} but the pressure's slope there is {slope}: it must be \
+                 dp/dg (positive where the tension falls with the gap)",
+                k = Num(k),
+                g = Num(g),
+                slope = Num(slope)
             ),
         ));
     }
@@ -271,9 +297,15 @@ fn check_tail(curve: &dyn Curve, peak: f64, reach: f64) -> Result<(), SolverErro
                 curve,
                 "Curve::reach",
                 format!(
-                    "= {reach:e}: at g = {g:e} the pressure is {p:e} (dp/dg {k:e}), more than \
-                     {REACH_TOLERANCE:e} of the peak {peak:e} or not finite; the solver crops \
-                     the law beyond its reach and evaluates it at every gap"
+                    "= {reach}: at g = {g} the pressure is {p} (dp/dg {k}), more than \
+                     {REACH_TOLERANCE} of the peak {peak} or not finite; the solver crops \
+                     the law beyond its reach and evaluates it at every gap",
+                    reach = Num(reach),
+                    g = Num(g),
+                    p = Num(p),
+                    k = Num(k),
+                    REACH_TOLERANCE = Num(REACH_TOLERANCE),
+                    peak = Num(peak)
                 ),
             ));
         }
@@ -294,8 +326,10 @@ fn check_scaling(
                 curve,
                 method,
                 format!(
-                    "at γ = {gamma}{at} gives {got:e}, not γ times its value at γ = 1 ({want:e}): \
-                     a law scales as γ (its gamma argument) at one range"
+                    "at γ = {gamma}{at} gives {got}, not γ times its value at γ = 1 ({want}): \
+                     a law scales as γ (its gamma argument) at one range",
+                    got = Num(got),
+                    want = Num(want)
                 ),
             )
         };
@@ -309,7 +343,7 @@ fn check_scaling(
             if !linear(got.0, p) {
                 return Err(off(
                     "Curve::pressure",
-                    format!(", g = {g:e},"),
+                    format!(", g = {g},", g = Num(g)),
                     got.0,
                     gamma * p,
                 ));
@@ -317,7 +351,7 @@ fn check_scaling(
             if !linear(got.1, k) {
                 return Err(off(
                     "Curve::stiffness",
-                    format!(", g = {g:e},"),
+                    format!(", g = {g},", g = Num(g)),
                     got.1,
                     gamma * k,
                 ));
