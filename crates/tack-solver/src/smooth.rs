@@ -726,7 +726,7 @@ struct LandingPatch {
 /// peak (true), or after [`RELAX_CAP`] iterations or a stall ([`STALL`]) (false). `at` is `(d, k, peak, target)`, `cg`
 /// the preconditioning switch and the contact solves' options. The contact solves' tolerance
 /// follows the residual (1e-2 of it, relative to the peak or, where tighter, as gaps `k·worst`
-/// relative to the solve's right-hand side, [`set_scale`]) down to 1e-10, or to 1e-2 of a
+/// relative to the solve's right-hand side scale) down to 1e-10, or to 1e-2 of a
 /// smaller target (a law far coarser than its mesh, [`tolerance_fraction`]; at least 1e-13).
 fn relax(
     patch: Patch,
@@ -763,8 +763,8 @@ fn relax(
     let mut fresh = true;
     // The best residual so far and the iterations since it was last halved.
     let (mut best, mut since) = (f64::INFINITY, 0usize);
-    // The contact solve's right-hand side scale ([`set_scale`]): its tolerance is relative to
-    // it, and the residual's gaps are `k` times its pressure units.
+    // The last contact solve's right-hand side scale (`Convergence::scale`): its tolerance is
+    // relative to it, and the residual's gaps are `k` times its pressure units.
     let mut scale = f64::INFINITY;
     // Iterations in a row that changed the contact set.
     let mut flips = 0usize;
@@ -794,7 +794,6 @@ fn relax(
             None => (bonded.view(), heights, None),
         };
         if solved.iter().any(|&b| b) {
-            scale = set_scale(f, solved, d);
             let opts = SolverOptions {
                 tolerance: level,
                 ..options
@@ -817,6 +816,7 @@ fn relax(
                 false,
             );
             tally.cg += c.iterations;
+            scale = c.scale;
         } else {
             op.apply(pressure.view(), work.disp.view_mut());
             tally.cg += 1;
@@ -1023,27 +1023,6 @@ fn flow_map(
             }
         });
     turn
-}
-
-/// The scale of a contact solve's right-hand side as `cg::pcg_from` takes it: the rms of
-/// `d − f` over the `set`, floored at 1e-3 of its height range (∞ on an empty set).
-fn set_scale(f: ndarray::ArrayView2<f64>, set: ndarray::ArrayView2<bool>, d: f64) -> f64 {
-    let (mut n, mut sum, mut hi, mut lo) = (0usize, 0.0, f64::NEG_INFINITY, f64::INFINITY);
-    Zip::from(f).and(set).for_each(|&f, &b| {
-        if b {
-            n += 1;
-            sum += (d - f) * (d - f);
-            hi = hi.max(f);
-            lo = lo.min(f);
-        }
-    });
-    if n == 0 {
-        return f64::INFINITY;
-    }
-    (sum / n as f64)
-        .sqrt()
-        .max(1e-3 * (hi - lo))
-        .max(f64::MIN_POSITIVE)
 }
 
 /// A landing's contact membership: an element leaves under tension beyond its law's at the

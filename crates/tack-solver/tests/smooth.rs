@@ -553,35 +553,8 @@ fn smooth_tail_steps_by_the_law_length() {
 /// did not converge; now every step lands in a few iterations.
 #[test]
 fn weak_law_landings_converge() {
-    let (gamma, rho, n) = (1e-3, 0.1, 128);
-    let law = AdhesionLaw::Exponential(Exponential { range: rho });
-    let mut solver = peers_sphere(n, gamma, &law);
-    let step = 1.02578e-4;
-    let path = ApproachPath {
-        start: 0.0237,
-        max_approach: 0.0239,
-        load_step: step,
-        unload_step: step,
-        coarse_unload_step: None,
-        refine_pull_off: false,
-        retract_to: Some(0.0239),
-        max_steps: 10,
-    };
-    let result = solver
-        .run_path(&path, &SnapshotRequest::None, &mut ())
-        .unwrap();
-    for r in &result.records {
-        eprintln!(
-            "d = {:.6}: converged {}, {} landing iterations",
-            r.approach, r.converged, r.active_set_iterations
-        );
-        assert!(
-            r.converged && r.active_set_iterations < 100,
-            "d = {}",
-            r.approach
-        );
-    }
-    assert_eq!(result.records.len(), 3);
+    let law = AdhesionLaw::Exponential(Exponential { range: 0.1 });
+    assert_steps_land(&law, 128, (0.0237, 0.0239, 1.02578e-4), 100);
 }
 
 /// Under the Lennard-Jones law a peeling front holds elements short of the law's greatest
@@ -642,17 +615,23 @@ fn lennard_jones_strip_keeps_fine_steps() {
 /// default path took 51 s, now 16 s); now each step lands in fewer than 300.
 #[test]
 fn a_cycling_contact_set_hands_over_to_newton() {
-    let (gamma, eps, n) = (1e-3, 1e-3, 64);
-    let law = AdhesionLaw::LennardJones(LennardJones { range: eps });
-    let mut solver = peers_sphere(n, gamma, &law);
+    let law = AdhesionLaw::LennardJones(LennardJones { range: 1e-3 });
+    assert_steps_land(&law, 64, (0.0238, 0.0242, 2e-4), 300);
+}
+
+/// Loads the peers' sphere (γ = 1e-3) under `law` on `n²` from `start` to `max` by `step`
+/// (three steps, no retraction) and asserts that every step converges in fewer than `cap`
+/// landing iterations.
+fn assert_steps_land(law: &AdhesionLaw, n: usize, (start, max, step): (f64, f64, f64), cap: usize) {
+    let mut solver = peers_sphere(n, 1e-3, law);
     let path = ApproachPath {
-        start: 0.0238,
-        max_approach: 0.0242,
-        load_step: 2e-4,
-        unload_step: 2e-4,
+        start,
+        max_approach: max,
+        load_step: step,
+        unload_step: step,
         coarse_unload_step: None,
         refine_pull_off: false,
-        retract_to: Some(0.0242),
+        retract_to: Some(max),
         max_steps: 10,
     };
     let result = solver
@@ -660,11 +639,11 @@ fn a_cycling_contact_set_hands_over_to_newton() {
         .unwrap();
     for r in &result.records {
         eprintln!(
-            "d = {:.4}: converged {}, {} landing iterations",
+            "d = {:.6}: converged {}, {} landing iterations",
             r.approach, r.converged, r.active_set_iterations
         );
         assert!(
-            r.converged && r.active_set_iterations < 300,
+            r.converged && r.active_set_iterations < cap,
             "d = {}",
             r.approach
         );

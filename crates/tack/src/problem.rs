@@ -128,11 +128,11 @@ pub struct PathRule {
 }
 
 impl PathRule {
-    /// The rule on a `viscoelastic` solid or an elastic one: a viscoelastic solid's steps are
-    /// its time steps, so it takes no tail step ([`ApproachPath::tail_step`]).
-    fn on_solid(self, viscoelastic: bool) -> Self {
+    /// The rule with the tail step its `path` takes under `law` on a `viscoelastic` solid or
+    /// an elastic one ([`ApproachPath::tail_step`]).
+    fn with_tail(self, path: &ApproachPath, law: &AdhesionLaw, viscoelastic: bool) -> Self {
         Self {
-            tail_step: self.tail_step.filter(|_| !viscoelastic),
+            tail_step: path.tail_step(law, viscoelastic),
             ..self
         }
     }
@@ -325,7 +325,7 @@ impl Problem {
             layer.is_some(),
         );
         Ok(Self {
-            path_rule: path_rule.map(|r| r.on_solid(viscoelastic.is_some())),
+            path_rule: path_rule.map(|r| r.with_tail(&path, &law, viscoelastic.is_some())),
             grid,
             surface,
             e_star,
@@ -1212,8 +1212,17 @@ fn default_branch(
     // A law whose reach is many retraction steps long would spend every step the default cap
     // allows loading, and the result would hold no retraction at all (a cap the scene sets is
     // its own: a short look at the load is a run, stopped at the cap).
-    // As `ApproachPath::load_steps` counts them: the first at `start`, the last at the depth.
-    let load_steps = ((max_approach - start) / load).ceil() + 1.0;
+    let path = ApproachPath {
+        start,
+        max_approach,
+        load_step: load,
+        unload_step: unload,
+        coarse_unload_step: Some(coarse),
+        refine_pull_off: p.refine_pull_off.unwrap_or(false),
+        retract_to: None,
+        max_steps,
+    };
+    let load_steps = path.load_steps();
     if let Some(reach) = range
         && p.max_steps.is_none()
         && load_steps >= max_steps as f64
@@ -1235,16 +1244,6 @@ fn default_branch(
             parameter = body.law.parameter().0,
         )));
     }
-    let path = ApproachPath {
-        start,
-        max_approach,
-        load_step: load,
-        unload_step: unload,
-        coarse_unload_step: Some(coarse),
-        refine_pull_off: p.refine_pull_off.unwrap_or(false),
-        retract_to: None,
-        max_steps,
-    };
     let rule = rule.map(|rule| PathRule {
         path: crate::pull_off_path::PullOffPath {
             unload_step: unload,
@@ -1254,8 +1253,8 @@ fn default_branch(
         },
         stepped_load: range.is_some().then_some(load),
         refined: path.refine_pull_off,
-        // Elastic here: cleared on a viscoelastic solid when it is known (`PathRule::on_solid`).
-        tail_step: path.tail_step(body.law, false),
+        // Set with the solid (`PathRule::with_tail`).
+        tail_step: None,
         ..rule
     });
     Ok((path, rule))
