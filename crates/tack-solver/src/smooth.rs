@@ -17,8 +17,8 @@
 //! a symmetric, indefinite matrix `K − diag(c)` (`c = 0` on `C`, `1/s` off it), by MINRES
 //! preconditioned by the spectral stiffness on the stiff elements (`|c| ≤ k`) and elsewhere by
 //! the diagonal of the matrix with the contact eliminated, about `1/(c − k/2)` on softening
-//! elements and `1/(k + |c|)` on stiffening ones; each MINRES iteration is one product `K v`. On free half-space grids
-//! the solve runs on a window around the elements with `|c| ≤ 100k` (the window's own, smaller
+//! elements and `1/(k + |c|)` on stiffening ones; each MINRES iteration is one product `K v`.
+//! On free half-space grids the solve runs on a window around the elements with `|c| ≤ 100k` (the window's own, smaller
 //! transform); outside it every row is diagonal to 1%, `(k − c_i) δ_i = b_i`, and enters the
 //! window through one product on the grid. A backtracking line search on `Σ min(g/k, q)²` keeps
 //! the iteration from running off.
@@ -154,7 +154,7 @@ const LANDING_CG: f64 = 1e-4;
 /// Landing iterations without halving the best residual after which a landing within
 /// [`NEWTON_REACH`] hands back to Newton. On the bench's rough sphere at μ = 3 (256²) the first
 /// steps' landings hovered at 1e-3–1e-2 of the peak until [`RELAX_CAP`] (a few elements near
-/// their fold keep the flow critical, and membership changes restart its momentum), where
+/// their fold keep the flow critical, and membership changes then restarted its momentum), where
 /// Newton finished at once: 72 996 operator products without the rule, 49 075 with 100
 /// iterations, 47 954 with 40, the same pull-off bits; the smooth sphere of bench-laws is
 /// unchanged (its landings do not stall). Under the Lennard-Jones law at μ = 3 on 64² it takes
@@ -177,11 +177,13 @@ const WINDOW_SHAPES: usize = 4;
 /// The Newton preconditioner's scale on a softening element (`c = 1/s > k`) is
 /// `1/(c − SCHUR_SHIFT·k)`. Its row's diagonal is `k − c < 0`, and eliminating the contact
 /// (the block that the spectral part preconditions) leaves `c − t` with `t ≤ k` the element's
-/// compliance with the contact held: a stable state has `c > t`, so the scale lies between
-/// `c − k` and `c`, and grows for elements near their fold. Measured on the bench's rough sphere
-/// at μ = 3 (256², MINRES iterations over its 591 Newton solves): `1/(k + c)` (the old scale)
-/// 17 548, `SCHUR_SHIFT` = 0: 15 418, 0.5: 14 390, 0.8: 15 051.
+/// compliance with the contact held (a stable state has `c > t`): the exact scale lies between
+/// `1/c` and `1/(c − k)`, and the fixed shift takes the middle, at most `2/k` (below 1, the
+/// scale stays positive). Measured on the bench's rough sphere at μ = 3 (256², MINRES
+/// iterations over its 591 Newton solves, with the landing then handing back at 1e-4):
+/// `1/(k + c)` (the old scale) 17 548, `SCHUR_SHIFT` = 0: 15 418, 0.5: 14 390, 0.8: 15 051.
 const SCHUR_SHIFT: f64 = 0.5;
+const _: () = assert!(SCHUR_SHIFT < 1.0, "the preconditioner must stay positive");
 
 /// A window's Newton system: its operator and vectors.
 struct WindowSystem {
@@ -277,7 +279,7 @@ impl SmoothState {
 /// `0.3·tolerance/r`, where the solve's own error `η·r` already meets the tolerance with room
 /// for the nonlinear remainder (quadratic, `r²`, far below it there), in `[1e-10, 1e-2]`. At
 /// the default tolerance 1e-7 the two meet at `r` ≈ 1e-5; below it the `√r` rule had asked a
-/// last solve for up to a hundred times the accuracy the step needs. Measured with
+/// last solve for up to 30 times the accuracy the step needs. Measured with
 /// [`LANDED`] = 1e-3: the bench's rough sphere at μ = 3 (256²) 30 749 → 29 679 operator
 /// products, the peers' case at 128² 2 591 → 2 456, the same pull-offs to 1e-8.
 fn forcing(r: f64, tolerance: f64) -> f64 {
@@ -788,8 +790,9 @@ fn relax(
     let stiffens = t.stiffens();
     let at_wall = t.pressure(0.0);
     let mut wall = stiffens.then(|| StiffWall::new(heights));
-    // `x`: the last map value off the contact set; `clock`: the momentum's (1 after a restart).
-    let mut x = Array2::<f64>::zeros(shape);
+    // `x`: the last map value off the contact set (NaN where the element was not held);
+    // `clock`: the momentum's (1 after a restart).
+    let mut x = Array2::<f64>::from_elem(shape, f64::NAN);
     let mut map = Array2::<f64>::zeros(shape);
     let mut clock = 1.0f64;
     let mut fresh = true;
@@ -809,17 +812,7 @@ fn relax(
         let turn = flow_map(&mut map, (&*pressure, &*gap, &held, &x), t, &weight, k);
         let beta = nesterov(&mut clock, fresh || turn > 0.0);
         fresh = false;
-        // `y ← m + β (m − x)`, `x ← m`.
-        Zip::from(&mut *pressure)
-            .and(&mut x)
-            .and(&map)
-            .and(&held)
-            .for_each(|p, x, &m, &h| {
-                if h {
-                    *p = m + beta * (m - *x);
-                    *x = m;
-                }
-            });
+        momentum_step(pressure, &mut x, &map, &held, beta);
         let (solved, f, c) = match &wall {
             Some(w) => (w.set.view(), w.shifted.view(), Some(w.diag.view())),
             None => (bonded.view(), heights, None),
@@ -1014,12 +1007,39 @@ fn nesterov(clock: &mut f64, restart: bool) -> f64 {
     beta
 }
 
+/// The landing's accelerated step on the held elements: `y ← m + β (m − x)`, `x ← m`, from the
+/// map values `m`; an element that was not held on the last step (it just left the contact or
+/// the stiff wall, `x` NaN) starts without momentum, and `x` is NaN off the held set. (Before,
+/// such an element carried the `x` of when it was last held: the bench's rough sphere at μ = 3
+/// on 256² took 29 679 operator products, now 28 148, the same pull-off to 1e-9.)
+fn momentum_step(
+    pressure: &mut Array2<f64>,
+    x: &mut Array2<f64>,
+    map: &Array2<f64>,
+    held: &Array2<bool>,
+    beta: f64,
+) {
+    Zip::from(pressure)
+        .and(x)
+        .and(map)
+        .and(held)
+        .for_each(|p, x, &m, &h| {
+            if h {
+                let last = if x.is_nan() { m } else { *x };
+                *p = m + beta * (m - last);
+                *x = m;
+            } else {
+                *x = f64::NAN;
+            }
+        });
+}
+
 /// The flow's map of a landing ([`relax`]) into `map`: off the contact set (`held`) every
 /// element takes its law's pressure `m`; where the law stiffens less than the body
 /// (`−1 ≤ s k < 0`) the plain update would overshoot by `|s|k`, so it is damped to the
 /// element's own Newton step `1/(1 + |s|k)`. Returns the restart test `Σ (y − m)·(m − x)`
 /// (positive: the last step turned against the flow), from the pressures `y` and the last map
-/// values `x`.
+/// values `x` (NaN where the element was not held on the last step: no term).
 fn flow_map(
     map: &mut Array2<f64>,
     (pressure, gap, held, x): (&Array2<f64>, &Array2<f64>, &Array2<bool>, &Array2<f64>),
@@ -1045,7 +1065,9 @@ fn flow_map(
                 } else {
                     target
                 };
-                turn += (p - *m) * (*m - x);
+                if !x.is_nan() {
+                    turn += (p - *m) * (*m - x);
+                }
             }
         });
     turn
@@ -1087,7 +1109,8 @@ trait Symmetric {
 /// `|c|` is below the self-compliance `k` (the contact and the stiff part of the law) the
 /// spectral stiffness restricted to them (`E*|q|/2`, an approximate `K⁻¹`), elsewhere the
 /// diagonal `1/(c − SCHUR_SHIFT·k)` on softening elements (`c > k`, [`SCHUR_SHIFT`]) and
-/// `1/(k + |c|)` on stiffening ones.
+/// `1/(k + |c|)` on the rest (stiffening ones, and without the spectral part, `spectral` false,
+/// the stiff elements too).
 struct NewtonSystem<'a> {
     op: &'a mut dyn tack_kernels::ElasticOperator,
     shape: (usize, usize),
