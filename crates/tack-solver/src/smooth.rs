@@ -18,10 +18,10 @@
 //! preconditioned by the spectral stiffness on the stiff elements (`|c| ≤ k`) and elsewhere by
 //! the diagonal of the matrix with the contact eliminated, about `1/(c − k/2)` on softening
 //! elements and `1/(k + |c|)` on stiffening ones; each MINRES iteration is one product `K v`.
-//! On free half-space grids the solve runs on a window around the elements with `|c| ≤ 100k` (the window's own, smaller
-//! transform); outside it every row is diagonal to 1%, `(k − c_i) δ_i = b_i`, and enters the
-//! window through one product on the grid. A backtracking line search on `Σ min(g/k, q)²` keeps
-//! the iteration from running off.
+//! On free half-space grids the solve runs on a window around the elements with `|c| ≤ 100k`
+//! (the window's own, smaller transform); outside it every row is diagonal to 1%,
+//! `(k − c_i) δ_i = b_i`, and enters the window through one product on the grid. A
+//! backtracking line search on `Σ min(g/k, q)²` keeps the iteration from running off.
 //!
 //! On a stable equilibrium the matrix has exactly `|C|` positive eigenvalues: the law's softening
 //! `s > 0` is weaker than the body's stiffness. Past a fold (the jump-out on retraction, the
@@ -36,9 +36,9 @@
 //! wander. The flow is the energy's gradient descent in the metric of `K⁻¹` (the energy's
 //! gradient is `K(p − P(g))`); Nesterov's momentum accelerates it, restarted whenever a step
 //! turns against the flow (not when the contact set changes), so it stays a descent towards a
-//! stable state. Where a law stiffens beyond the body (the Lennard-Jones wall, `s k < −1`) an explicit
-//! step would overshoot: the landing solves those elements' linearised law with the contact set,
-//! a diagonal `1/|s|` added to the contact solve's matrix. On free half-space grids
+//! stable state. Where a law stiffens beyond the body (the Lennard-Jones wall, `s k < −1`) an
+//! explicit step would overshoot: the landing solves those elements' linearised law with the
+//! contact set, a diagonal `1/|s|` added to the contact solve's matrix. On free half-space grids
 //! a landing runs on the window of the contact and the law's reach, the pressure outside held
 //! (its displacement enters once), and Newton finishes on the grid. Every loop is capped; a
 //! step that meets a cap reports `converged = false`.
@@ -1294,6 +1294,92 @@ mod tests {
         assert!(it <= 4, "{it} iterations for a 3 × 3 system");
         for (x, t) in x.iter().zip(x_true) {
             assert!((x - t).abs() < 1e-10, "{x} vs {t}");
+        }
+    }
+
+    /// The forcing term keeps the `√r` rule above the crossover, is never tighter than it, and
+    /// below the crossover asks a solve only for what the tolerance needs (`η·r ≥ 0.3·tol`,
+    /// where the loosest allowed `η` does not cap it).
+    #[test]
+    fn forcing_is_never_tighter_than_the_tolerance_needs() {
+        for tolerance in [1e-7f64, 1e-9, 1e-12] {
+            let crossover = (0.3 * tolerance).powf(2.0 / 3.0);
+            for e in 0..=200 {
+                let r = tolerance * 1.001 * (1.0 / tolerance).powf(e as f64 / 200.0);
+                let eta = forcing(r, tolerance);
+                assert!((1e-10..=1e-2).contains(&eta), "η = {eta} at r = {r}");
+                let root = r.sqrt().clamp(1e-10, 1e-2);
+                assert!(eta >= root, "tighter than √r: {eta} < {root} at r = {r}");
+                if r >= crossover * 1.001 {
+                    assert_eq!(eta, root, "the √r rule above the crossover, r = {r}");
+                } else if eta < 1e-2 {
+                    assert!(
+                        eta * r >= 0.3 * tolerance * (1.0 - 1e-12),
+                        "asks more than the tolerance needs: η·r = {} at r = {r}",
+                        eta * r
+                    );
+                }
+            }
+        }
+    }
+
+    /// The landing's momentum step: a held element extrapolates from its last map value, one
+    /// that was not held on the last step starts without momentum, and off the held set the
+    /// pressure is left to the contact solve and `x` forgets.
+    #[test]
+    fn an_element_joining_the_flow_starts_without_momentum() {
+        let mut pressure = Array2::from_shape_vec((1, 3), vec![9.0, 9.0, 9.0]).unwrap();
+        let mut x = Array2::from_shape_vec((1, 3), vec![0.5, f64::NAN, 4.0]).unwrap();
+        let map = Array2::from_shape_vec((1, 3), vec![1.0, 2.0, 3.0]).unwrap();
+        let held = Array2::from_shape_vec((1, 3), vec![true, true, false]).unwrap();
+        momentum_step(&mut pressure, &mut x, &map, &held, 0.5);
+        assert_eq!(pressure.as_slice().unwrap(), &[1.25, 2.0, 9.0]);
+        assert_eq!(&x.as_slice().unwrap()[..2], &[1.0, 2.0]);
+        assert!(x[[0, 2]].is_nan());
+    }
+
+    /// The Newton preconditioner's diagonal is positive and finite for every `c` the Newton
+    /// system builds (contact 0, stiffening `c < 0`, softening up to the 1e8·k cap), at most
+    /// `2/k` on softening elements, and `1/(c − k/2)` there.
+    #[test]
+    fn the_newton_preconditioner_stays_positive() {
+        let k = 0.7;
+        let c = [
+            -5.0 * k,
+            -k,
+            0.0,
+            0.5 * k,
+            k,
+            k * (1.0 + 1e-12),
+            1.5 * k,
+            3.0 * k,
+            1e8 * k,
+        ];
+        let shape = (1, c.len());
+        let mut op = crate::subgrid::free_operator(shape, 1.0, 1.0);
+        let (mut grid_in, mut grid_out) = (Array2::zeros(shape), Array2::zeros(shape));
+        let mut system = NewtonSystem {
+            op: &mut op,
+            shape,
+            c: &c,
+            k,
+            spectral: false,
+            grid_in: &mut grid_in,
+            grid_out: &mut grid_out,
+        };
+        let mut out = vec![0.0; c.len()];
+        system.precondition(&vec![1.0; c.len()], &mut out);
+        for (&ci, &o) in c.iter().zip(&out) {
+            assert!(o.is_finite() && o > 0.0, "scale {o} at c = {ci}");
+            if ci > k {
+                assert!(o <= 2.0 / k + 1e-12, "scale {o} above 2/k at c = {ci}");
+                assert!(
+                    (o - 1.0 / (ci - 0.5 * k)).abs() <= 1e-12 * o,
+                    "{o} at c = {ci}"
+                );
+            } else {
+                assert_eq!(o, 1.0 / (k + ci.abs()), "c = {ci}");
+            }
         }
     }
 }
