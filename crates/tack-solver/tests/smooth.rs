@@ -625,14 +625,9 @@ fn a_cycling_contact_set_hands_over_to_newton() {
 fn assert_steps_land(law: &AdhesionLaw, n: usize, (start, max, step): (f64, f64, f64), cap: usize) {
     let mut solver = peers_sphere(n, 1e-3, law);
     let path = ApproachPath {
-        start,
-        max_approach: max,
-        load_step: step,
-        unload_step: step,
-        coarse_unload_step: None,
-        refine_pull_off: false,
         retract_to: Some(max),
         max_steps: 10,
+        ..ApproachPath::load_retract(start, max, step, step).unwrap()
     };
     let result = solver
         .run_path(&path, &SnapshotRequest::None, &mut ())
