@@ -50,6 +50,8 @@ use crate::law::{Traction, ZONE_FRACTION};
 use crate::rounds::Tally;
 use crate::{AdhesiveSolver, SolverError, SolverOptions, StepRecord};
 
+mod window;
+
 /// Newton's stopping rule: every `|min(g/k, q)|` below this fraction of the peak tension (a
 /// pressure error of 1e-7 of the peak; the last Newton iteration would cost as much as the two
 /// before it to go to 1e-9, for force changes below 1e-7).
@@ -239,6 +241,11 @@ pub(crate) struct SmoothState {
     windows: crate::subgrid::SubgridCache<WindowSystem>,
     /// The landings' windows.
     landings: crate::subgrid::SubgridCache<LandingPatch>,
+    /// The steps' windows ([`window`]).
+    steps: window::StepWindows,
+    /// Steps run on a window, and those of them finished on the grid.
+    #[cfg(test)]
+    window_steps: (usize, usize),
 }
 
 impl SmoothState {
@@ -270,6 +277,9 @@ impl SmoothState {
             stiff: Array2::from_elem(shape, false),
             windows: crate::subgrid::SubgridCache::new(WINDOW_SHAPES),
             landings: crate::subgrid::SubgridCache::new(WINDOW_SHAPES),
+            steps: window::step_windows(),
+            #[cfg(test)]
+            window_steps: (0, 0),
         }
     }
 }
@@ -302,16 +312,35 @@ fn ncp_of(law: f64, p: f64, g: f64, k: f64) -> (f64, bool) {
 }
 
 impl AdhesiveSolver {
-    /// One approach step under a smooth law (module docs); `d` is validated.
+    /// One approach step under a smooth law (module docs); `d` is validated. On a free
+    /// half-space grid the step runs on the window of the law's reach when that is cheaper
+    /// ([`window`]).
     pub(crate) fn step_smooth(&mut self, d: f64) -> StepRecord {
         let mut tally = Tally::new();
+        let held = self.step_window(d);
         self.predict_smooth(d);
+        let landed = match held {
+            Some(w) => self.solve_on_window(d, &w, &mut tally),
+            None => {
+                let k = self.base.op.self_compliance();
+                let merit = self.smooth_refresh(d, k);
+                self.solve_smooth(d, merit, &mut tally)
+            }
+        };
+        let s = self.smooth.as_mut().expect("a smooth law");
+        s.landed = landed;
+        self.mark_zone();
+        self.record(d, &tally)
+    }
+
+    /// Newton from the current state (its residual `merit`), landing where it fails (module
+    /// docs), into `tally`; returns whether the step landed.
+    fn solve_smooth(&mut self, d: f64, mut merit: Merit, tally: &mut Tally) -> bool {
         let k = self.base.op.self_compliance();
         let peak = self.sigma_c;
         let tolerance = self.smooth.as_ref().expect("a smooth law").tolerance;
         let mut landings = 0;
         let mut landed = false;
-        let mut merit = self.smooth_refresh(d, k);
         let after_landing = self.smooth.as_ref().is_some_and(|s| s.landed);
         let mut reach = if after_landing {
             NEWTON_REACH_AFTER_LANDING
@@ -319,7 +348,7 @@ impl AdhesiveSolver {
             NEWTON_REACH
         };
         loop {
-            match self.newton(d, k, (peak, reach, tolerance), &mut merit, &mut tally) {
+            match self.newton(d, k, (peak, reach, tolerance), &mut merit, tally) {
                 Ok(()) => break,
                 Err(()) if landings < LANDINGS => {
                     landings += 1;
@@ -330,7 +359,7 @@ impl AdhesiveSolver {
                     // wall and law) the relaxation goes on to Newton's tolerance itself.
                     let last = landings == LANDINGS;
                     let target = if last { tolerance } else { LANDED };
-                    let done = self.relax_smooth(d, k, peak, target, last, &mut tally);
+                    let done = self.relax_smooth(d, k, peak, target, last, tally);
                     merit = self.smooth_refresh(d, k);
                     if last && done && merit.worst <= tolerance * peak {
                         tally.worst = tally.worst.max(merit.worst / peak);
@@ -343,10 +372,7 @@ impl AdhesiveSolver {
                 }
             }
         }
-        let s = self.smooth.as_mut().expect("a smooth law");
-        s.landed = landed;
-        self.mark_zone();
-        self.record(d, &tally)
+        landed
     }
 
     /// Newton iterations from the current state until the residual meets `tolerance` of the
