@@ -57,7 +57,8 @@ pub struct AdhesiveOptions {
     pub max_active_set_iterations: usize,
     /// Precondition CG with the spectral stiffness `E*|q|/2` restricted to the bonded set.
     pub preconditioned: bool,
-    /// Free grids: run CG on a sub-grid around the bonded set when that is much smaller.
+    /// Free grids: run CG on a sub-grid around the bonded set when that is much smaller (and
+    /// a smooth law's steps, Newton solves and landings on windows of their own, `smooth.rs`).
     pub bonded_subgrid: bool,
     /// Inexact rounds: the CG tolerance of the detach/attach rounds that only have to find
     /// which elements cross the criterion (`None`: every round is solved to `cg.tolerance`).
