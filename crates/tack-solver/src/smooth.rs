@@ -1017,6 +1017,10 @@ fn merit_of(t: &Traction, w: impl Fn(usize) -> f64, p: &[f64], g: &[f64], k: f64
         sum += phi * phi;
         worst = worst.max(phi.abs());
     }
+    // A NaN (a solve that broke down) fails every tolerance: `f64::max` skips it.
+    if sum.is_nan() {
+        worst = f64::INFINITY;
+    }
     Merit { sum, worst }
 }
 
@@ -1321,6 +1325,18 @@ mod tests {
         for (x, t) in x.iter().zip(x_true) {
             assert!((x - t).abs() < 1e-10, "{x} vs {t}");
         }
+    }
+
+    /// A NaN pressure fails every tolerance (it had been skipped by the largest term).
+    #[test]
+    fn a_nan_pressure_is_never_within_the_tolerance() {
+        let law = crate::AdhesionLaw::Exponential(crate::Exponential { range: 1.0 });
+        let t = Traction::new(law, 1.0).expect("a smooth law");
+        let (p, g) = ([0.0, f64::NAN, -0.1], [0.0, 0.5, 1.0]);
+        let m = merit_of(&t, |_| 1.0, &p, &g, 0.5);
+        assert_eq!(m.worst, f64::INFINITY, "{m:?}");
+        let finite = merit_of(&t, |_| 1.0, &p[..1], &g[..1], 0.5);
+        assert!(finite.worst.is_finite());
     }
 
     /// The forcing term keeps the `√r` rule above the crossover, is never tighter than it, and
