@@ -36,7 +36,7 @@ const HELD_FRACTION: f64 = 0.1;
 /// (its refreshes, Newton's trial states and the product outside Newton's window; the landings,
 /// but a step's last, and Newton's MINRES already run on windows of their own). Measured on bench-laws' peers' case,
 /// whose crop the law's reach nearly fills: 2 300 operator products at 64² on the grid, 2 615
-/// with windows up to 0.8 of its cost, 2 545 with 0.4 (the early approach steps, cheap either
+/// with windows up to 0.8 of its cost, 2 531 with 0.4 (the early approach steps, cheap either
 /// way: the same time within the noise); the bench's rough sphere (windows about 0.2 of the
 /// crop's cost) 9.2–9.4 → 7.0–7.4 s.
 const STEP_COST_RATIO: f64 = 0.4;
