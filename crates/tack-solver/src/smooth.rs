@@ -40,8 +40,10 @@
 //! explicit step would overshoot: the landing solves those elements' linearised law with the
 //! contact set, a diagonal `1/|s|` added to the contact solve's matrix. On free half-space grids
 //! a landing runs on the window of the contact and the law's reach, the pressure outside held
-//! (its displacement enters once), and Newton finishes on the grid. Every loop is capped; a
-//! step that meets a cap reports `converged = false`.
+//! (its displacement enters once), and Newton finishes on the grid. On free half-space grids a
+//! whole step runs on the window of the contact and the law's reach when that is cheaper, the
+//! pressure outside held, with one product on the grid checking every element ([`window`]).
+//! Every loop is capped; a step that meets a cap reports `converged = false`.
 
 use ndarray::{Array2, Zip};
 use tack_kernels::ElasticOperator;
