@@ -682,11 +682,8 @@ impl AdhesiveSolver {
         let (j0, j1) = grow(j0, j1, ny);
         // A sub-grid solve adds one full-grid product per round; with several CG iterations per
         // round it pays once its transform is clearly cheaper than the full grid's.
-        let cost = |a: usize, b: usize| {
-            let m = (padded_size(a) * padded_size(b)) as f64;
-            m * m.ln()
-        };
-        let small = cost(i1 - i0, j1 - j0) < SUBGRID_COST_RATIO * cost(nx, ny);
+        let small = crate::subgrid::transform_cost((i1 - i0, j1 - j0))
+            < SUBGRID_COST_RATIO * crate::subgrid::transform_cost((nx, ny));
         small.then_some(Window { i0, i1, j0, j1 })
     }
 

@@ -19,6 +19,13 @@ pub(crate) fn free_operator(shape: (usize, usize), dx: f64, e_star: f64) -> Free
     FreeOperator::new(grid, e_star).expect("the modulus was validated with the operator")
 }
 
+/// The cost of a product on a free grid of `shape`, in units of its padded transform's
+/// `m ln m` (`m` its number of points): what a sub-grid is weighed by against the grid.
+pub(crate) fn transform_cost((a, b): (usize, usize)) -> f64 {
+    let m = (tack_kernels::padded_size(a) * tack_kernels::padded_size(b)) as f64;
+    m * m.ln()
+}
+
 /// A bonded-set CG on a sub-grid: its own free operator and buffers.
 pub(crate) struct SubProblem {
     pub(crate) op: FreeOperator,
