@@ -7,8 +7,9 @@
 //! and of every element whose pressure, or whose law's pressure a little closer in, exceeds
 //! [`HELD_FRACTION`] of Newton's tolerance; when that box's transform is cheaper than the
 //! grid's ([`AdhesiveSolver::subgrid_around`]), the step solves it as a grid of its own:
-//! the pressure outside is held, and its displacement enters the window's heights through one
-//! product on the grid. One more product on the grid then measures every element's residual,
+//! the pressure outside is held, and its displacement enters the window's heights as the last
+//! step's `K p` on the grid less one product on the window. One product on the grid then
+//! measures every element's residual,
 //! and a step that misses Newton's tolerance outside the window (an approach that closes gaps
 //! faster than the margin) is finished on the grid, as is a step whose window solve met a cap.
 //! So the answer meets the same tolerance on every element; only its round-off differs from a
@@ -30,10 +31,11 @@ use crate::rounds::Tally;
 const HELD_FRACTION: f64 = 0.1;
 
 /// A step runs on its window only when the window's transform costs at most this fraction of
-/// the grid's: the window adds two products on the grid to the step (the held pressure's
-/// displacement and the final check) and saves only on the step's own products on the grid
+/// the grid's: the window adds a product on the grid to the step (the final check; the held
+/// pressure's displacement was a second one before 2026-11-29's tiles, when these
+/// measurements were taken) and saves only on the step's own products on the grid
 /// (its refreshes, Newton's trial states and the product outside Newton's window; the landings,
-/// but a step's last, and Newton's MINRES already run on windows of their own). Measured on bench-laws' peers' case,
+/// but a step's last, and Newton's solves already run on windows of their own). Measured on bench-laws' peers' case,
 /// whose crop the law's reach nearly fills: 2 300 operator products at 64² on the grid, 2 615
 /// with windows up to 0.8 of its cost, 2 531 with 0.4 (the early approach steps, cheap either
 /// way: the same time within the noise); the bench's rough sphere (windows about 0.2 of the
@@ -126,14 +128,22 @@ impl AdhesiveSolver {
                 .assign(&self.base.pressure.slice(block));
             std::mem::swap(&mut self.base.pressure, &mut s.trial);
         }
-        // The held pressure's displacement: one product on the grid.
-        s.trial.assign(&self.base.pressure);
-        s.trial.slice_mut(block).fill(0.0);
-        self.base.op.apply(s.trial.view(), s.trial_disp.view_mut());
-        tally.cg += 1;
-        let heights = &self.base.surface.heights().slice(block) + &s.trial_disp.slice(block);
         let mut steps = std::mem::replace(&mut s.steps, step_windows());
         let sw = steps.get_or_insert_with(w.shape(), || StepWindow::new(w.shape(), dx, e_star, s));
+        // The held pressure's displacement on the window, `K p − K_w p_w`: the grid's `K p` of
+        // the last pressure is the last step's (its final check), so one product on the
+        // window's transform does.
+        let last = self
+            .history
+            .as_ref()
+            .map_or(&self.base.pressure, |(p, _)| p);
+        sw.base.pressure.assign(&last.slice(block));
+        sw.base
+            .op
+            .apply(sw.base.pressure.view(), sw.base.work.disp.view_mut());
+        tally.cg += 1;
+        let heights = &self.base.surface.heights().slice(block) + &self.base.work.disp.slice(block)
+            - &sw.base.work.disp;
         let grid = *sw.base.grid();
         let Ok(surface) = Surface::new(grid, heights) else {
             s.steps = steps;
