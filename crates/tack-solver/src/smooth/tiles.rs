@@ -14,6 +14,8 @@
 //! A tile's inverse costs its side to the sixth, and in the solver 4 × 4 is the fastest
 //! (docs/theory.md §3.9, "Newton's solves on tiles").
 
+use std::sync::Arc;
+
 use nalgebra::DMatrix;
 use rayon::prelude::*;
 use tack_kernels::ElasticOperator;
@@ -31,9 +33,13 @@ const TILE_AMPLIFICATION: f64 = 1e3;
 
 /// An operator's influence coefficients `K(|Δi|, |Δj|)` for offsets below [`TILE`]: its
 /// response to a unit pressure on the first element (every operator of tack depends on the
-/// offset only, and is even in it: the half-space, the periodic grid, the layers).
+/// offset only, and is even in it: the half-space, the periodic grid, the layers); and the
+/// inverse of `K` on a whole tile, which every tile entirely in contact shares.
 #[derive(Clone)]
-pub(super) struct Coefficients([[f64; TILE]; TILE]);
+pub(super) struct Coefficients {
+    k: [[f64; TILE]; TILE],
+    contact: Option<Arc<[f64]>>,
+}
 
 impl Coefficients {
     /// The coefficients of `op` (one product).
@@ -43,51 +49,49 @@ impl Coefficients {
         unit[[0, 0]] = 1.0;
         let mut out = ndarray::Array2::zeros(shape);
         op.apply(unit.view(), out.view_mut());
-        let mut c = [[0.0; TILE]; TILE];
-        for (a, row) in c.iter_mut().enumerate().take(shape.0) {
+        let mut k = [[0.0; TILE]; TILE];
+        for (a, row) in k.iter_mut().enumerate().take(shape.0) {
             for (b, v) in row.iter_mut().enumerate().take(shape.1) {
                 *v = out[[a, b]];
             }
         }
-        Self(c)
+        let mut coefficients = Self { k, contact: None };
+        if shape.0 >= TILE && shape.1 >= TILE {
+            coefficients.contact = inverse((TILE, TILE), |_| 0.0, &coefficients, k[0][0])
+                .map(|inv| Arc::from(inv.as_slice()));
+        }
+        coefficients
     }
 }
 
-/// One tile: its first element, its shape, the `c` it was inverted at and the inverse of the
-/// matrix on it (row-major), or `None` where that is near singular ([`TILE_AMPLIFICATION`]:
-/// the tile keeps the diagonal).
+/// What preconditions one tile.
+enum Inverse {
+    /// The shared inverse of `K` on a whole tile in contact ([`Coefficients`]).
+    Contact,
+    /// The inverse of the matrix on this tile (row-major).
+    Own(Vec<f64>),
+    /// The diagonal scale: the tile's matrix is near singular ([`TILE_AMPLIFICATION`]).
+    Diagonal,
+}
+
+/// One tile that holds a stiff element: its first element, its shape and its inverse.
 struct Block {
     origin: (usize, usize),
     shape: (usize, usize),
-    c: Vec<f64>,
-    inverse: Option<Vec<f64>>,
+    inverse: Inverse,
 }
-
-impl Block {
-    /// Whether the block inverted at its `c` still serves `c` (`at`: the tile's values now):
-    /// the same contact elements, every other `c` within [`REUSE`] of it.
-    fn serves(&self, at: impl Iterator<Item = f64>) -> bool {
-        self.c.iter().zip(at).all(|(&old, new)| {
-            (old == 0.0) == (new == 0.0) && (new - old).abs() <= REUSE * old.abs()
-        })
-    }
-}
-
-/// A tile's inverse is kept while no element's `c` moved by more than this fraction (nor
-/// joined or left the contact): a preconditioner need not be exact, and most tiles (inside
-/// the contact, away from the front) do not change between Newton solves.
-const REUSE: f64 = 0.1;
 
 /// The block-Jacobi preconditioner on tiles: the exact inverse on tiles that hold a stiff
-/// element, `1/(k − c_i)` (the matrix's own diagonal) on the others.
+/// element, `1/(k − c_i)` (the matrix's own diagonal) on the others. Built afresh for every
+/// solve from that solve's `c` alone, so a solve does not depend on the solves before it (a
+/// restored state retakes a step bit for bit); the tiles entirely in contact, most of them,
+/// share one inverse made with the coefficients.
 pub(super) struct Tiles {
     shape: (usize, usize),
     /// By tile, row-major over the grid's tiles (`None`: a tile without a stiff element).
     blocks: Vec<Option<Block>>,
     diagonal: Vec<f64>,
-    /// Tiles inverted since this preconditioner was made.
-    #[cfg(test)]
-    rebuilt: usize,
+    contact: Option<Arc<[f64]>>,
 }
 
 impl Tiles {
@@ -96,15 +100,13 @@ impl Tiles {
             shape: (0, 0),
             blocks: Vec::new(),
             diagonal: Vec::new(),
-            #[cfg(test)]
-            rebuilt: 0,
+            contact: None,
         }
     }
 
     /// Builds the preconditioner of `K − diag(c)` on a grid of `shape` with the coefficients
     /// `coef` (self-compliance `k`): a tile is inverted when one of its elements has
-    /// `|c| ≤ stiff` (the rest of its rows are diagonal to `k/stiff`), or its last inverse
-    /// kept where it still serves ([`REUSE`]).
+    /// `|c| ≤ stiff` (the rest of its rows are diagonal to `k/stiff`).
     pub(super) fn build(
         &mut self,
         shape: (usize, usize),
@@ -115,11 +117,8 @@ impl Tiles {
     ) {
         let ny = shape.1;
         let tiles = (shape.0.div_ceil(TILE), ny.div_ceil(TILE));
-        if self.shape != shape {
-            self.shape = shape;
-            self.blocks.clear();
-            self.blocks.resize_with(tiles.0 * tiles.1, || None);
-        }
+        self.shape = shape;
+        self.contact.clone_from(&coef.contact);
         // The matrix's own diagonal off the stiff elements (`|k − c| > 99k` there); on a stiff
         // element it serves only where its tile is near singular, and there MINRES's positive
         // scale does (`smooth.rs`, [`super::SCHUR_SHIFT`]).
@@ -133,37 +132,60 @@ impl Tiles {
                 1.0 / (k + ci.abs())
             }
         }));
-        let elements = |t: usize| {
-            let (i0, j0) = ((t / tiles.1) * TILE, (t % tiles.1) * TILE);
-            (i0..(i0 + TILE).min(shape.0))
-                .flat_map(move |i| (j0..(j0 + TILE).min(ny)).map(move |j| i * ny + j))
-        };
-        let mut rebuild = Vec::new();
-        for (t, slot) in self.blocks.iter_mut().enumerate() {
-            if !elements(t).any(|e| c[e].abs() <= stiff) {
-                *slot = None;
-            } else if !slot
-                .as_ref()
-                .is_some_and(|b| b.serves(elements(t).map(|e| c[e])))
-            {
-                rebuild.push(t);
-            }
-        }
-        #[cfg(test)]
-        {
-            self.rebuilt += rebuild.len();
-        }
-        let built: Vec<Block> = rebuild
-            .par_iter()
-            .map(|&t| {
+        self.blocks = (0..tiles.0 * tiles.1)
+            .into_par_iter()
+            .map(|t| {
                 let origin = ((t / tiles.1) * TILE, (t % tiles.1) * TILE);
-                block(origin, shape, c, k, coef)
+                let h = TILE.min(shape.0 - origin.0);
+                let w = TILE.min(ny - origin.1);
+                let at = |l: usize| c[(origin.0 + l / w) * ny + origin.1 + l % w];
+                let n = h * w;
+                if !(0..n).any(|l| at(l).abs() <= stiff) {
+                    return None;
+                }
+                let inverse =
+                    if n == TILE * TILE && coef.contact.is_some() && (0..n).all(|l| at(l) == 0.0) {
+                        Inverse::Contact
+                    } else {
+                        inverse((h, w), at, coef, k).map_or(Inverse::Diagonal, Inverse::Own)
+                    };
+                Some(Block {
+                    origin,
+                    shape: (h, w),
+                    inverse,
+                })
             })
             .collect();
-        for (t, b) in rebuild.into_iter().zip(built) {
-            self.blocks[t] = Some(b);
-        }
     }
+}
+
+/// The inverse of `K − diag(c)` on a tile of `shape` (`c` by the tile's row-major index),
+/// row-major, or `None` where it is near singular (beyond [`TILE_AMPLIFICATION`]`/k`).
+fn inverse(
+    shape: (usize, usize),
+    c: impl Fn(usize) -> f64,
+    coef: &Coefficients,
+    k: f64,
+) -> Option<Vec<f64>> {
+    let (h, w) = shape;
+    let n = h * w;
+    let element = |l: usize| (l / w, l % w);
+    let a = DMatrix::from_fn(n, n, |p, q| {
+        let ((pi, pj), (qi, qj)) = (element(p), element(q));
+        let k_pq = coef.k[pi.abs_diff(qi)][pj.abs_diff(qj)];
+        if p == q { k_pq - c(p) } else { k_pq }
+    });
+    let limit = TILE_AMPLIFICATION / k;
+    let inv = a
+        .try_inverse()
+        .filter(|inv| inv.iter().all(|x| x.is_finite() && x.abs() <= limit))?;
+    // Row-major: row p of the inverse maps the tile's residual to element p.
+    Some(
+        (0..n)
+            .flat_map(|p| (0..n).map(move |q| (p, q)))
+            .map(|(p, q)| inv[(p, q)])
+            .collect(),
+    )
 }
 
 /// A preconditioner `P` for [`Gmres`] (right preconditioning: GMRES solves `A P y = b`).
@@ -188,7 +210,11 @@ impl Preconditioner for Tiles {
                 }
                 let mut gathered = [0.0; TILE * TILE];
                 for b in blocks.iter().flatten() {
-                    let Some(inverse) = &b.inverse else { continue };
+                    let inverse = match &b.inverse {
+                        Inverse::Contact => self.contact.as_deref().expect("a whole tile"),
+                        Inverse::Own(inverse) => inverse.as_slice(),
+                        Inverse::Diagonal => continue,
+                    };
                     let (h, w) = b.shape;
                     let n = h * w;
                     for a in 0..h {
@@ -201,46 +227,6 @@ impl Preconditioner for Tiles {
                     }
                 }
             });
-    }
-}
-
-/// The tile at `origin` inverted at `c`.
-fn block(
-    origin: (usize, usize),
-    shape: (usize, usize),
-    c: &[f64],
-    k: f64,
-    coef: &Coefficients,
-) -> Block {
-    let h = TILE.min(shape.0 - origin.0);
-    let w = TILE.min(shape.1 - origin.1);
-    let n = h * w;
-    let element = |l: usize| (l / w, l % w);
-    let at = |l: usize| {
-        let (i, j) = element(l);
-        c[(origin.0 + i) * shape.1 + origin.1 + j]
-    };
-    let a = DMatrix::from_fn(n, n, |p, q| {
-        let ((pi, pj), (qi, qj)) = (element(p), element(q));
-        let k_pq = coef.0[pi.abs_diff(qi)][pj.abs_diff(qj)];
-        if p == q { k_pq - at(p) } else { k_pq }
-    });
-    let limit = TILE_AMPLIFICATION / k;
-    // Row-major: row p of the inverse maps the tile's residual to element p.
-    let inverse = a
-        .try_inverse()
-        .filter(|inv| inv.iter().all(|x| x.is_finite() && x.abs() <= limit))
-        .map(|inv| {
-            (0..n)
-                .flat_map(|p| (0..n).map(move |q| (p, q)))
-                .map(|(p, q)| inv[(p, q)])
-                .collect()
-        });
-    Block {
-        origin,
-        shape: (h, w),
-        c: (0..n).map(at).collect(),
-        inverse,
     }
 }
 
@@ -263,6 +249,12 @@ fn long_dot(a: &[f64], b: &[f64]) -> f64 {
 
 /// `y −= h x`, in parallel for long vectors.
 fn axpy(y: &mut [f64], h: f64, x: &[f64]) {
+    if y.len() <= CHUNK {
+        for (y, &x) in y.iter_mut().zip(x) {
+            *y -= h * x;
+        }
+        return;
+    }
     y.par_chunks_mut(CHUNK)
         .zip(x.par_chunks(CHUNK))
         .for_each(|(y, x)| {
@@ -341,10 +333,12 @@ impl Gmres {
         let mut beta = b_norm;
         let mut products = 0;
         while products < cap {
-            let m = self.cycle(system, tiles, beta, target, cap - products);
-            products += m;
+            let (applied, m, broke) = self.cycle(system, tiles, beta, target, cap - products);
+            products += applied;
             self.update(tiles, m, x);
-            if self.rhs[m].abs() <= target || products >= cap {
+            // A breakdown (a column not finite, or a singular projection at a fold) ends the
+            // solve with what the kept columns give; Newton's line search judges it.
+            if broke || self.rhs[m].abs() <= target || products >= cap {
                 break;
             }
             // The true residual for the restart: one more product.
@@ -362,7 +356,9 @@ impl Gmres {
     }
 
     /// One Arnoldi cycle from the residual (norm `beta`), at most [`RESTART`] and `cap`
-    /// steps or until the least-squares residual meets `target`; returns its steps.
+    /// steps or until the least-squares residual meets `target`; returns its products, the
+    /// columns it keeps and whether it broke down (a column not finite, or a projection
+    /// that is singular: the column is dropped).
     fn cycle(
         &mut self,
         system: &mut impl Symmetric,
@@ -370,14 +366,13 @@ impl Gmres {
         beta: f64,
         target: f64,
         cap: usize,
-    ) -> usize {
+    ) -> (usize, usize, bool) {
         let n = self.residual.len();
+        // The basis grows as the cycle needs it (most solves take a few tens of columns).
         if self.basis.len() <= RESTART {
             self.basis.resize_with(RESTART + 1, Vec::new);
         }
-        for v in &mut self.basis {
-            v.resize(n, 0.0);
-        }
+        self.basis[0].resize(n, 0.0);
         for (v, &r) in self.basis[0].iter_mut().zip(&self.residual) {
             *v = r / beta;
         }
@@ -385,10 +380,10 @@ impl Gmres {
         self.rhs[0] = beta;
         let mut steps = 0;
         for j in 0..RESTART.min(cap) {
-            steps = j + 1;
             tiles.apply(&self.basis[j], &mut self.work);
             let (head, tail) = self.basis.split_at_mut(j + 1);
             let next = &mut tail[0];
+            next.resize(n, 0.0);
             system.apply(&self.work, next);
             let col = |i: usize| i * RESTART + j;
             // Modified Gram–Schmidt.
@@ -413,17 +408,21 @@ impl Gmres {
             }
             let (a, b) = (self.hessenberg[col(j)], self.hessenberg[col(j + 1)]);
             let r = a.hypot(b);
-            let (cs, sn) = if r > 0.0 { (a / r, b / r) } else { (1.0, 0.0) };
+            if !(r > 0.0 && r.is_finite()) {
+                return (j + 1, j, true);
+            }
+            steps = j + 1;
+            let (cs, sn) = (a / r, b / r);
             self.rotations[j] = (cs, sn);
             self.hessenberg[col(j)] = r;
             self.hessenberg[col(j + 1)] = 0.0;
             self.rhs[j + 1] = -sn * self.rhs[j];
             self.rhs[j] *= cs;
-            if self.rhs[j + 1].abs() <= target || h_next == 0.0 || !r.is_finite() {
+            if self.rhs[j + 1].abs() <= target || h_next == 0.0 {
                 break;
             }
         }
-        steps
+        (steps, steps, false)
     }
 
     /// `x += P V y` with `y` the least-squares solution of the cycle's `m` steps.
@@ -561,36 +560,61 @@ mod tests {
         );
     }
 
-    /// A tile kept while its `c` moves less than [`REUSE`], rebuilt beyond or when an
-    /// element joins the contact; a near-singular tile keeps a finite positive scale.
+    /// The preconditioner depends on this solve's `c` alone: built after another `c`, it
+    /// gives the same bits as built afresh (a restored state retakes a step exactly); tiles
+    /// entirely in contact share the coefficients' inverse.
     #[test]
-    fn tiles_are_kept_while_they_serve() {
-        let shape = (2 * TILE, 2 * TILE);
+    fn tiles_depend_on_their_own_solve_only() {
+        let shape = (3 * TILE, 2 * TILE + 1);
         let (mut a, k) = newton(shape);
         let coef = Coefficients::of(&mut a.op);
-        let mut tiles = Tiles::new();
         let stiff = 100.0 * k;
-        tiles.build(shape, &a.c, k, &coef, stiff);
-        assert_eq!(tiles.rebuilt, 4);
-        let e = 2; // c = 1.3k, in the first tile
-        a.c[e] *= 1.05;
-        tiles.build(shape, &a.c, k, &coef, stiff);
-        assert_eq!(tiles.rebuilt, 4);
-        a.c[e] *= 1.2;
-        tiles.build(shape, &a.c, k, &coef, stiff);
-        assert_eq!(tiles.rebuilt, 5);
-        a.c[e] = 0.0;
-        tiles.build(shape, &a.c, k, &coef, stiff);
-        assert_eq!(tiles.rebuilt, 6);
-        // One element at `c = k`: its 1 × 1 matrix `k − c` is singular.
+        let mut c = a.c.clone();
+        // The first tile entirely in contact.
+        for i in 0..TILE {
+            for j in 0..TILE {
+                c[i * shape.1 + j] = 0.0;
+            }
+        }
+        let r = vector(c.len());
+        let apply = |tiles: &mut Tiles| {
+            let mut out = vec![0.0; r.len()];
+            tiles.apply(&r, &mut out);
+            out.iter().map(|x| x.to_bits()).collect::<Vec<u64>>()
+        };
+        let mut fresh = Tiles::new();
+        fresh.build(shape, &c, k, &coef, stiff);
+        let mut after = Tiles::new();
+        after.build(shape, &a.c, k, &coef, stiff);
+        after.build(shape, &c, k, &coef, stiff);
+        assert_eq!(apply(&mut fresh), apply(&mut after));
+        assert!(matches!(
+            fresh.blocks[0].as_ref().map(|b| &b.inverse),
+            Some(Inverse::Contact)
+        ));
+        assert!(matches!(
+            fresh.blocks[1].as_ref().map(|b| &b.inverse),
+            Some(Inverse::Own(_))
+        ));
+    }
+
+    /// A singular matrix (one element at `c = k`): its tile keeps a finite positive scale, and
+    /// GMRES stops at the breakdown with a finite answer instead of running to its cap.
+    #[test]
+    fn a_singular_tile_and_a_breakdown_are_handled() {
         let single = Grid::new(1, 1, 0.01, Boundary::Free).unwrap();
-        let mut op = tack_kernels::FreeOperator::new(single, 1.0).unwrap();
-        let coef = Coefficients::of(&mut op);
+        let op = tack_kernels::FreeOperator::new(single, 1.0).unwrap();
         let k = op.self_compliance();
+        let mut a = Newton { op, c: vec![k] };
+        let coef = Coefficients::of(&mut a.op);
         let mut one = Tiles::new();
-        one.build((1, 1), &[k], k, &coef, stiff);
+        one.build((1, 1), &[k], k, &coef, 100.0 * k);
         let mut out = [0.0];
         one.apply(&[1.0], &mut out);
         assert!(out[0].is_finite() && out[0] > 0.0, "{}", out[0]);
+        let mut x = [0.0];
+        let products = Gmres::new().solve(&mut a, &mut one, &[1.0], &mut x, 1e-10, 2_000);
+        assert!(products <= 2, "{products} products");
+        assert!(x[0].is_finite());
     }
 }
