@@ -230,38 +230,41 @@ impl Preconditioner for Tiles {
     }
 }
 
-/// Vectors are summed in chunks of this many elements, in parallel for long vectors and
-/// always in the same order (the same bits on any thread count).
+/// Vectors are summed in chunks of this many elements, always in the same order (the same
+/// bits on any thread count), in parallel where the contact solves' vectors are
+/// ([`crate::cg::parallel`]).
 const CHUNK: usize = 4096;
 
 /// `a·b` by [`CHUNK`]s, each in four interleaved partial sums.
 fn long_dot(a: &[f64], b: &[f64]) -> f64 {
-    if a.len() <= CHUNK {
-        return dot(a, b);
-    }
-    let parts: Vec<f64> = a
-        .par_chunks(CHUNK)
-        .zip(b.par_chunks(CHUNK))
-        .map(|(a, b)| dot(a, b))
-        .collect();
+    let parts: Vec<f64> = if crate::cg::parallel(a.len()) {
+        a.par_chunks(CHUNK)
+            .zip(b.par_chunks(CHUNK))
+            .map(|(a, b)| dot(a, b))
+            .collect()
+    } else {
+        a.chunks(CHUNK)
+            .zip(b.chunks(CHUNK))
+            .map(|(a, b)| dot(a, b))
+            .collect()
+    };
     parts.iter().sum()
 }
 
-/// `y −= h x`, in parallel for long vectors.
+/// `y −= h x`, in parallel where [`crate::cg::parallel`] says.
 fn axpy(y: &mut [f64], h: f64, x: &[f64]) {
-    if y.len() <= CHUNK {
+    let update = |(y, x): (&mut [f64], &[f64])| {
         for (y, &x) in y.iter_mut().zip(x) {
             *y -= h * x;
         }
-        return;
+    };
+    if crate::cg::parallel(y.len()) {
+        y.par_chunks_mut(CHUNK)
+            .zip(x.par_chunks(CHUNK))
+            .for_each(update);
+    } else {
+        y.chunks_mut(CHUNK).zip(x.chunks(CHUNK)).for_each(update);
     }
-    y.par_chunks_mut(CHUNK)
-        .zip(x.par_chunks(CHUNK))
-        .for_each(|(y, x)| {
-            for (y, &x) in y.iter_mut().zip(x) {
-                *y -= h * x;
-            }
-        });
 }
 
 /// `a·b` in four interleaved partial sums (vectorised; the same order on every run).
