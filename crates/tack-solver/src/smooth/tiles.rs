@@ -24,8 +24,22 @@ use super::Symmetric;
 
 /// The tiles' side in elements.
 pub(super) const TILE: usize = 4;
-/// GMRES's restart length.
+/// GMRES's restart length on systems whose basis fits [`BASIS_BYTES`].
 const RESTART: usize = 60;
+/// The most memory GMRES's basis takes: a longer cycle keeps `restart + 1` vectors of the
+/// system's size, so on systems beyond about a million elements (grid-level solves on periodic
+/// grids and films; the free half-space's run on windows) the restart length shrinks to fit,
+/// down to [`LEAST_RESTART`]. At 2048² the full 61 vectors would take 2 GB.
+const BASIS_BYTES: usize = 512 << 20;
+/// The shortest restart length [`BASIS_BYTES`] may impose.
+const LEAST_RESTART: usize = 10;
+
+/// GMRES's restart length on a system of `n` unknowns: [`RESTART`], or what fits
+/// [`BASIS_BYTES`] (`restart + 1` vectors of `n` doubles), at least [`LEAST_RESTART`].
+fn restart_for(n: usize) -> usize {
+    let fits = BASIS_BYTES / (std::mem::size_of::<f64>() * n.max(1));
+    fits.saturating_sub(1).clamp(LEAST_RESTART, RESTART)
+}
 /// A tile whose inverse reaches beyond this many `1/k` (a tile block near singular, the front
 /// at a fold inside it) is preconditioned by its diagonal instead: its exact inverse would
 /// amplify the near-null mode the outer iteration has to resolve anyway.
@@ -287,6 +301,8 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 
 /// The vectors of restarted GMRES, grown to the system's size on first use.
 pub(super) struct Gmres {
+    /// The restart length at most (a system too large for [`BASIS_BYTES`] takes less).
+    restart: usize,
     basis: Vec<Vec<f64>>,
     hessenberg: Vec<f64>,
     rotations: Vec<(f64, f64)>,
@@ -299,6 +315,7 @@ pub(super) struct Gmres {
 impl Gmres {
     pub(super) fn new() -> Self {
         Self {
+            restart: RESTART,
             basis: Vec::new(),
             hessenberg: vec![0.0; (RESTART + 1) * RESTART],
             rotations: vec![(0.0, 0.0); RESTART],
@@ -311,7 +328,8 @@ impl Gmres {
 
     /// Solves `A x = b` (`system.apply`) by GMRES right-preconditioned with `tiles`, from
     /// `x = 0`, until the residual's norm falls below `tolerance` of `‖b‖` or `cap`
-    /// iterations (restarting every [`RESTART`]); returns the operator products.
+    /// iterations (restarting every [`RESTART`] iterations, fewer on a system too large for
+    /// [`BASIS_BYTES`]); returns the operator products.
     pub(super) fn solve(
         &mut self,
         system: &mut impl Symmetric,
@@ -335,8 +353,10 @@ impl Gmres {
         let target = tolerance * b_norm;
         let mut beta = b_norm;
         let mut products = 0;
+        let restart = self.restart.min(restart_for(n));
         while products < cap {
-            let (applied, m, broke) = self.cycle(system, tiles, beta, target, cap - products);
+            let (applied, m, broke) =
+                self.cycle(system, tiles, beta, target, restart.min(cap - products));
             products += applied;
             self.update(tiles, m, x);
             // A breakdown (a column not finite, or a singular projection at a fold) ends the
@@ -358,7 +378,7 @@ impl Gmres {
         products
     }
 
-    /// One Arnoldi cycle from the residual (norm `beta`), at most [`RESTART`] and `cap`
+    /// One Arnoldi cycle from the residual (norm `beta`), at most `cap` (≤ [`RESTART`])
     /// steps or until the least-squares residual meets `target`; returns its products, the
     /// columns it keeps and whether it broke down (a column not finite, or a projection
     /// that is singular: the column is dropped).
@@ -382,7 +402,7 @@ impl Gmres {
         self.rhs.fill(0.0);
         self.rhs[0] = beta;
         let mut steps = 0;
-        for j in 0..RESTART.min(cap) {
+        for j in 0..cap.min(RESTART) {
             tiles.apply(&self.basis[j], &mut self.work);
             let (head, tail) = self.basis.split_at_mut(j + 1);
             let next = &mut tail[0];
@@ -561,6 +581,31 @@ mod tests {
             gmres.solve(&mut a, &mut Identity, &b, &mut x, 1e-14, 10),
             10
         );
+        // The shortest restart a large system may impose still converges, with the tiles, and
+        // keeps no more basis vectors than it uses.
+        let mut short = Gmres::new();
+        short.restart = LEAST_RESTART;
+        let products = short.solve(&mut a, &mut tiles, &b, &mut x, 1e-8, 2_000);
+        assert!(products > LEAST_RESTART, "{products} products");
+        assert!(residual(&mut a, &x) <= 1.01e-8 * b_norm);
+        let kept = short.basis.iter().filter(|v| !v.is_empty()).count();
+        assert_eq!(kept, LEAST_RESTART + 1);
+    }
+
+    /// The restart length fits the basis in [`BASIS_BYTES`]: the full [`RESTART`] up to about a
+    /// million unknowns (1024²), [`LEAST_RESTART`] at the least, and never more memory than
+    /// the budget above that floor.
+    #[test]
+    fn the_restart_length_fits_the_memory_budget() {
+        assert_eq!(restart_for(0), RESTART);
+        assert_eq!(restart_for(256 * 256), RESTART);
+        assert_eq!(restart_for(1024 * 1024), RESTART);
+        let n = 2048 * 2048;
+        let r = restart_for(n);
+        assert!((LEAST_RESTART..RESTART).contains(&r), "{r}");
+        assert!((r + 1) * n * 8 <= BASIS_BYTES);
+        assert!((r + 2) * n * 8 > BASIS_BYTES);
+        assert_eq!(restart_for(usize::MAX / 16), LEAST_RESTART);
     }
 
     /// The preconditioner depends on this solve's `c` alone: built after another `c`, it
