@@ -75,9 +75,19 @@ pub(crate) fn assign<T: Copy + Send + Sync>(dst: ArrayViewMut2<T>, src: ArrayVie
 /// Sums `f` over the chunks of `0..len` (see [`CHUNK`]), in parallel on the current rayon pool
 /// when the vectors are long, always in the same order.
 fn chunk_sum(len: usize, f: impl Fn(std::ops::Range<usize>) -> f64 + Sync) -> f64 {
+    chunk_sum_by(len, CHUNK, f)
+}
+
+/// [`chunk_sum`] over chunks of `chunk` elements (GMRES's vectors take their own size; the
+/// partition, and so the bits, depend on `len` and `chunk` only).
+pub(crate) fn chunk_sum_by(
+    len: usize,
+    chunk: usize,
+    f: impl Fn(std::ops::Range<usize>) -> f64 + Sync,
+) -> f64 {
     use rayon::prelude::*;
-    let chunks = len.div_ceil(CHUNK);
-    let range = |k: usize| k * CHUNK..((k + 1) * CHUNK).min(len);
+    let chunks = len.div_ceil(chunk);
+    let range = |k: usize| k * chunk..((k + 1) * chunk).min(len);
     let sums: Vec<f64> = if parallel(len) {
         (0..chunks).into_par_iter().map(|k| f(range(k))).collect()
     } else {
@@ -407,14 +417,23 @@ fn next_direction(zres: &Array2<f64>, beta: f64, dir: &mut Array2<f64>) {
 /// Runs `f(chunk index, chunk)` over the [`CHUNK`]s of `v` (in parallel when long) and returns
 /// the sum of its results in chunk order.
 fn chunked_mut(v: &mut [f64], f: impl Fn(usize, &mut [f64]) -> f64 + Sync) -> f64 {
+    chunked_mut_by(v, CHUNK, f)
+}
+
+/// [`chunked_mut`] over chunks of `chunk` elements.
+pub(crate) fn chunked_mut_by(
+    v: &mut [f64],
+    chunk: usize,
+    f: impl Fn(usize, &mut [f64]) -> f64 + Sync,
+) -> f64 {
     use rayon::prelude::*;
     let sums: Vec<f64> = if parallel(v.len()) {
-        v.par_chunks_mut(CHUNK)
+        v.par_chunks_mut(chunk)
             .enumerate()
             .map(|(k, c)| f(k, c))
             .collect()
     } else {
-        v.chunks_mut(CHUNK)
+        v.chunks_mut(chunk)
             .enumerate()
             .map(|(k, c)| f(k, c))
             .collect()

@@ -249,36 +249,19 @@ impl Preconditioner for Tiles {
 /// ([`crate::cg::parallel`]).
 const CHUNK: usize = 4096;
 
-/// `a·b` by [`CHUNK`]s, each in four interleaved partial sums.
+/// `a·b` by [`CHUNK`]s ([`crate::cg::chunk_sum_by`]), each in four interleaved partial sums.
 fn long_dot(a: &[f64], b: &[f64]) -> f64 {
-    let parts: Vec<f64> = if crate::cg::parallel(a.len()) {
-        a.par_chunks(CHUNK)
-            .zip(b.par_chunks(CHUNK))
-            .map(|(a, b)| dot(a, b))
-            .collect()
-    } else {
-        a.chunks(CHUNK)
-            .zip(b.chunks(CHUNK))
-            .map(|(a, b)| dot(a, b))
-            .collect()
-    };
-    parts.iter().sum()
+    crate::cg::chunk_sum_by(a.len(), CHUNK, |r| dot(&a[r.clone()], &b[r]))
 }
 
-/// `y −= h x`, in parallel where [`crate::cg::parallel`] says.
+/// `y −= h x` by [`CHUNK`]s ([`crate::cg::chunked_mut_by`]).
 fn axpy(y: &mut [f64], h: f64, x: &[f64]) {
-    let update = |(y, x): (&mut [f64], &[f64])| {
-        for (y, &x) in y.iter_mut().zip(x) {
+    crate::cg::chunked_mut_by(y, CHUNK, |k, y| {
+        for (y, &x) in y.iter_mut().zip(&x[k * CHUNK..]) {
             *y -= h * x;
         }
-    };
-    if crate::cg::parallel(y.len()) {
-        y.par_chunks_mut(CHUNK)
-            .zip(x.par_chunks(CHUNK))
-            .for_each(update);
-    } else {
-        y.chunks_mut(CHUNK).zip(x.chunks(CHUNK)).for_each(update);
-    }
+        0.0
+    });
 }
 
 /// `a·b` in four interleaved partial sums (vectorised; the same order on every run).
