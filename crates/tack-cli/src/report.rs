@@ -605,9 +605,16 @@ fn run_lines(outcome: &RunOutcome, out: Option<&Path>) -> Vec<String> {
         format!("status      {}", s.status.as_deref().unwrap_or("unknown")),
     ];
     lines.extend(s.warnings.iter().map(|w| format!("WARNING     {w}")));
+    // A smooth law's count is of operator products (Newton's Krylov iterations, its line
+    // search's trials and the landings' CG iterations), not of CG iterations alone.
+    let work = if outcome.problem.law.is_smooth() {
+        "operator products"
+    } else {
+        "CG iterations"
+    };
     lines.push(match outcome.coarse_wall_time {
         Some(coarse) => format!(
-            "wall time   {:.2} s: {:.2} s for the run ({} CG iterations) + {:.2} s for the \
+            "wall time   {:.2} s: {:.2} s for the run ({} {work}) + {:.2} s for the \
              coarse (2Δx) run",
             outcome.total_wall_time().as_secs_f64(),
             outcome.wall_time.as_secs_f64(),
@@ -615,7 +622,7 @@ fn run_lines(outcome: &RunOutcome, out: Option<&Path>) -> Vec<String> {
             coarse.as_secs_f64()
         ),
         None => format!(
-            "wall time   {:.2} s ({} CG iterations)",
+            "wall time   {:.2} s ({} {work})",
             outcome.wall_time.as_secs_f64(),
             path.cg_iterations()
         ),

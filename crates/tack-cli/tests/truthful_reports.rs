@@ -2,7 +2,7 @@
 //! example scenes must be true and readable: PNG figures by default, errors that name the
 //! user's output, paths described as they were walked, no apparent γ of 0 beside an adhesive
 //! pull-off, no loop quantity the refined retraction cannot measure, plots whose force axis
-//! shows the pull-off, and every number rounded.
+//! shows the pull-off, every number rounded, and counts named for what they count.
 
 mod common;
 
@@ -242,4 +242,18 @@ fn every_example_report_is_rounded() {
     let (report, _) = run_example(&scratch, "wavy_1d_periodic", &[]);
     assert!(report.contains("dx = 0.00195312"), "{report}");
     assert!(long_numbers(&report).is_empty(), "{report}");
+}
+
+/// The wall-time line names what its count counts: CG iterations under the criterion, operator
+/// products under a smooth law (its Newton's Krylov iterations and line-search trials are not
+/// CG iterations).
+#[test]
+fn the_wall_time_line_names_what_it_counts() {
+    let scratch = Scratch::new("truth-work");
+    let (report, _) = run_example(&scratch, "exponential_sphere", &[]);
+    assert!(report.contains(" operator products)"), "{report}");
+    assert!(!report.contains("CG iterations"), "{report}");
+    let (report, _) = run_example(&scratch, "smooth_jkr_sphere", &[]);
+    assert!(report.contains(" CG iterations)"), "{report}");
+    assert!(!report.contains("operator products"), "{report}");
 }

@@ -7,7 +7,7 @@
 //! |---|---|
 //! | `/` attributes | `tack_version`, `git_revision`, `command_line`, `scene` (full TOML), `created` (RFC 3339): variable-length UTF-8 strings; `seed` (u64) when the run had one |
 //! | `/curve/{approach, force, area}` | 1D f64, one entry per step of the approach path |
-//! | `/curve/{n_bonded, n_clusters, iterations, active_set_iterations}` | 1D u64 (`iterations` counts CG iterations) |
+//! | `/curve/{n_bonded, n_clusters, iterations, active_set_iterations}` | 1D u64 (`iterations` counts CG iterations; under a smooth law, operator products) |
 //! | `/curve/converged` | 1D u8, 0 or 1 |
 //! | `/curve/mean_pressure` | 1D f64, only when recorded |
 //! | `/curve/full_contact` | 1D u8, 1 where the step is in periodic full contact (its force and mean pressure are a bound, not a state's); only when recorded |

@@ -52,7 +52,8 @@ pub struct Curve {
     pub n_bonded: Vec<u64>,
     /// Number of connected contact clusters.
     pub n_clusters: Vec<u64>,
-    /// Conjugate-gradient iterations of the solve.
+    /// Conjugate-gradient iterations of the solve (under a smooth law, its operator products:
+    /// Newton's Krylov iterations, line-search trials and the landings' CG iterations).
     pub iterations: Vec<u64>,
     /// Outer (active-set / detachment) iterations of the solve.
     pub active_set_iterations: Vec<u64>,

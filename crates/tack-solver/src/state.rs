@@ -47,7 +47,8 @@ pub struct StepRecord {
     pub n_bonded: usize,
     /// Number of separate contact clusters (edge-connected).
     pub n_clusters: usize,
-    /// Linear CG iterations summed over the step.
+    /// Linear CG iterations summed over the step; under a smooth law, the operator products of
+    /// Newton's Krylov solves, its line search and the landings' CG iterations.
     pub cg_iterations: usize,
     /// Detach/attach rounds in the step.
     pub active_set_iterations: usize,
