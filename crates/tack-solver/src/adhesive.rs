@@ -210,7 +210,10 @@ impl AdhesiveSolver {
                     .expect("a smooth law");
                 let traction = Traction::new(law.clone(), gamma).expect("a smooth law");
                 let peak_gap = law.peak_gap().expect("a smooth law");
-                let state = SmoothState::new(traction, shape, tolerance, peak_gap);
+                let mut state = SmoothState::new(traction, shape, tolerance, peak_gap);
+                state.keep_secant = law
+                    .zone_length(e_star, gamma)
+                    .is_some_and(|zone| zone >= crate::smooth::SECANT_ZONE_ELEMENTS * base_dx);
                 (None, Some(state))
             }
         };

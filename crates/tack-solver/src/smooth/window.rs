@@ -156,6 +156,7 @@ impl AdhesiveSolver {
         sw.smooth.traction = s.traction.clone();
         sw.smooth.tolerance = s.tolerance;
         sw.smooth.landed = s.landed;
+        sw.smooth.fallback = s.fallback.take().map(|f| f.slice(block).to_owned());
         self.swap_step_window(sw);
         let wk = self.base.op.self_compliance();
         let merit = self.smooth_refresh(d, wk);
