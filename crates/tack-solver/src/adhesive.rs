@@ -211,9 +211,9 @@ impl AdhesiveSolver {
                 let traction = Traction::new(law.clone(), gamma).expect("a smooth law");
                 let peak_gap = law.peak_gap().expect("a smooth law");
                 let mut state = SmoothState::new(traction, shape, tolerance, peak_gap);
-                state.keep_secant = law
+                state.resolved = law
                     .zone_length(e_star, gamma)
-                    .is_some_and(|zone| zone >= crate::smooth::SECANT_ZONE_ELEMENTS * base_dx);
+                    .is_some_and(|zone| zone >= crate::smooth::RESOLVED_ZONE_ELEMENTS * base_dx);
                 (None, Some(state))
             }
         };

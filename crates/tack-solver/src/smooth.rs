@@ -16,9 +16,10 @@
 //!
 //! a symmetric, indefinite matrix `K − diag(c)` (`c = 0` on `C`, `1/s` off it), by GMRES
 //! preconditioned by the matrix's exact inverse on each 4 × 4 tile that holds a stiff element
-//! (`|c| ≤ 100k`) and its diagonal elsewhere ([`tiles`]), then on the contact set by the
-//! operator's spectral inverse (the contact solves' preconditioner); each GMRES iteration is
-//! one product `K v` and one unpadded preconditioner transform. A law that stiffens beyond the body (the Lennard-Jones wall, `c < 0` next to it)
+//! (`|c| ≤ 100k`) and its diagonal elsewhere ([`tiles`]), then, on a mesh that resolves the
+//! law ([`RESOLVED_ZONE_ELEMENTS`]), on the contact set by the operator's spectral inverse (the
+//! contact solves' preconditioner, one unpadded transform an iteration); each GMRES iteration
+//! is one product `K v`. A law that stiffens beyond the body (the Lennard-Jones wall, `c < 0` next to it)
 //! keeps MINRES, whose positive preconditioner is the spectral stiffness on the elements with
 //! `|c| ≤ k` and elsewhere the diagonal scale `1/(c − k/2)` on softening elements and
 //! `1/(k + |c|)` on the rest: with the tiles its default path at 128² took 136 227 products
@@ -145,20 +146,29 @@ const NEWTON_REACH: f64 = 0.1;
 /// products and the pull-off to 2e-10 (0.01: 38 929). On the peers' case at 64² 4 112 → 2 746
 /// products, at 128² the same 2 851; the same pull-offs to six digits.
 const NEWTON_REACH_AFTER_LANDING: f64 = 0.05;
-/// A landing keeps the secant predictor for the next step when the law's process zone spans at
-/// least this many elements; the step returns to the last state (as it starts without the
-/// secant) when Newton fails from it, so it lands from where it did. On a resolved mesh most
-/// landings are not hops: the last state's residual is the step's rigid shift, beyond
-/// [`NEWTON_REACH_AFTER_LANDING`], so without the secant every step lands again, cheaply but
-/// without end. Measured (the night of 2026-11-29) on the smooth sphere of the bench's rough
-/// sphere's scene (256², one load step, then its retraction): at μ = 1.5 (5.1 elements per
-/// zone) 9 238 → 7 604 operator products, at μ = 2 (2.9) 10 195 → 8 902; on the peers' case at
-/// 256² (2.4) the exponential law 1 988 → 2 013, the Lennard-Jones law 7 022 → 6 652; the same
-/// curves to 1e-8 of their greatest force. The gain needs steps small against the law's range
-/// (the unit test: −23% in steps of 0.05ρ, +2% in 0.25ρ). Below it (the bench's rough sphere at 1.27, the
-/// peers' case at 64² and 128²) landings are hops, and a secant across one extrapolates it:
-/// kept there it took the rough sphere 8% more products when measured (41 874 against 38 714).
-pub(crate) const SECANT_ZONE_ELEMENTS: f64 = 2.0;
+/// A mesh resolves a smooth law when the law's process zone spans at least this many elements.
+/// Only there (measured the night of 2026-11-29 on the smooth sphere of the bench's rough
+/// sphere's scene, 256², one load step then its retraction, and on the peers' case; the same
+/// curves to 1e-8 of their greatest force):
+///
+/// - Newton's GMRES adds the spectral stage on the contact set
+///   ([`Symmetric::spectral_contact`]): at μ = 1.5 (5.1 elements per zone) 11 973 → 9 238
+///   operator products and 10% less time, the peers' case at 256² (2.4) 2 494 → 1 988 and 9%
+///   less. Below it the front's near-critical rows set GMRES's pace and the stage's transform
+///   costs more than the iterations it saves: the bench's rough sphere (1.27) 21 407 → 20 723
+///   products but 3–6% slower (four runs alternated, the fastest 7.05 against 6.65 s); the
+///   peers' case at 64² and 128² 6–8% fewer products in the same time.
+/// - A landing keeps the secant predictor for the next step, which returns to the last state
+///   (as it starts without the secant) when Newton fails from it, so a landing starts where it
+///   always did. On a resolved mesh most landings are not hops: the last state's residual is
+///   the step's rigid shift, beyond [`NEWTON_REACH_AFTER_LANDING`], so without the secant every
+///   step lands again, cheaply but without end: at μ = 1.5 9 238 → 7 604 products, at μ = 2
+///   (2.9) 10 195 → 8 902; the peers' case at 256² 1 988 → 2 013 under the exponential law,
+///   7 022 → 6 652 under Lennard-Jones. The gain needs steps small against the law's range
+///   (the unit test: −23% in steps of 0.05ρ, +2% in 0.25ρ). Below it landings are hops, and a
+///   secant across one extrapolates it: kept there it took the rough sphere 8% more products
+///   when measured (41 874 against 38 714).
+pub(crate) const RESOLVED_ZONE_ELEMENTS: f64 = 2.0;
 /// Newton iterations per attempt before the step falls back to relaxation.
 const NEWTON_CAP: usize = 40;
 /// Relaxation iterations per landing.
@@ -260,12 +270,13 @@ pub(crate) struct SmoothState {
     /// Out of contact with tension beyond [`ZONE_FRACTION`] of the peak.
     pub(crate) zone: Array2<bool>,
     /// Whether the last step had to land on a new branch (the secant predictor restarts,
-    /// unless [`SmoothState::keep_secant`]).
+    /// unless [`SmoothState::resolved`]).
     pub(crate) landed: bool,
-    /// Whether the secant predictor is kept across a landing (the law's process zone spans at
-    /// least [`SECANT_ZONE_ELEMENTS`]), the step then returning to the last state when Newton
-    /// fails from it ([`SmoothState::fallback`]).
-    pub(crate) keep_secant: bool,
+    /// Whether the mesh resolves the law (its process zone spans at least
+    /// [`RESOLVED_ZONE_ELEMENTS`]): Newton's GMRES then adds the spectral stage on the contact,
+    /// and the secant predictor is kept across a landing, the step returning to the last state
+    /// when Newton fails from it ([`SmoothState::fallback`]).
+    pub(crate) resolved: bool,
     /// After a landed step whose secant was kept, the last state's pressure (the step's
     /// window's part on a window).
     fallback: Option<Array2<f64>>,
@@ -315,7 +326,7 @@ impl SmoothState {
             traction,
             zone: Array2::from_elem(shape, false),
             landed: false,
-            keep_secant: false,
+            resolved: false,
             fallback: None,
             tolerance,
             weights: None,
@@ -583,6 +594,7 @@ impl AdhesiveSolver {
                 c: &s.c,
                 k,
                 spectral: self.options.preconditioned,
+                contact_stage: self.options.preconditioned && s.resolved,
                 grid_in: &mut s.grid_in,
                 grid_out: &mut s.grid_out,
             };
@@ -637,6 +649,7 @@ impl AdhesiveSolver {
             c: &sub.c,
             k,
             spectral: self.options.preconditioned,
+            contact_stage: self.options.preconditioned && s.resolved,
             grid_in: &mut sub.grid_in,
             grid_out: &mut sub.grid_out,
         };
@@ -790,12 +803,12 @@ impl AdhesiveSolver {
     }
     /// Secant predictor over every element (the smooth laws load all of them); restarts after a
     /// landing, whose jump a secant would extrapolate, unless the mesh resolves the law
-    /// ([`SECANT_ZONE_ELEMENTS`]): then it keeps the last state for the step to return to.
+    /// ([`RESOLVED_ZONE_ELEMENTS`]): then it keeps the last state for the step to return to.
     fn predict_smooth(&mut self, d: f64) {
         let s = self.smooth.as_mut().expect("a smooth law");
         s.fallback = None;
         if s.landed {
-            if s.keep_secant && self.history.is_some() {
+            if s.resolved && self.history.is_some() {
                 s.fallback = Some(self.base.pressure.clone());
             } else {
                 self.history = None;
@@ -1255,6 +1268,9 @@ struct NewtonSystem<'a> {
     c: &'a [f64],
     k: f64,
     spectral: bool,
+    /// GMRES's second stage on the contact set ([`Symmetric::spectral_contact`]): on meshes that
+    /// resolve the law ([`SmoothState::resolved`]).
+    contact_stage: bool,
     grid_in: &'a mut Array2<f64>,
     grid_out: &'a mut Array2<f64>,
 }
@@ -1279,7 +1295,7 @@ impl Symmetric for NewtonSystem<'_> {
     /// One transform of the operator's preconditioner (unpadded: about a quarter of a
     /// product), skipped when nothing is in contact or the spectral part is off.
     fn spectral_contact(&mut self, r: &[f64], out: &mut [f64]) {
-        if !self.spectral || !self.c.contains(&0.0) {
+        if !self.contact_stage || !self.c.contains(&0.0) {
             return;
         }
         let input = self.grid_in.as_slice_mut().expect("contiguous");
@@ -1534,6 +1550,7 @@ mod tests {
             c: &c,
             k,
             spectral: false,
+            contact_stage: false,
             grid_in: &mut grid_in,
             grid_out: &mut grid_out,
         };
@@ -1553,15 +1570,16 @@ mod tests {
         }
     }
 
-    /// The secant kept across a landing on a mesh that resolves the law (2.8 elements per
-    /// process zone: ρ = 0.01, γ = 1e-3, Δx = 0.03 on 96²), loaded in one step past the
-    /// jump-in and retracted in steps of 0.001 (0.1ρ) past the pull-off: every step converges,
-    /// the forces agree with the secant restarted after each landing to 1e-6 of the greatest
-    /// (two states within 1e-7 of the peak tension of their equilibrium differ by about 3e-9
-    /// against forces of 3e-3; the window tests' bound), and the run takes a tenth fewer
-    /// products at least (measured 1 509 → 1 290; without the kept secant every step after the
-    /// load lands, the rigid shift's residual beyond [`NEWTON_REACH_AFTER_LANDING`]). The gain
-    /// needs steps small against the range: at 0.0005 2 804 → 2 157, at 0.0025 821 → 837.
+    /// A mesh that resolves the law (2.8 elements per process zone: ρ = 0.01, γ = 1e-3,
+    /// Δx = 0.03 on 96²; 0.7 at ρ = 0.005 is not resolved), loaded in one step past the jump-in
+    /// and retracted in steps of 0.001 (0.1ρ) past the pull-off, against the same solver
+    /// treated as unresolved (no spectral stage on the contact, the secant restarted after each
+    /// landing): every step converges, the forces agree to 1e-6 of the greatest (two states
+    /// within 1e-7 of the peak tension of their equilibrium differ by about 3e-9 against forces
+    /// of 3e-3; the window tests' bound), and the run takes a tenth fewer products at least
+    /// (measured 1 793 → 1 290; unresolved, every step after the load lands, the rigid shift's
+    /// residual beyond [`NEWTON_REACH_AFTER_LANDING`]). The gain needs steps small against the
+    /// range: in steps of 0.0005 3 165 → 2 157, of 0.0025 816 → 837.
     #[test]
     fn the_secant_kept_across_landings_finds_the_same_states_for_less() {
         use tack_geometry::{Boundary, Grid, Sphere, Surface};
@@ -1578,8 +1596,18 @@ mod tests {
                 crate::AdhesiveOptions::default(),
             )
             .unwrap();
-            assert!(solver.smooth.as_ref().unwrap().keep_secant);
-            solver.smooth.as_mut().unwrap().keep_secant = keep;
+            assert!(solver.smooth.as_ref().unwrap().resolved);
+            // A range of 0.005 puts 0.7 elements across the zone: not resolved.
+            let coarse = AdhesiveSolver::with_law(
+                tack_kernels::operator_for(grid, 1.0).unwrap(),
+                &surface,
+                1e-3,
+                crate::AdhesionLaw::Exponential(crate::Exponential { range: 0.005 }),
+                crate::AdhesiveOptions::default(),
+            )
+            .unwrap();
+            assert!(!coarse.smooth.as_ref().unwrap().resolved);
+            solver.smooth.as_mut().unwrap().resolved = keep;
             let path = std::iter::once(0.02).chain((1..=60).map(|i| 0.02 - 0.001 * f64::from(i)));
             path.map(|d| {
                 let r = solver.step(d).unwrap();

@@ -13,9 +13,9 @@
 //! iterations to 1e-5 on the same systems with 4 × 4 tiles (6 × 6: 15 to 25, 8 × 8: 17 to 28).
 //! A tile's inverse costs its side to the sixth, and in the solver 4 × 4 is the fastest
 //! (docs/theory.md §3.9, "Newton's solves on tiles"). The tiles carry the contact's
-//! long-range elasticity poorly, so GMRES then replaces their values on the contact set with
-//! the system's spectral inverse there ([`Symmetric::spectral_contact`]; docs/theory.md §3.9,
-//! "The contact's spectral stage").
+//! long-range elasticity poorly, so on meshes that resolve the law GMRES then replaces their
+//! values on the contact set with the system's spectral inverse there
+//! ([`Symmetric::spectral_contact`]; docs/theory.md §3.9, "The contact's spectral stage").
 
 use std::sync::Arc;
 

@@ -73,7 +73,10 @@ impl StepWindow {
             base: SolverBase::new(op, &surface).expect("the operator's own grid"),
             bonded: Array2::from_elem(shape, false),
             pcg: PcgWork::new(shape),
-            smooth: SmoothState::new(like.traction.clone(), shape, like.tolerance, like.peak_gap),
+            smooth: SmoothState {
+                resolved: like.resolved,
+                ..SmoothState::new(like.traction.clone(), shape, like.tolerance, like.peak_gap)
+            },
         }
     }
 }
