@@ -19,12 +19,13 @@
 //! (`|c| ≤ 100k`) and its diagonal elsewhere ([`tiles`]), then, on a mesh that resolves the
 //! law ([`RESOLVED_ZONE_ELEMENTS`]), on the contact set by the operator's spectral inverse (the
 //! contact solves' preconditioner, one unpadded transform an iteration); each GMRES iteration
-//! is one product `K v`. A law that stiffens beyond the body (the Lennard-Jones wall, `c < 0` next to it)
-//! keeps MINRES, whose positive preconditioner is the spectral stiffness on the elements with
-//! `|c| ≤ k` and elsewhere the diagonal scale `1/(c − k/2)` on softening elements and
-//! `1/(k + |c|)` on the rest: with the tiles its default path at 128² took 136 227 products
-//! and 30.8 s against 111 955 and 17.4 s. With the spectral preconditioner switched off
-//! (`AdhesiveOptions::preconditioned`) every law runs MINRES with the diagonal scale alone.
+//! is one product `K v`. A law that stiffens beyond the body (the Lennard-Jones wall, `c < 0`
+//! next to it) keeps MINRES, whose positive preconditioner is the spectral stiffness on the
+//! elements with `|c| ≤ k` and elsewhere the diagonal scale `1/(c − k/2)` on softening
+//! elements and `1/(k + |c|)` on the rest: with the tiles its default path at 128² took
+//! 136 227 products and 30.8 s against 111 955 and 17.4 s. With the spectral preconditioner
+//! switched off (`AdhesiveOptions::preconditioned`) every law runs MINRES with the diagonal
+//! scale alone.
 //! On free half-space grids the solve runs on a window around the elements with `|c| ≤ 100k`
 //! (the window's own, smaller transform); outside it every row is diagonal to 1%,
 //! `(k − c_i) δ_i = b_i`, and enters the window through one product on the grid. A
@@ -165,7 +166,8 @@ const NEWTON_REACH_AFTER_LANDING: f64 = 0.05;
 ///   step lands again, cheaply but without end: at μ = 1.5 9 238 → 7 604 products, at μ = 2
 ///   (2.9) 10 195 → 8 902; the peers' case at 256² 1 988 → 2 013 under the exponential law,
 ///   7 022 → 6 652 under Lennard-Jones. The gain needs steps small against the law's range
-///   (the unit test: −23% in steps of 0.05ρ, +2% in 0.25ρ). Below it landings are hops, and a
+///   (the unit test's scene with the spectral stage in both runs: −23% of the products in steps
+///   of 0.05ρ, +2% in 0.25ρ). Below it landings are hops, and a
 ///   secant across one extrapolates it: kept there it took the rough sphere 8% more products
 ///   when measured (41 874 against 38 714).
 pub(crate) const RESOLVED_ZONE_ELEMENTS: f64 = 2.0;
