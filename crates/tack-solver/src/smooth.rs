@@ -596,7 +596,7 @@ impl AdhesiveSolver {
                 c: &s.c,
                 k,
                 spectral: self.options.preconditioned,
-                contact_stage: self.options.preconditioned && s.resolved,
+                contact_stage: self.options.preconditioned && s.resolved && s.c.contains(&0.0),
                 grid_in: &mut s.grid_in,
                 grid_out: &mut s.grid_out,
             };
@@ -651,7 +651,7 @@ impl AdhesiveSolver {
             c: &sub.c,
             k,
             spectral: self.options.preconditioned,
-            contact_stage: self.options.preconditioned && s.resolved,
+            contact_stage: self.options.preconditioned && s.resolved && sub.c.contains(&0.0),
             grid_in: &mut sub.grid_in,
             grid_out: &mut sub.grid_out,
         };
@@ -1271,7 +1271,8 @@ struct NewtonSystem<'a> {
     k: f64,
     spectral: bool,
     /// GMRES's second stage on the contact set ([`Symmetric::spectral_contact`]): on meshes that
-    /// resolve the law ([`SmoothState::resolved`]).
+    /// resolve the law ([`SmoothState::resolved`]) when an element is in contact (`c = 0`),
+    /// decided once per solve.
     contact_stage: bool,
     grid_in: &'a mut Array2<f64>,
     grid_out: &'a mut Array2<f64>,
@@ -1295,9 +1296,9 @@ impl Symmetric for NewtonSystem<'_> {
     }
 
     /// One transform of the operator's preconditioner (unpadded: about a quarter of a
-    /// product), skipped when nothing is in contact or the spectral part is off.
+    /// product), skipped when the stage is off (nothing in contact, or an unresolved mesh).
     fn spectral_contact(&mut self, r: &[f64], out: &mut [f64]) {
-        if !self.contact_stage || !self.c.contains(&0.0) {
+        if !self.contact_stage {
             return;
         }
         let input = self.grid_in.as_slice_mut().expect("contiguous");

@@ -470,49 +470,43 @@ impl Gmres {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::smooth::Symmetric;
+    use crate::smooth::{NewtonSystem, Symmetric};
     use tack_geometry::{Boundary, Grid};
 
-    /// `K − diag(c)` of a free half-space grid, for the tests; with `spectral`, GMRES's
-    /// second stage on the contact set (the operator's spectral inverse, as in `smooth.rs`).
+    /// `K − diag(c)` of a free half-space grid, for the tests, as the solver's own
+    /// [`NewtonSystem`] (its MINRES preconditioner unused); with `spectral`, GMRES's second
+    /// stage on the contact set.
     struct Newton {
         op: tack_kernels::FreeOperator,
         c: Vec<f64>,
         spectral: bool,
+        grid_in: ndarray::Array2<f64>,
+        grid_out: ndarray::Array2<f64>,
     }
 
-    impl Symmetric for Newton {
-        fn apply(&mut self, v: &[f64], out: &mut [f64]) {
-            let shape = self.op.grid().shape();
-            let vv = ndarray::ArrayView2::from_shape(shape, v).unwrap();
-            let o = ndarray::ArrayViewMut2::from_shape(shape, out).unwrap();
-            self.op.apply(vv, o);
-            for ((o, &vi), &ci) in out.iter_mut().zip(v).zip(&self.c) {
-                *o -= ci * vi;
+    impl Newton {
+        fn new(op: tack_kernels::FreeOperator, c: Vec<f64>) -> Self {
+            let shape = op.grid().shape();
+            Self {
+                op,
+                c,
+                spectral: false,
+                grid_in: ndarray::Array2::zeros(shape),
+                grid_out: ndarray::Array2::zeros(shape),
             }
         }
-        fn precondition(&mut self, r: &[f64], out: &mut [f64]) {
-            out.copy_from_slice(r);
-        }
-        fn spectral_contact(&mut self, r: &[f64], out: &mut [f64]) {
-            if !self.spectral {
-                return;
-            }
-            let shape = self.op.grid().shape();
-            let masked: Vec<f64> = r
-                .iter()
-                .zip(&self.c)
-                .map(|(&ri, &ci)| if ci == 0.0 { ri } else { 0.0 })
-                .collect();
-            let mut z = ndarray::Array2::zeros(shape);
-            self.op.precondition(
-                ndarray::ArrayView2::from_shape(shape, &masked).unwrap(),
-                z.view_mut(),
-            );
-            for ((o, &zi), &ci) in out.iter_mut().zip(&z).zip(&self.c) {
-                if ci == 0.0 {
-                    *o = zi;
-                }
+
+        fn system(&mut self) -> NewtonSystem<'_> {
+            let k = self.op.self_compliance();
+            NewtonSystem {
+                shape: self.op.grid().shape(),
+                op: &mut self.op,
+                c: &self.c,
+                k,
+                spectral: false,
+                contact_stage: self.spectral && self.c.contains(&0.0),
+                grid_in: &mut self.grid_in,
+                grid_out: &mut self.grid_out,
             }
         }
     }
@@ -532,14 +526,7 @@ mod tests {
                 _ => 1e3 * k,
             })
             .collect();
-        (
-            Newton {
-                op,
-                c,
-                spectral: false,
-            },
-            k,
-        )
+        (Newton::new(op, c), k)
     }
 
     fn vector(n: usize) -> Vec<f64> {
@@ -557,7 +544,7 @@ mod tests {
         tiles.build((TILE, TILE), &a.c, k, &coef, 100.0 * k);
         let x = vector(TILE * TILE);
         let (mut ax, mut pax) = (vec![0.0; x.len()], vec![0.0; x.len()]);
-        a.apply(&x, &mut ax);
+        a.system().apply(&x, &mut ax);
         tiles.apply(&ax, &mut pax);
         for (p, x) in pax.iter().zip(&x) {
             assert!((p - x).abs() <= 1e-10, "{p} against {x}");
@@ -579,7 +566,7 @@ mod tests {
         let b_norm = b.iter().map(|x| x * x).sum::<f64>().sqrt();
         let residual = |a: &mut Newton, x: &[f64]| {
             let mut ax = vec![0.0; x.len()];
-            a.apply(x, &mut ax);
+            a.system().apply(x, &mut ax);
             ax.iter()
                 .zip(&b)
                 .map(|(p, q)| (p - q) * (p - q))
@@ -588,7 +575,7 @@ mod tests {
         };
         let mut gmres = Gmres::new();
         let mut x = vec![0.0; b.len()];
-        let products = gmres.solve(&mut a, &mut tiles, &b, &mut x, 1e-8, 2_000);
+        let products = gmres.solve(&mut a.system(), &mut tiles, &b, &mut x, 1e-8, 2_000);
         assert!(products < 60, "{products} products");
         assert!(residual(&mut a, &x) <= 1.01e-8 * b_norm);
         // An identity preconditioner needs more than one cycle here.
@@ -598,19 +585,19 @@ mod tests {
                 out.copy_from_slice(r);
             }
         }
-        let products = gmres.solve(&mut a, &mut Identity, &b, &mut x, 1e-8, 2_000);
+        let products = gmres.solve(&mut a.system(), &mut Identity, &b, &mut x, 1e-8, 2_000);
         assert!(products > RESTART, "{products} products");
         assert!(residual(&mut a, &x) <= 1.01e-8 * b_norm);
         // A cap stops it.
         assert_eq!(
-            gmres.solve(&mut a, &mut Identity, &b, &mut x, 1e-14, 10),
+            gmres.solve(&mut a.system(), &mut Identity, &b, &mut x, 1e-14, 10),
             10
         );
         // The shortest restart a large system may impose still converges, with the tiles, and
         // keeps no more basis vectors than it uses.
         let mut short = Gmres::new();
         short.restart = LEAST_RESTART;
-        let products = short.solve(&mut a, &mut tiles, &b, &mut x, 1e-8, 2_000);
+        let products = short.solve(&mut a.system(), &mut tiles, &b, &mut x, 1e-8, 2_000);
         assert!(products > LEAST_RESTART, "{products} products");
         assert!(residual(&mut a, &x) <= 1.01e-8 * b_norm);
         let kept = short.basis.iter().filter(|v| !v.is_empty()).count();
@@ -678,11 +665,7 @@ mod tests {
         let single = Grid::new(1, 1, 0.01, Boundary::Free).unwrap();
         let op = tack_kernels::FreeOperator::new(single, 1.0).unwrap();
         let k = op.self_compliance();
-        let mut a = Newton {
-            op,
-            c: vec![k],
-            spectral: false,
-        };
+        let mut a = Newton::new(op, vec![k]);
         let coef = Coefficients::of(&mut a.op);
         let mut one = Tiles::new();
         one.build((1, 1), &[k], k, &coef, 100.0 * k);
@@ -690,7 +673,7 @@ mod tests {
         one.apply(&[1.0], &mut out);
         assert!(out[0].is_finite() && out[0] > 0.0, "{}", out[0]);
         let mut x = [0.0];
-        let products = Gmres::new().solve(&mut a, &mut one, &[1.0], &mut x, 1e-10, 2_000);
+        let products = Gmres::new().solve(&mut a.system(), &mut one, &[1.0], &mut x, 1e-10, 2_000);
         assert!(products <= 2, "{products} products");
         assert!(x[0].is_finite());
     }
@@ -729,9 +712,9 @@ mod tests {
         let b_norm = b.iter().map(|x| x * x).sum::<f64>().sqrt();
         let mut solve = |a: &mut Newton, tol: f64| {
             let mut x = vec![0.0; b.len()];
-            let products = Gmres::new().solve(a, &mut tiles, &b, &mut x, tol, 2_000);
+            let products = Gmres::new().solve(&mut a.system(), &mut tiles, &b, &mut x, tol, 2_000);
             let mut ax = vec![0.0; x.len()];
-            a.apply(&x, &mut ax);
+            a.system().apply(&x, &mut ax);
             let r = ax
                 .iter()
                 .zip(&b)
