@@ -299,6 +299,8 @@ pub(crate) struct SmoothState {
     coefficients: Option<tiles::Coefficients>,
     trial: Array2<f64>,
     trial_disp: Array2<f64>,
+    /// The trial state's contact set.
+    trial_contact: Array2<bool>,
     grid_in: Array2<f64>,
     grid_out: Array2<f64>,
     /// The stiff elements of the last Newton system (its window is their box).
@@ -342,6 +344,7 @@ impl SmoothState {
             coefficients: None,
             trial: Array2::zeros(shape),
             trial_disp: Array2::zeros(shape),
+            trial_contact: Array2::from_elem(shape, false),
             grid_in: Array2::zeros(shape),
             grid_out: Array2::zeros(shape),
             stiff: Array2::from_elem(shape, false),
@@ -507,33 +510,20 @@ impl AdhesiveSolver {
         Err(())
     }
 
-    /// `K p`, the gap and the residual of the current pressure.
+    /// `K p`, the gap, the residual and the contact set of the current pressure.
     fn smooth_refresh(&mut self, d: f64, k: f64) -> Merit {
         let b = &mut self.base;
         b.op.apply(b.pressure.view(), b.work.disp.view_mut());
         b.update_gap(d);
         let weights = self.weights();
-        let m = merit_of(
+        merit_of(
             &self.traction(),
             |i| weights.at(i),
             self.base.pressure.as_slice().expect("contiguous"),
             self.base.gap.as_slice().expect("contiguous"),
             k,
-        );
-        self.contact_from_ncp(k);
-        m
-    }
-
-    /// The bonded (contact) set from the complementarity rule at the current state.
-    fn contact_from_ncp(&mut self, k: f64) {
-        let t = self.traction();
-        let w = self.weights();
-        let p = self.base.pressure.as_slice().expect("contiguous");
-        let g = self.base.gap.as_slice().expect("contiguous");
-        let bonded = self.bonded.as_slice_mut().expect("contiguous");
-        for i in 0..p.len() {
-            bonded[i] = ncp(&t, w.at(i), p[i], g[i], k).1;
-        }
+            Some(self.bonded.as_slice_mut().expect("contiguous")),
+        )
     }
 
     /// The Newton direction into `smooth.x` (module docs), solved by GMRES on tiles (MINRES
@@ -677,7 +667,7 @@ impl AdhesiveSolver {
         it + 1
     }
 
-    /// Evaluates `p + α·x`: its `K p`, gap and residual, kept in the trial arrays.
+    /// Evaluates `p + α·x`: its `K p`, gap, residual and contact set, kept in the trial arrays.
     fn smooth_trial(&mut self, d: f64, k: f64, alpha: f64) -> Merit {
         let weights = self.weights();
         let s = self.smooth.as_mut().expect("a smooth law");
@@ -698,6 +688,7 @@ impl AdhesiveSolver {
             s.trial.as_slice().expect("contiguous"),
             &s.v,
             k,
+            Some(s.trial_contact.as_slice_mut().expect("contiguous")),
         )
     }
 
@@ -711,8 +702,7 @@ impl AdhesiveSolver {
             .as_slice_mut()
             .expect("contiguous")
             .copy_from_slice(&s.v);
-        let k = self.base.op.self_compliance();
-        self.contact_from_ncp(k);
+        std::mem::swap(&mut self.bonded, &mut s.trial_contact);
     }
 
     /// The landing after a jump (module docs), on the window around the contact and the law's
@@ -1010,6 +1000,7 @@ fn relax(
             pressure.as_slice().expect("contiguous"),
             gap.as_slice().expect("contiguous"),
             k,
+            None,
         );
         if m.worst <= target * peak {
             return true;
@@ -1128,13 +1119,35 @@ pub(crate) struct Merit {
     worst: f64,
 }
 
-/// The [`Merit`] of pressures `p` and gaps `g` (row-major), with each element's weight `w(i)`.
-fn merit_of(t: &Traction, w: impl Fn(usize) -> f64, p: &[f64], g: &[f64], k: f64) -> Merit {
+/// The [`Merit`] of pressures `p` and gaps `g` (row-major), with each element's weight `w(i)`;
+/// into `contact`, when given, each element's membership of the contact set ([`ncp`]), from the
+/// same pass (the law's pressure is evaluated once an element).
+fn merit_of(
+    t: &Traction,
+    w: impl Fn(usize) -> f64,
+    p: &[f64],
+    g: &[f64],
+    k: f64,
+    contact: Option<&mut [bool]>,
+) -> Merit {
     let (mut sum, mut worst) = (0.0, 0.0f64);
-    for i in 0..p.len() {
-        let (phi, _) = ncp(t, w(i), p[i], g[i], k);
+    let mut step = |i: usize| {
+        let (phi, member) = ncp(t, w(i), p[i], g[i], k);
         sum += phi * phi;
         worst = worst.max(phi.abs());
+        member
+    };
+    match contact {
+        Some(c) => {
+            for (i, c) in c.iter_mut().enumerate() {
+                *c = step(i);
+            }
+        }
+        None => {
+            for i in 0..p.len() {
+                step(i);
+            }
+        }
     }
     // A NaN (a solve that broke down) fails every tolerance: `f64::max` skips it.
     if sum.is_nan() {
@@ -1480,9 +1493,9 @@ mod tests {
         let law = crate::AdhesionLaw::Exponential(crate::Exponential { range: 1.0 });
         let t = Traction::new(law, 1.0).expect("a smooth law");
         let (p, g) = ([0.0, f64::NAN, -0.1], [0.0, 0.5, 1.0]);
-        let m = merit_of(&t, |_| 1.0, &p, &g, 0.5);
+        let m = merit_of(&t, |_| 1.0, &p, &g, 0.5, None);
         assert_eq!(m.worst, f64::INFINITY, "{m:?}");
-        let finite = merit_of(&t, |_| 1.0, &p[..1], &g[..1], 0.5);
+        let finite = merit_of(&t, |_| 1.0, &p[..1], &g[..1], 0.5, None);
         assert!(finite.worst.is_finite());
     }
 
