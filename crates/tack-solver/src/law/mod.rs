@@ -609,6 +609,44 @@ impl Traction {
     pub(crate) fn stiffens(&self) -> bool {
         on_curve!(self, c => c.stiffens())
     }
+
+    /// A gap beyond which the tension stays at or below `cut > 0` as evaluated: the tension of
+    /// the built-in curves falls monotonically past their greatest, at `peak_gap`
+    /// ([`AdhesionLaw::peak_gap`]), so the first gap found (by bisection, from above) whose
+    /// tension is at most `cut·(1 − 1e-6)` bounds every gap beyond it, the margin far above
+    /// the round-off of their evaluation. `None` for a custom curve (no such guarantee), for a
+    /// `cut` that is not positive and finite, or when no gap up to 1e6 law lengths beyond the
+    /// peak qualifies.
+    pub(crate) fn quiet_beyond(&self, cut: f64, peak_gap: f64) -> Option<f64> {
+        let built_in = matches!(
+            self.law,
+            AdhesionLaw::Exponential(_) | AdhesionLaw::LennardJones(_)
+        );
+        if !(built_in && cut > 0.0 && cut.is_finite()) {
+            return None;
+        }
+        let target = cut * (1.0 - 1e-6);
+        let quiet = |g: f64| self.pressure(g).abs() <= target;
+        let length = self.law.curve()?.length();
+        let (mut lo, mut hi) = (peak_gap, peak_gap + length);
+        while !quiet(hi) {
+            lo = hi;
+            hi = peak_gap + 2.0 * (hi - peak_gap);
+            if hi > peak_gap + 1e6 * length {
+                return None;
+            }
+        }
+        // `hi` stays quiet; 60 halvings bring it to within 2^-60 of the bracket.
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if quiet(mid) {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        Some(hi)
+    }
 }
 
 /// The Dugdale law's state on the solver's grid: σ0, the range and the cohesive zone.

@@ -417,3 +417,38 @@ impl Curve for Step {
         2.0
     }
 }
+
+/// Beyond `Traction::quiet_beyond` every built-in law's tension stays at or below the cut (the
+/// gap itself and gaps 0.1% apart to a thousand lengths beyond it), and 1e-4 of a length short
+/// of it the tension is above 0.99 of the cut: the bound is tight as well as safe, down to
+/// cuts of 1e-12 of the peak (a step window's, `HELD_FRACTION` of Newton's tolerance). A custom
+/// curve (no monotone tail promised) and a cut that is not positive and finite get none.
+#[test]
+fn the_quiet_gap_bounds_the_tail() {
+    let gamma = 3.0;
+    for law in curves() {
+        let t = Traction::new(law.clone(), gamma).unwrap();
+        let curve = law.curve().unwrap();
+        let (length, peak_gap) = (curve.length(), law.peak_gap().unwrap());
+        for fraction in [1e-2, 1e-7, 1e-12] {
+            let cut = fraction * curve.peak(gamma);
+            let q = t.quiet_beyond(cut, peak_gap).expect("a built-in curve");
+            assert!(q > peak_gap, "{law:?}: {q}");
+            let mut g = q;
+            while g < q + 1e3 * length {
+                assert!(t.pressure(g).abs() <= cut, "{law:?} at {g} beyond {q}");
+                g += 1e-3 * (g - peak_gap).max(length);
+            }
+            let short = t.pressure(q - 1e-4 * length).abs();
+            assert!(short > 0.99 * cut, "{law:?}: {short} against {cut}");
+        }
+        for cut in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            assert_eq!(t.quiet_beyond(cut, peak_gap), None);
+        }
+    }
+    // The exponential law under a name of its own: the same tail, but nothing promised.
+    let law = AdhesionLaw::from(Exponential { range: 2.0 });
+    let custom = AdhesionLaw::custom(Broken::of(law)).unwrap();
+    let t = Traction::new(custom, gamma).unwrap();
+    assert_eq!(t.quiet_beyond(1e-3, 0.0), None);
+}

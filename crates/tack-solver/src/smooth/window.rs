@@ -96,6 +96,9 @@ impl AdhesiveSolver {
         // viscoelastic step shifts them), closed by twice this step's approach.
         let closing = d_prev + 2.0 * (d - d_prev).max(0.0);
         let (t, peak_gap) = (&s.traction, s.peak_gap);
+        // Beyond `quiet` the law's tension is at most `cut` without evaluating it (the same
+        // mask: the law is evaluated on the gaps short of it only).
+        let quiet = t.quiet_beyond(cut, peak_gap).unwrap_or(f64::INFINITY);
         let mask = Zip::from(&self.bonded)
             .and(self.base.surface.heights())
             .and(&self.base.work.disp)
@@ -104,7 +107,7 @@ impl AdhesiveSolver {
                 // Short of the law's greatest tension the pressure at the closed gap is no
                 // bound on what the step may meet (a Lennard-Jones wall's is 0).
                 let g = f - closing + u;
-                b || p.abs() > cut || g <= peak_gap || t.pressure(g).abs() > cut
+                b || p.abs() > cut || g <= peak_gap || (g < quiet && t.pressure(g).abs() > cut)
             });
         let (tight, _) = crate::subgrid::bounding_box(&mask, None);
         let w = self.subgrid_around(tight)?;
