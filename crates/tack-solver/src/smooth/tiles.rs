@@ -19,7 +19,7 @@
 
 use std::sync::Arc;
 
-use nalgebra::DMatrix;
+use nalgebra::{DMatrix, SMatrix};
 use rayon::prelude::*;
 use tack_kernels::ElasticOperator;
 
@@ -187,22 +187,27 @@ fn inverse(
     let (h, w) = shape;
     let n = h * w;
     let element = |l: usize| (l / w, l % w);
-    let a = DMatrix::from_fn(n, n, |p, q| {
+    let entry = |p: usize, q: usize| {
         let ((pi, pj), (qi, qj)) = (element(p), element(q));
         let k_pq = coef.k[pi.abs_diff(qi)][pj.abs_diff(qj)];
         if p == q { k_pq - c(p) } else { k_pq }
-    });
+    };
     let limit = TILE_AMPLIFICATION / k;
-    let inv = a
+    let accept = |x: &f64| x.is_finite() && x.abs() <= limit;
+    // Row-major: row p of the inverse maps the tile's residual to element p. A whole tile
+    // takes the fixed-size LU: the same arithmetic and bits as the dynamic one, which edge
+    // tiles keep, without the heap and with its sizes known to the compiler (1.3-1.5x faster
+    // on 16 x 16; the inverses were 8% of the bench's rough sphere on one thread).
+    if n == TILE * TILE {
+        let inv = SMatrix::<f64, { TILE * TILE }, { TILE * TILE }>::from_fn(entry)
+            .try_inverse()
+            .filter(|inv| inv.iter().all(accept))?;
+        return Some(inv.transpose().iter().copied().collect());
+    }
+    let inv = DMatrix::from_fn(n, n, entry)
         .try_inverse()
-        .filter(|inv| inv.iter().all(|x| x.is_finite() && x.abs() <= limit))?;
-    // Row-major: row p of the inverse maps the tile's residual to element p.
-    Some(
-        (0..n)
-            .flat_map(|p| (0..n).map(move |q| (p, q)))
-            .map(|(p, q)| inv[(p, q)])
-            .collect(),
-    )
+        .filter(|inv| inv.iter().all(accept))?;
+    Some(inv.transpose().iter().copied().collect())
 }
 
 /// A preconditioner `P` for [`Gmres`] (right preconditioning: GMRES solves `A P y = b`).
@@ -535,19 +540,23 @@ mod tests {
             .collect()
     }
 
-    /// On a grid of one tile the preconditioner is the matrix's exact inverse: `P A x = x`.
+    /// On a grid of one tile the preconditioner is the matrix's exact inverse: `P A x = x`,
+    /// for a whole tile (the fixed-size inverse) and for the partial tiles of a grid's edges
+    /// (the dynamic one), square or not.
     #[test]
     fn one_tile_is_the_exact_inverse() {
-        let (mut a, k) = newton((TILE, TILE));
-        let coef = Coefficients::of(&mut a.op);
-        let mut tiles = Tiles::new();
-        tiles.build((TILE, TILE), &a.c, k, &coef, 100.0 * k);
-        let x = vector(TILE * TILE);
-        let (mut ax, mut pax) = (vec![0.0; x.len()], vec![0.0; x.len()]);
-        a.system().apply(&x, &mut ax);
-        tiles.apply(&ax, &mut pax);
-        for (p, x) in pax.iter().zip(&x) {
-            assert!((p - x).abs() <= 1e-10, "{p} against {x}");
+        for shape in [(TILE, TILE), (TILE, TILE - 1), (TILE - 2, TILE), (1, 1)] {
+            let (mut a, k) = newton(shape);
+            let coef = Coefficients::of(&mut a.op);
+            let mut tiles = Tiles::new();
+            tiles.build(shape, &a.c, k, &coef, 100.0 * k);
+            let x = vector(shape.0 * shape.1);
+            let (mut ax, mut pax) = (vec![0.0; x.len()], vec![0.0; x.len()]);
+            a.system().apply(&x, &mut ax);
+            tiles.apply(&ax, &mut pax);
+            for (p, x) in pax.iter().zip(&x) {
+                assert!((p - x).abs() <= 1e-10, "{shape:?}: {p} against {x}");
+            }
         }
     }
 
