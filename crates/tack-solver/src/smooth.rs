@@ -780,16 +780,19 @@ impl AdhesiveSolver {
     }
 
     /// The window a landing runs on: the box of the contact and of every element whose law's
-    /// pressure at its gap exceeds [`LANDING_REACH`] of its peak, grown as a sub-grid solve's
+    /// pressure at its gap exceeds [`LANDING_REACH`] of its peak (evaluated only short of the
+    /// law's quiet gap, `Traction::quiet_beyond`), grown as a sub-grid solve's
     /// window; `None` when the grid is periodic, sub-grids are off or the window would not be
     /// cheaper than the grid.
     fn landing_window(&self) -> Option<tack_geometry::Window> {
         let s = self.smooth.as_ref().expect("a smooth law");
         let t = s.traction.clone();
         let cut = LANDING_REACH * t.pressure(0.0).abs().max(self.sigma_c);
+        // Beyond the quiet gap the tension is below the cut: no need to evaluate the law there.
+        let quiet = t.quiet_beyond(cut, s.peak_gap).unwrap_or(f64::INFINITY);
         let mask = Zip::from(&self.bonded)
             .and(&self.base.gap)
-            .map_collect(|&b, &g| b || t.pressure(g.max(0.0)).abs() > cut);
+            .map_collect(|&b, &g| b || (g < quiet && t.pressure(g.max(0.0)).abs() > cut));
         let (tight, _) = crate::subgrid::bounding_box(&mask, None);
         self.subgrid_around(tight)
     }

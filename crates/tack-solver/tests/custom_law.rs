@@ -50,6 +50,9 @@ impl Curve for Copied {
     fn reach(&self) -> f64 {
         self.0.curve().unwrap().reach()
     }
+    fn falls_past_peak(&self) -> bool {
+        self.0.curve().unwrap().falls_past_peak()
+    }
 }
 
 /// The Morse law at Tabor μ = 1 (ρ = 1): the grid's pull-off against the ring solution traced

@@ -61,6 +61,9 @@ impl Curve for Copied {
     fn reach(&self) -> f64 {
         Curve::reach(&self.0)
     }
+    fn falls_past_peak(&self) -> bool {
+        self.0.falls_past_peak()
+    }
 }
 
 fn copy(range: f64) -> AdhesionLaw {

@@ -44,4 +44,8 @@ impl Curve for Morse {
     fn reach(&self) -> f64 {
         self.range * 4e8f64.ln()
     }
+    /// Past `x = ln 2` the tension only falls (checked when the law is made).
+    fn falls_past_peak(&self) -> bool {
+        true
+    }
 }

@@ -1,7 +1,7 @@
 //! A smooth law of the caller's own ([`AdhesionLaw::custom`](super::AdhesionLaw::custom)):
 //! the curve is checked once against what the solver assumes of it (its derivative and
 //! continuity, its scaling with γ, its work, its peak, its reach and beyond, whether it
-//! stiffens) and then shared.
+//! stiffens, whether it falls past its peak) and then shared.
 
 use std::sync::Arc;
 
@@ -125,7 +125,8 @@ fn within(x: f64, tol: f64) -> bool {
 /// [`Curve::pressure_and_stiffness`] the two calls' values (1e-12); a negative stiffness only
 /// when [`Curve::stiffens`] says so; the work `−∫₀^reach p dg` and the greatest tension within
 /// `WORK_TOLERANCE` of 1 and of [`Curve::peak`]; the tension at and beyond the reach below
-/// `REACH_TOLERANCE` of the peak.
+/// `REACH_TOLERANCE` of the peak; a tension that only falls past the peak when
+/// [`Curve::falls_past_peak`] says so (`check_falls`).
 pub(super) fn check_shape(curve: &dyn Curve) -> Result<(), SolverError> {
     let positive = |method: &'static str, v: f64| {
         if v.is_finite() && v > 0.0 {
@@ -206,6 +207,9 @@ pub(super) fn check_shape(curve: &dyn Curve) -> Result<(), SolverError> {
                 WORK_TOLERANCE = Num(WORK_TOLERANCE)
             ),
         ));
+    }
+    if curve.falls_past_peak() {
+        check_falls(curve, &samples, peak)?;
     }
     if !within(most - peak, WORK_TOLERANCE * peak) {
         return Err(refuse(
@@ -307,6 +311,63 @@ fn check_tail(curve: &dyn Curve, peak: f64, reach: f64) -> Result<(), SolverErro
                     REACH_TOLERANCE = Num(REACH_TOLERANCE),
                     peak = Num(peak)
                 ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// A curve that says it falls past its peak ([`Curve::falls_past_peak`]): past its greatest
+/// tension ([`super::peak_gap_of`]) its slope is not negative beyond the slope check's floor
+/// (1e-6 of `peak/ℓ`, `point`) and the magnitude of its pressure does not grow from one sample
+/// to the next, nor from the reach on over `BEYOND` (beyond 1e-12 of the peak: round-off).
+fn check_falls(
+    curve: &dyn Curve,
+    samples: &[(f64, (f64, f64))],
+    peak: f64,
+) -> Result<(), SolverError> {
+    let from = super::peak_gap_of(curve);
+    let length = curve.length();
+    let reach = curve.reach();
+    let tail = BEYOND.iter().map(|b| {
+        let g = b * reach;
+        (g, (curve.pressure(1.0, g), curve.stiffness(1.0, g)))
+    });
+    let past: Vec<_> = samples
+        .iter()
+        .copied()
+        .filter(|&(g, _)| g > from)
+        .chain(tail)
+        .collect();
+    let promise = |reason: String| {
+        Err(refuse(
+            curve,
+            "Curve::falls_past_peak",
+            format!(
+                "is true but {reason}, past the greatest tension at g = {from}: return false, \
+                 or mend the curve",
+                from = Num(from)
+            ),
+        ))
+    };
+    for &(g, (_, k)) in &past {
+        if k < -1e-6 * peak / length {
+            return promise(format!(
+                "the stiffness is {k} < 0 at g = {g}",
+                k = Num(k),
+                g = Num(g)
+            ));
+        }
+    }
+    for pair in past.windows(2) {
+        let [(g0, (p0, _)), (g1, (p1, _))] = [pair[0], pair[1]];
+        if p1.abs() > p0.abs() + 1e-12 * peak {
+            return promise(format!(
+                "the pressure grows from {p0} at g = {g0} to {p1} at g = {g1}",
+                p0 = Num(p0),
+                g0 = Num(g0),
+                p1 = Num(p1),
+                g1 = Num(g1)
             ));
         }
     }

@@ -64,4 +64,9 @@ impl Curve for Exponential {
     fn reach(&self) -> f64 {
         self.range * (1.0 / REACH_FRACTION).ln()
     }
+
+    /// Its tension is greatest at the wall and falls from there.
+    fn falls_past_peak(&self) -> bool {
+        true
+    }
 }

@@ -71,4 +71,9 @@ impl Curve for LennardJones {
         let t = (REACH_FRACTION * 2.0 / (3.0 * 3f64.sqrt())).cbrt();
         r / t - r
     }
+
+    /// Its tension falls past its greatest, at `h = 3^(1/6) ε`.
+    fn falls_past_peak(&self) -> bool {
+        true
+    }
 }

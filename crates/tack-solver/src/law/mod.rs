@@ -195,6 +195,15 @@ pub trait Curve: std::fmt::Debug + Send + Sync {
     /// The gap where the tension falls to [`REACH_FRACTION`] of the peak (a custom law's may
     /// leave up to 1e-6 of it): the solver crops the law beyond it.
     fn reach(&self) -> f64;
+    /// Whether the tension only falls as the gap opens past the law's greatest tension
+    /// ([`AdhesionLaw::peak_gap`]), to every gap: then a step's window is chosen by evaluating
+    /// the law only short of the gap where its tension falls below the choice's cut, not on
+    /// every element (docs/theory.md §3.9, "Steps on the law's window"). Nothing is promised
+    /// unless a curve says so; a custom curve that does is checked on its samples past the
+    /// peak and beyond its reach. The built-in laws do.
+    fn falls_past_peak(&self) -> bool {
+        false
+    }
 }
 
 impl<C: Curve> Law for C {
@@ -511,20 +520,7 @@ impl AdhesionLaw {
     /// assert!(g > 0.0 && g < 0.3, "{g}");
     /// ```
     pub fn peak_gap(&self) -> Option<f64> {
-        let curve = self.curve()?;
-        let tension = |g: f64| -curve.pressure(1.0, g);
-        let (mut best, mut at) = (tension(0.0), 0.0);
-        let mut g = 1e-6 * curve.length();
-        let mut past = g;
-        while g < curve.reach() {
-            let t = tension(g);
-            if t > best {
-                (best, at) = (t, g);
-                past = g * 1.01;
-            }
-            g *= 1.01;
-        }
-        Some(if at == 0.0 { 0.0 } else { past })
+        self.curve().map(peak_gap_of)
     }
 
     /// Whether every element carries the traction of its own gap (a smooth law).
@@ -558,6 +554,23 @@ impl std::ops::Deref for AdhesionLaw {
 
 /// Calls `$body` with `$c` bound to the traction's curve: by its own type for the built-in
 /// curves, through [`Curve`] for any other.
+/// [`AdhesionLaw::peak_gap`] of a curve.
+pub(super) fn peak_gap_of(curve: &dyn Curve) -> f64 {
+    let tension = |g: f64| -curve.pressure(1.0, g);
+    let (mut best, mut at) = (tension(0.0), 0.0);
+    let mut g = 1e-6 * curve.length();
+    let mut past = g;
+    while g < curve.reach() {
+        let t = tension(g);
+        if t > best {
+            (best, at) = (t, g);
+            past = g * 1.01;
+        }
+        g *= 1.01;
+    }
+    if at == 0.0 { 0.0 } else { past }
+}
+
 macro_rules! on_curve {
     ($t:expr, $c:ident => $body:expr) => {
         match &$t.law {
@@ -611,18 +624,15 @@ impl Traction {
     }
 
     /// A gap beyond which the tension stays at or below `cut > 0` as evaluated: the tension of
-    /// the built-in curves falls monotonically past their greatest, at `peak_gap`
-    /// ([`AdhesionLaw::peak_gap`]), so the first gap found (by bisection, from above) whose
-    /// tension is at most `cut·(1 − 1e-6)` bounds every gap beyond it, the margin far above
-    /// the round-off of their evaluation. `None` for a custom curve (no such guarantee), for a
-    /// `cut` that is not positive and finite, or when no gap up to 1e6 law lengths beyond the
-    /// peak qualifies.
+    /// a curve that falls past its peak ([`Curve::falls_past_peak`]), at `peak_gap`
+    /// ([`AdhesionLaw::peak_gap`]), only falls beyond it, so the first gap found (by
+    /// bisection, from above) whose tension is at most `cut·(1 − 1e-6)` bounds every gap
+    /// beyond it, the margin far above the round-off of its evaluation. `None` for a curve that
+    /// promises no such tail, for a `cut` that is not positive and finite, or when no gap up
+    /// to 1e6 law lengths beyond the peak qualifies.
     pub(crate) fn quiet_beyond(&self, cut: f64, peak_gap: f64) -> Option<f64> {
-        let built_in = matches!(
-            self.law,
-            AdhesionLaw::Exponential(_) | AdhesionLaw::LennardJones(_)
-        );
-        if !(built_in && cut > 0.0 && cut.is_finite()) {
+        let falls = on_curve!(self, c => c.falls_past_peak());
+        if !(falls && cut > 0.0 && cut.is_finite()) {
             return None;
         }
         let target = cut * (1.0 - 1e-6);

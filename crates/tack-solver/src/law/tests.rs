@@ -151,6 +151,8 @@ struct Broken {
     nan_inside: bool,
     /// Factor of the pressure `pressure_and_stiffness` gives.
     pair: f64,
+    /// What `falls_past_peak` says.
+    falls: bool,
 }
 
 impl Broken {
@@ -167,6 +169,7 @@ impl Broken {
             nan_beyond: false,
             nan_inside: false,
             pair: 1.0,
+            falls: false,
         }
     }
 }
@@ -212,6 +215,9 @@ impl Curve for Broken {
     }
     fn reach(&self) -> f64 {
         self.reach * self.inner.curve().unwrap().reach()
+    }
+    fn falls_past_peak(&self) -> bool {
+        self.falls
     }
 }
 
@@ -421,8 +427,9 @@ impl Curve for Step {
 /// Beyond `Traction::quiet_beyond` every built-in law's tension stays at or below the cut (the
 /// gap itself and gaps 0.1% apart to a thousand lengths beyond it), and 1e-4 of a length short
 /// of it the tension is above 0.99 of the cut: the bound is tight as well as safe, down to
-/// cuts of 1e-12 of the peak (a step window's, `HELD_FRACTION` of Newton's tolerance). A custom
-/// curve (no monotone tail promised) and a cut that is not positive and finite get none.
+/// cuts of 1e-12 of the peak (a step window's, `HELD_FRACTION` of Newton's tolerance). A cut
+/// that is not positive and finite gets none; so does a custom curve unless it promises the
+/// falling tail ([`Curve::falls_past_peak`]), and then it gets the built-in's bound.
 #[test]
 fn the_quiet_gap_bounds_the_tail() {
     let gamma = 3.0;
@@ -446,9 +453,90 @@ fn the_quiet_gap_bounds_the_tail() {
             assert_eq!(t.quiet_beyond(cut, peak_gap), None);
         }
     }
-    // The exponential law under a name of its own: the same tail, but nothing promised.
-    let law = AdhesionLaw::from(Exponential { range: 2.0 });
-    let custom = AdhesionLaw::custom(Broken::of(law)).unwrap();
-    let t = Traction::new(custom, gamma).unwrap();
+    // The built-in curves under a name of their own: nothing promised, no bound; promised
+    // (and checked), the built-in's bound to the bit.
+    for law in curves() {
+        let peak_gap = law.peak_gap().unwrap();
+        let cut = 1e-7 * law.curve().unwrap().peak(gamma);
+        let builtin = Traction::new(law.clone(), gamma).unwrap();
+        let silent = AdhesionLaw::custom(Broken::of(law.clone())).unwrap();
+        let silent = Traction::new(silent, gamma).unwrap();
+        assert_eq!(silent.quiet_beyond(cut, peak_gap), None, "{law:?}");
+        let promised = Broken {
+            falls: true,
+            ..Broken::of(law.clone())
+        };
+        let promised = Traction::new(AdhesionLaw::custom(promised).unwrap(), gamma).unwrap();
+        assert_eq!(
+            promised.quiet_beyond(cut, peak_gap),
+            builtin.quiet_beyond(cut, peak_gap),
+            "{law:?}"
+        );
+    }
+}
+
+/// Two wells: half the exponential law of range 1 and half a Gaussian well of width 1 at
+/// g = 10, `p = −γ[½e^(−g) + ½ e^(−(g−10)²/2)/√(2π)]`, work γ. Its tension is greatest at the
+/// wall, falls to about 1e-5 of it and rises again to 0.4 of it at g = 10: it stiffens there.
+#[derive(Debug)]
+struct TwoWells {
+    falls: bool,
+}
+
+impl TwoWells {
+    /// The pressure and the stiffness at `g` for work `gamma`.
+    fn at(gamma: f64, g: f64) -> (f64, f64) {
+        let e = 0.5 * (-g).exp();
+        let b = 0.5 * (-0.5 * (g - 10.0).powi(2)).exp() / (2.0 * std::f64::consts::PI).sqrt();
+        (-gamma * (e + b), gamma * (e + b * (g - 10.0)))
+    }
+}
+
+impl Curve for TwoWells {
+    fn name(&self) -> &'static str {
+        "two_wells"
+    }
+    fn label(&self) -> &'static str {
+        "two wells, range l"
+    }
+    fn length(&self) -> f64 {
+        1.0
+    }
+    fn meaning(&self) -> &'static str {
+        "a test curve"
+    }
+    fn pressure(&self, gamma: f64, g: f64) -> f64 {
+        Self::at(gamma, g).0
+    }
+    fn stiffness(&self, gamma: f64, g: f64) -> f64 {
+        Self::at(gamma, g).1
+    }
+    fn stiffens(&self) -> bool {
+        true
+    }
+    fn peak(&self, gamma: f64) -> f64 {
+        -self.pressure(gamma, 0.0)
+    }
+    /// The Gaussian half at 1e-8 of the peak 0.5.
+    fn reach(&self) -> f64 {
+        10.0 + (2.0 * (0.2 / 5e-9f64).ln()).sqrt()
+    }
+    fn falls_past_peak(&self) -> bool {
+        self.falls
+    }
+}
+
+/// A curve that promises a falling tail it does not have is refused, naming the promise and
+/// where the curve breaks it; the same curve without the promise runs, with no quiet gap.
+#[test]
+fn a_false_promise_of_a_falling_tail_is_refused() {
+    let err = AdhesionLaw::custom(TwoWells { falls: true })
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("Curve::falls_past_peak"), "{err}");
+    assert!(err.contains("the stiffness is"), "{err}");
+    let law = AdhesionLaw::custom(TwoWells { falls: false }).unwrap();
+    assert_eq!(law.peak_gap(), Some(0.0));
+    let t = Traction::new(law, 1.0).unwrap();
     assert_eq!(t.quiet_beyond(1e-3, 0.0), None);
 }
