@@ -52,7 +52,9 @@ pub struct StepRecord {
     pub cg_iterations: usize,
     /// Detach/attach rounds in the step.
     pub active_set_iterations: usize,
-    /// Worst relative CG residual of the step's solves.
+    /// Worst relative CG residual of the step's solves; under a smooth law, the worst
+    /// complementarity residual as a fraction of the peak tension, where the step ended
+    /// (converged or not).
     pub residual: f64,
     /// Every solve met its tolerance and the bonded set settled without a cycle.
     pub converged: bool,

@@ -163,6 +163,31 @@ fn a_custom_morse_law_meets_dmt_at_a_small_tabor_parameter() {
     assert!((f / f_ref - 1.0).abs() < 1e-3, "{f} vs {f_ref}");
 }
 
+/// The Morse law at μ = 3 on 96², 1.2 elements per process zone (the example's last row):
+/// past the pull-off, with nothing on the wall, a landing's stiff set (`s k < −1`, solved with
+/// the contact) cycled between 0 and 230 elements, with repeats, to the landing's cap, and a
+/// step did not converge (6.5 s). The set is now held once it has changed on 40 iterations of a
+/// landing: every step converges (1.2 s), and the pull-off, which comes before, keeps its
+/// value (1.5843 πγR, printed to four digits by the example before and after).
+#[test]
+fn a_cycling_stiff_set_is_held_and_every_step_converges() {
+    let rho = 1.0 / 3.0;
+    let law = AdhesionLaw::custom(Morse { range: rho }).unwrap();
+    // The example's domain: the law's reach around the pull-off contact.
+    let half = (2.0 * law.reach(1.0).unwrap()).sqrt().max(3.0);
+    let path = (-(3.0 * rho + 1.0), 1.5, rho / 4.0, -(3.0 * rho + 3.0));
+    let result = run(&law, 96, 2.0 * half / 96.0, path);
+    let stuck: Vec<f64> = result
+        .records
+        .iter()
+        .filter(|r| !r.converged)
+        .map(|r| r.approach)
+        .collect();
+    assert!(stuck.is_empty(), "steps not converged at d = {stuck:?}");
+    let f = -result.pull_off_force() / PI;
+    assert!((f - 1.5843).abs() < 5e-5, "{f}");
+}
+
 /// A built-in law run as a custom one (its curve under another name, through the dynamic
 /// call) gives the built-in's bits at every step: the custom path is the same solver.
 #[test]

@@ -189,8 +189,9 @@ impl AdhesiveSolver {
             return landed;
         }
         // Finished on the grid: an element outside missed the tolerance, or the window's solve
-        // met a cap (the grid's step is judged on its own).
+        // met a cap (the grid's step is judged on its own, and reports its own residual).
         tally.converged = true;
+        tally.worst = 0.0;
         self.solve_smooth(d, merit, tally) || landed
     }
 
