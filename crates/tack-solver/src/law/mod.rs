@@ -552,8 +552,6 @@ impl std::ops::Deref for AdhesionLaw {
     }
 }
 
-/// Calls `$body` with `$c` bound to the traction's curve: by its own type for the built-in
-/// curves, through [`Curve`] for any other.
 /// [`AdhesionLaw::peak_gap`] of a curve.
 pub(super) fn peak_gap_of(curve: &dyn Curve) -> f64 {
     let tension = |g: f64| -curve.pressure(1.0, g);
@@ -571,6 +569,8 @@ pub(super) fn peak_gap_of(curve: &dyn Curve) -> f64 {
     if at == 0.0 { 0.0 } else { past }
 }
 
+/// Calls `$body` with `$c` bound to the traction's curve: by its own type for the built-in
+/// curves, through [`Curve`] for any other.
 macro_rules! on_curve {
     ($t:expr, $c:ident => $body:expr) => {
         match &$t.law {

@@ -477,7 +477,8 @@ fn the_quiet_gap_bounds_the_tail() {
 
 /// Two wells: half the exponential law of range 1 and half a Gaussian well of width 1 at
 /// g = 10, `p = −γ[½e^(−g) + ½ e^(−(g−10)²/2)/√(2π)]`, work γ. Its tension is greatest at the
-/// wall, falls to about 1e-5 of it and rises again to 0.4 of it at g = 10: it stiffens there.
+/// wall, falls to 2.3e-3 of it at g = 6.3 and rises again to 0.4 of it at g = 10: it stiffens
+/// on the way.
 #[derive(Debug)]
 struct TwoWells {
     falls: bool,
