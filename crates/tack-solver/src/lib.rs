@@ -118,8 +118,9 @@ pub use extrapolate::{
 };
 pub use law::{
     APPROACH_FRACTION, AdhesionLaw, Curve, CustomCurve, Dugdale, Exponential, Family, JkrLimit,
-    Law, LennardJones, MIN_COHESIVE_ZONE_ELEMENTS, MIN_PROCESS_ZONE_ELEMENTS, RANGE_ROUND_OFF,
-    REACH_FRACTION, STEPS_PER_LENGTH, StepColumn, ZONE_COLUMN,
+    LEAST_SMOOTHING, Law, LennardJones, MIN_COHESIVE_ZONE_ELEMENTS, MIN_PROCESS_ZONE_ELEMENTS,
+    RANGE_ROUND_OFF, REACH_FRACTION, SMOOTHING_OPENINGS, STEPS_PER_LENGTH, SmoothedDugdale,
+    StepColumn, ZONE_COLUMN,
 };
 pub use options::{SolverError, SolverOptions};
 pub use path::{

@@ -22,6 +22,7 @@ mod dugdale;
 mod exponential;
 mod jkr_limit;
 mod lennard_jones;
+mod smoothed_dugdale;
 
 use ndarray::Array2;
 use tack_fields as fields;
@@ -34,6 +35,7 @@ pub use dugdale::Dugdale;
 pub use exponential::Exponential;
 pub use jkr_limit::JkrLimit;
 pub use lennard_jones::LennardJones;
+pub use smoothed_dugdale::{LEAST_SMOOTHING, SMOOTHING_OPENINGS, SmoothedDugdale};
 
 /// Least length of a Dugdale cohesive zone, in elements, below which a result is flagged: the
 /// zone's tension is then carried by a ring of elements too thin to shape it.
@@ -204,6 +206,12 @@ pub trait Curve: std::fmt::Debug + Send + Sync {
     fn falls_past_peak(&self) -> bool {
         false
     }
+    /// The order in Δx of the pull-off's mesh error that Richardson extrapolation assumes
+    /// ([`Law::convergence_order`]): 2 for a curve of its own lengths, 1 for a curve bound to
+    /// the mesh ([`SmoothedDugdale`]).
+    fn convergence_order(&self) -> f64 {
+        2.0
+    }
 }
 
 impl<C: Curve> Law for C {
@@ -255,9 +263,10 @@ impl<C: Curve> Law for C {
     /// converge at 2.0–3.3 against their ring solutions (`tests/smooth.rs`,
     /// `tests/custom_law.rs`); their pull-offs less regularly (the exponential law's 1.6 then a
     /// sign change, Lennard-Jones 2.4, the peers' case 3.8 then 3.3), since a pull-off is one point of
-    /// the curve. Every smooth curve, a custom one too, is taken as second order.
+    /// the curve. Every smooth curve, a custom one too, is taken as second order unless it
+    /// says otherwise ([`Curve::convergence_order`]).
     fn convergence_order(&self) -> f64 {
-        2.0
+        Curve::convergence_order(self)
     }
 
     fn mesh_warning(&self, e_star: f64, gamma: f64, dx: f64) -> Option<String> {
