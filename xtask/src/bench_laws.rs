@@ -2,7 +2,8 @@
 //!
 //! The case of Tamaas and ContactMechanics: a rigid sphere R = 1 on E* = 1 with γ = 1e-3 on a
 //! free 1 × 1 domain, Tabor μ = 3 (the exponential law's ρ = 3.333e-3, the Lennard-Jones law's
-//! ε the same, the Dugdale law at λ = 1.16 μ = 3.48, the zero-range criterion μ = ∞). Each law
+//! ε the same, the Dugdale law at λ = 1.16 μ = 3.48 and its smoothed variant bound to each mesh
+//! (`SmoothedDugdale::on_mesh`), the zero-range criterion μ = ∞). Each law
 //! runs one pull-off path: a smooth law loaded from out of reach in steps of d_c/2 to the
 //! undeformed sphere's touch d = 0 (past its jump-in, at about −d_c/2 for μ = 3: loading on to
 //! 2 d_c retraces the same branch, and gave the same pull-off bits on 64², 128², 256² for the
@@ -14,7 +15,8 @@
 //! the time in bare FFT pairs of the padded size timed in the same run, the operator products,
 //! and the error against the same law's converged pull-off: the exponential law's from the
 //! axisymmetric ring solution (`crates/tack-solver/tests/axisym_reference.rs`, three meshes
-//! within ±0.001), the Dugdale law's Maugis–Dugdale closed form, the criterion's JKR 1.5πγR,
+//! within ±0.001), the Dugdale law's (and its smoothed variant's) Maugis–Dugdale closed form,
+//! the criterion's JKR 1.5πγR,
 //! the Lennard-Jones law's from the ring solution traced by continuation
 //! (`crates/tack-solver/tests/smooth.rs`, `tabor_3_ring_pull_off`: 1.549594 and 1.549584 on 292
 //! and 583 rings; tack's 256² and 512² runs give 1.54902 and 1.54933). The peers' rows are
@@ -29,7 +31,7 @@ use tack_geometry::{Boundary, Grid, Sphere, Surface};
 use tack_kernels::operator_for;
 use tack_solver::{
     AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, Dugdale, Exponential, JkrLimit,
-    KAPPA, LennardJones, SnapshotRequest,
+    KAPPA, LennardJones, SmoothedDugdale, SnapshotRequest,
 };
 
 use crate::bench::{Row, median_time};
@@ -69,13 +71,15 @@ const PEERS: [(&str, usize, f64, &str); 6] = [
     ),
 ];
 
-/// One law of the table: its label, the law, and its converged `F/(πγR)` when known.
-fn laws() -> Vec<(&'static str, AdhesionLaw, Option<f64>)> {
+/// One law of the table on `n²`: its label, the law, and its converged `F/(πγR)` when known
+/// (the smoothed Dugdale law, bound to the mesh, against the Dugdale law's Maugis value).
+fn laws(n: usize) -> Result<Vec<(&'static str, AdhesionLaw, Option<f64>)>> {
     let range = (RADIUS * GAMMA * GAMMA / (E_STAR * E_STAR * TABOR.powi(3))).cbrt();
     let lambda = 1.16 * TABOR;
     let sigma0 = lambda / tack_analytics::maugis_lambda(E_STAR, GAMMA, RADIUS, 1.0);
     let maugis = -tack_analytics::maugis_pull_off(E_STAR, GAMMA, RADIUS, sigma0) / (PI * GAMMA);
-    vec![
+    let smoothed = SmoothedDugdale::on_mesh(sigma0, GAMMA, E_STAR, 1.0 / n as f64)?;
+    Ok(vec![
         (
             "exponential",
             AdhesionLaw::Exponential(Exponential { range }),
@@ -92,11 +96,16 @@ fn laws() -> Vec<(&'static str, AdhesionLaw, Option<f64>)> {
             Some(maugis),
         ),
         (
+            "dugdale_smoothed",
+            AdhesionLaw::custom(smoothed)?,
+            Some(maugis),
+        ),
+        (
             "jkr_limit",
             AdhesionLaw::JkrLimit(JkrLimit { kappa: KAPPA }),
             Some(1.5),
         ),
-    ]
+    ])
 }
 
 /// One pull-off of the peers' case on `n²` under `law`: (seconds, steps, products, F/(πγR),
@@ -201,13 +210,13 @@ fn table(full: bool, rows: &mut Vec<Row>) -> Result<()> {
     );
     println!("   against the same law's converged value; time also in bare FFT pairs");
     println!(
-        "   {:<14} {:>5} {:>9} {:>11} {:>6} {:>9} {:>9} {:>9}",
+        "   {:<16} {:>5} {:>9} {:>11} {:>6} {:>9} {:>9} {:>9}",
         "law", "n", "time [s]", "FFT pairs", "steps", "products", "F/(πγR)", "error"
     );
     for &n in sizes {
         let m = tack_kernels::padded_size(n);
         let t_pair = median_time(crate::bench::bare_fft_pair(m, m));
-        for (label, law, reference) in laws() {
+        for (label, law, reference) in laws(n)? {
             let (seconds, steps, products, hat, failed) = run(law, n)?;
             let error = reference.map_or(f64::NAN, |r| hat / r - 1.0);
             let mut shown = if error.is_finite() {
@@ -219,7 +228,7 @@ fn table(full: bool, rows: &mut Vec<Row>) -> Result<()> {
                 shown.push_str(&format!(" ({failed} steps NOT converged)"));
             }
             println!(
-                "   {label:<14} {n:>5} {seconds:>9.2} {:>11.0} {steps:>6} {products:>9} {hat:>9.4} {shown:>9}",
+                "   {label:<16} {n:>5} {seconds:>9.2} {:>11.0} {steps:>6} {products:>9} {hat:>9.4} {shown:>9}",
                 seconds / t_pair
             );
             rows.push(Row::new(
