@@ -96,8 +96,8 @@ fn laws(n: usize) -> Result<Vec<(&'static str, AdhesionLaw, Option<f64>)>> {
             Some(maugis),
         ),
         (
-            "dugdale_smoothed",
-            AdhesionLaw::custom(smoothed)?,
+            "smoothed_dugdale",
+            AdhesionLaw::from(smoothed),
             Some(maugis),
         ),
         (

@@ -241,14 +241,20 @@ pub const FIELDS: &[Field] = &[
     ),
     f(
         ADHESION_MODEL,
-        Kind::Choice(&["jkr_limit", "dugdale", "exponential", "lennard_jones"]),
+        Kind::Choice(&[
+            "jkr_limit",
+            "dugdale",
+            "exponential",
+            "lennard_jones",
+            "smoothed_dugdale",
+        ]),
         "zero-range criterion, a Dugdale cohesive zone, or a smooth law (exponential, \
-         Lennard-Jones 9–3) with a hard wall",
+         Lennard-Jones 9–3, the Dugdale law smoothed over an element) with a hard wall",
     ),
     f(
         ADHESION_SIGMA0,
         Kind::Number,
-        "Dugdale: cohesive tension σ0 (the range is γ/σ0)",
+        "Dugdale and smoothed Dugdale: cohesive tension σ0 (the range is γ/σ0)",
     ),
     f(
         ADHESION_RANGE,

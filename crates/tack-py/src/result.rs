@@ -113,8 +113,8 @@ impl Result {
     /// not apply), `johnson_alpha`, `alpha_star` (None where they do not apply), then the
     /// extras (`d_jkr`, `sigma_c`, `kappa`, `first_touch`, `non_converged_steps`, ...), then
     /// `status` (`"complete"`, `"stopped at protocol.max_steps"`; None in old files),
-    /// `adhesion_model` (`"jkr_limit"`, `"dugdale"`, `"exponential"`, `"lennard_jones"`, or a
-    /// custom law's name; None in old files) and
+    /// `adhesion_model` (`"jkr_limit"`, `"dugdale"`, `"exponential"`, `"lennard_jones"`,
+    /// `"smoothed_dugdale"`, or a custom law's name; None in old files) and
     /// `warnings` (a list of sentences: why the result may not be trusted).
     #[getter]
     fn summary(&self, py: Python<'_>) -> PyResult<Py<PyDict>> {

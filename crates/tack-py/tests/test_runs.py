@@ -346,6 +346,25 @@ def test_dugdale_pull_off_of_a_sphere_matches_maugis_and_has_both_branches():
     assert "n_cohesive" in r.curve and "cohesive zone" in r.law_columns["n_cohesive"]
 
 
+def test_smoothed_dugdale_pull_off_is_closer_to_maugis_on_the_same_mesh():
+    # The same sphere and mesh as above (lambda = 1, zone of 10 elements of 0.1): the smoothed
+    # law's pull-off lies +0.67% beyond Maugis' (docs/theory.md section 3.7, steps dx/16; the
+    # default path's steps here), against the Dugdale law's +7.5%; 2% bounds it.
+    dx, n = 0.1, 69
+    x = (np.arange(n) - n // 2) * dx
+    heights = (x[:, None] ** 2 + x[None, :] ** 2) / 2.0
+    law = tack.SmoothedDugdale(sigma0=0.8871133596609792)
+    assert isinstance(law, tack.Dugdale) and law != tack.Dugdale(sigma0=law.sigma0)
+    r = tack.pull_off(heights, dx=dx, e_star=1.0, gamma=1.0, radius=1.0, law=law)
+    s = r.summary
+    assert s["adhesion_model"] == "smoothed_dugdale"
+    assert abs(s["maugis_lambda"] - 1.0) < 1e-9
+    assert 1.0 < r.pull_off_force / s["f_maugis"] < 1.02
+    assert s["jump_in_force"] < 0 and s["dissipated_energy"] > 0
+    with pytest.raises(ValueError, match="^sigma0 = 0 is invalid"):
+        tack.SmoothedDugdale(sigma0=0.0)
+
+
 def test_dugdale_arguments_are_checked():
     heights = np.zeros((8, 8))
     with pytest.raises(TypeError, match="^law: expected"):

@@ -1,6 +1,7 @@
 //! Every adhesion law of the registry with its facts on the peers' case (a sphere R = 1 on
 //! E* = 1, γ = 1e-3, Tabor μ = 3 for the finite-range laws): parameter, range, reach, peak
-//! tension on a 128² grid of the unit domain, μ, the mesh rule and the warning on a 32² grid.
+//! tension on a 128² grid of the unit domain (the law bound to it), μ, the mesh rule and the
+//! warning on a 32² grid.
 //!
 //! `cargo run --release -p tack-solver --example laws`
 
@@ -18,7 +19,11 @@ fn main() {
             tack_fields::ADHESION_SIGMA0 => sigma0,
             _ => length,
         };
-        let law = AdhesionLaw::from_model(model, value).expect("a listed model");
+        // Bound to the 128² grid (the smoothed Dugdale law's ramp is the element's; the others
+        // are as made).
+        let law = AdhesionLaw::from_model(model, value)
+            .expect("a listed model")
+            .on_mesh(gamma, e_star, 1.0 / 128.0);
         let (field, value) = law.parameter();
         println!("{model}: {field} = {value:.5e}: {}", law.meaning());
         println!("    {}", law.describe(gamma, e_star, 1.0 / 128.0));

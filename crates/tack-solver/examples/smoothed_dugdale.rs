@@ -48,7 +48,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let surface = Surface::from_shape(grid, &Sphere::new(1.0)?);
             let op = operator_for(grid, 1.0)?;
             let law = if smoothed {
-                AdhesionLaw::custom(SmoothedDugdale::on_mesh(sigma0, 1.0, 1.0, dx)?)?
+                AdhesionLaw::from(SmoothedDugdale::on_mesh(sigma0, 1.0, 1.0, dx)?)
             } else {
                 AdhesionLaw::Dugdale(Dugdale { sigma0 })
             };

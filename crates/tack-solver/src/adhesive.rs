@@ -196,6 +196,8 @@ impl AdhesiveSolver {
         let base = SolverBase::new(op, surface)?;
         let shape = base.grid().shape();
         let (base_dx, e_star) = (base.grid().dx(), base.op.e_star());
+        // A law made unbound (the smoothed Dugdale law from its scene name) takes this mesh.
+        let law = law.on_mesh(gamma, e_star, base_dx);
         let sigma_c = law.peak_tension(gamma, e_star, base_dx);
         let (cohesive, smooth) = match law.family() {
             Family::Criterion { .. } => (None, None),

@@ -114,6 +114,11 @@ impl crate::AdhesionLaw {
         };
         let range = curve.length();
         let peak = self.peak_tension(gamma, e_star, dx);
+        // A law set by its tension (the smoothed Dugdale law) has the range γ/σ0.
+        let set_by = match curve.parameter().0 {
+            f @ tack_fields::ADHESION_SIGMA0 => format!(" (the range is γ/{f}: lower {f})"),
+            _ => String::new(),
+        };
         tolerance_fraction(range, k, peak)
             .map(Some)
             .map_err(|least| SolverError::BelowLeast {
@@ -122,8 +127,8 @@ impl crate::AdhesionLaw {
                 least,
                 why: format!(
                     "on a mesh this much coarser than the law's process zone the peak tension \
-                     outgrows what round-off lets the solver resolve (refine {}, or for the JKR \
-                     limit of a short range use {})",
+                     outgrows what round-off lets the solver resolve{set_by} (refine {}, or for \
+                     the JKR limit of a short range use {})",
                     tack_fields::GRID_DX,
                     crate::law::zero_range_hint(),
                 ),

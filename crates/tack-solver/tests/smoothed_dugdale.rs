@@ -31,7 +31,7 @@ fn pull_off_error(lambda: f64, dx: f64, half: f64, step: f64, smoothed: bool) ->
     let surface = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
     let op = operator_for(grid, 1.0).unwrap();
     let law = if smoothed {
-        AdhesionLaw::custom(SmoothedDugdale::on_mesh(sigma0, 1.0, 1.0, dx).unwrap()).unwrap()
+        AdhesionLaw::from(SmoothedDugdale::on_mesh(sigma0, 1.0, 1.0, dx).unwrap())
     } else {
         AdhesionLaw::Dugdale(Dugdale { sigma0 })
     };
@@ -90,13 +90,13 @@ fn smoothed_law_holds_a_zone_of_three_elements_at_lambda_3() {
 
 /// The curve keeps the Dugdale law's facts: work γ, peak σ0, half the tension at h0, none past
 /// `h0 + s`; the law is first order for Richardson and passes the custom-curve checks at both
-/// ends of its half-width's range.
+/// ends of its half-width's range (a copy under another name: the built-in's is taken).
 #[test]
 fn smoothed_law_keeps_the_dugdale_facts() {
     let (sigma0, gamma) = (2.0, 0.5);
     let h0 = gamma / sigma0;
     for width in [2e-2 * h0, 0.1 * h0, 0.5 * h0] {
-        let c = SmoothedDugdale::new(h0, width).unwrap();
+        let c = SmoothedDugdale::with_width(sigma0, gamma, width).unwrap();
         let n = 200_000;
         let top = Curve::reach(&c) * 1.1;
         let dg = top / f64::from(n);
@@ -108,10 +108,11 @@ fn smoothed_law_keeps_the_dugdale_facts() {
         assert_eq!(c.pressure(gamma, 0.0), -sigma0);
         assert!((c.pressure(gamma, h0) + 0.5 * sigma0).abs() < 1e-12);
         assert_eq!(c.pressure(gamma, h0 + width), 0.0);
-        let law = AdhesionLaw::custom(c)
+        let copy = AdhesionLaw::custom(Copy(c))
             .map_err(|e| format!("{width}: {e}"))
             .unwrap();
-        assert_eq!(law.convergence_order(), 1.0);
+        assert_eq!(copy.convergence_order(), 1.0);
+        assert_eq!(AdhesionLaw::from(c).convergence_order(), 1.0);
     }
     // On a mesh: two openings k·σ0 of a half-space element (k = 1.1222 Δx/E*), within
     // [0.02, 0.5] of the range.
@@ -126,20 +127,96 @@ fn smoothed_law_keeps_the_dugdale_facts() {
     assert_eq!(on(1.0, 1e-9), 0.02 * h0);
 }
 
+/// The law by its scene name is unbound; a solver binds it to its own mesh, the same law as
+/// [`SmoothedDugdale::on_mesh`]; an unbound law is refused where it is checked.
+#[test]
+fn smoothed_law_by_name_is_bound_by_the_run() {
+    let law = AdhesionLaw::from_model("smoothed_dugdale", 2.0).unwrap();
+    let AdhesionLaw::SmoothedDugdale(l) = law.clone() else {
+        panic!("{law:?}")
+    };
+    assert!(!l.is_bound());
+    assert_eq!(law.parameter(), ("adhesion.sigma0", 2.0));
+    let bound = law.clone().on_mesh(0.5, 3.0, 0.01);
+    assert_eq!(
+        bound,
+        AdhesionLaw::from(SmoothedDugdale::on_mesh(2.0, 0.5, 3.0, 0.01).unwrap())
+    );
+    assert_eq!(bound.clone().on_mesh(1.0, 1.0, 1.0), bound, "bound once");
+    let grid = Grid::square(9, 0.01, Boundary::Free).unwrap();
+    let surface = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
+    let e = law.check(0.5, &surface).unwrap_err().to_string();
+    assert!(e.contains("not bound"), "{e}");
+    assert!(bound.check(0.5, &surface).is_ok());
+    let bad = AdhesionLaw::from_model("smoothed_dugdale", -1.0).unwrap();
+    let e = bad
+        .on_mesh(0.5, 3.0, 0.01)
+        .check(0.5, &surface)
+        .unwrap_err();
+    assert!(e.to_string().contains("adhesion.sigma0"), "{e}");
+    let op = operator_for(grid, 3.0).unwrap();
+    let solver =
+        AdhesiveSolver::with_law(op, &surface, 0.5, law, AdhesiveOptions::default()).unwrap();
+    assert_eq!(solver.law(), &bound);
+}
+
+/// The smoothed law under a name of its own, to pass the custom-curve checks.
+#[derive(Debug)]
+struct Copy(SmoothedDugdale);
+
+impl Curve for Copy {
+    fn name(&self) -> &'static str {
+        "smoothed_dugdale_copy"
+    }
+    fn label(&self) -> &'static str {
+        self.0.label()
+    }
+    fn length(&self) -> f64 {
+        self.0.length()
+    }
+    fn meaning(&self) -> &'static str {
+        Curve::meaning(&self.0)
+    }
+    fn pressure(&self, gamma: f64, g: f64) -> f64 {
+        self.0.pressure(gamma, g)
+    }
+    fn stiffness(&self, gamma: f64, g: f64) -> f64 {
+        self.0.stiffness(gamma, g)
+    }
+    fn stiffens(&self) -> bool {
+        false
+    }
+    fn peak(&self, gamma: f64) -> f64 {
+        self.0.peak(gamma)
+    }
+    fn reach(&self) -> f64 {
+        Curve::reach(&self.0)
+    }
+    fn falls_past_peak(&self) -> bool {
+        true
+    }
+    fn convergence_order(&self) -> f64 {
+        Curve::convergence_order(&self.0)
+    }
+}
+
 /// Bad input names its field and value.
 #[test]
 fn smoothed_law_refuses_bad_input() {
-    let e = SmoothedDugdale::new(0.0, 0.1).unwrap_err().to_string();
+    let e = SmoothedDugdale::with_width(0.0, 1.0, 0.1)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("sigma0") && e.contains('0'), "{e}");
+    let e = SmoothedDugdale::with_width(1.0, 1.0, 1.0)
+        .unwrap_err()
+        .to_string();
     assert!(
-        e.contains("SmoothedDugdale::range") && e.contains('0'),
+        e.contains("SmoothedDugdale::width") && e.contains("(0, γ/σ0)"),
         "{e}"
     );
-    let e = SmoothedDugdale::new(1.0, 1.0).unwrap_err().to_string();
-    assert!(
-        e.contains("SmoothedDugdale::width") && e.contains("(0, range)"),
-        "{e}"
-    );
-    let e = SmoothedDugdale::new(1.0, f64::NAN).unwrap_err().to_string();
+    let e = SmoothedDugdale::with_width(1.0, 1.0, f64::NAN)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("SmoothedDugdale::width"), "{e}");
     let e = SmoothedDugdale::on_mesh(-1.0, 1.0, 1.0, 0.1)
         .unwrap_err()

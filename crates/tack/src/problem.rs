@@ -304,7 +304,7 @@ impl Problem {
         ));
         let options = solver_options(&f.solver)?;
         let viscoelastic = viscoelastic(f, &law, layer.is_some())?;
-        if let Family::Cohesive { sigma0 } = law.family() {
+        if let Some(sigma0) = maugis_sigma0(&law) {
             dugdale_references(&mut references, e_star, gamma, sigma0);
         }
         if law.is_smooth() {
@@ -582,6 +582,16 @@ fn crop_window(
     .filter(|w| w.shape() != surface.grid().shape())
 }
 
+/// The σ0 of a law that Maugis' references describe: the Dugdale law's, and the smoothed
+/// Dugdale law's, which tends to it.
+fn maugis_sigma0(law: &AdhesionLaw) -> Option<f64> {
+    match (law, law.family()) {
+        (_, Family::Cohesive { sigma0 }) => Some(sigma0),
+        (AdhesionLaw::SmoothedDugdale(l), _) => Some(l.sigma0),
+        _ => None,
+    }
+}
+
 /// The Dugdale law's references: λ and the Maugis–Dugdale pull-off of a sphere (its radius
 /// read back from F_JKR).
 fn dugdale_references(references: &mut References, e_star: f64, gamma: f64, sigma0: f64) {
@@ -720,11 +730,14 @@ fn adhesion_law(f: &SceneSchema, kappa: f64, surface: &Surface) -> Result<Adhesi
             )));
         }
     };
-    let law = AdhesionLaw::from_model(name, value).expect("a model the probe found");
+    let gamma = f.material.gamma;
+    // A law bound to the mesh (the smoothed Dugdale law) takes this run's.
+    let law = AdhesionLaw::from_model(name, value)
+        .expect("a model the probe found")
+        .on_mesh(gamma, f.material.e_star, surface.grid().dx());
     if own == fields::SOLVER_KAPPA {
         return Ok(law);
     }
-    let gamma = f.material.gamma;
     finite_range_gamma(&format!("{model_field} = \"{name}\""), gamma)?;
     // Positive, finite parameters and a range above the round-off of the heights.
     law.check(gamma, surface)?;

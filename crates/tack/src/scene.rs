@@ -69,7 +69,8 @@ pub struct Material {
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct AdhesionSpec {
-    /// `"jkr_limit"` (default), `"dugdale"`, `"exponential"` or `"lennard_jones"`.
+    /// `"jkr_limit"` (default), `"dugdale"`, `"exponential"`, `"lennard_jones"` or
+    /// `"smoothed_dugdale"`.
     #[serde(default)]
     pub model: AdhesionModel,
     /// Smooth laws: the range ρ of `"exponential"` (`p = −(γ/ρ) e^(−g/ρ)`) or the equilibrium
@@ -77,7 +78,7 @@ pub struct AdhesionSpec {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub range: Option<f64>,
     /// Dugdale: the cohesive tension σ0 (> 0); the range is `h0 = γ/σ0`. Only with
-    /// `model = "dugdale"`.
+    /// `model = "dugdale"` or `"smoothed_dugdale"`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sigma0: Option<f64>,
     /// γ per element from a file (text or HDF5, the grid's shape; the height maps' formats),
@@ -197,8 +198,8 @@ pub enum InterfaceKind {
 
 /// `adhesion.model`: the scene name of one of the solver's laws
 /// ([`tack_solver::AdhesionLaw::models`]: `"jkr_limit"`, the default and the paper's model,
-/// `"dugdale"`, `"exponential"`, `"lennard_jones"`). The list is the solver's: a new law is
-/// named here without an edit.
+/// `"dugdale"`, `"exponential"`, `"lennard_jones"`, `"smoothed_dugdale"`). The list is the
+/// solver's: a new law is named here without an edit.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct AdhesionModel(&'static str);
 

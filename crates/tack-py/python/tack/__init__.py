@@ -13,8 +13,8 @@ out as numpy arrays.
 - :func:`contact` solves non-adhesive contact of a height array at one approach,
   :func:`contact_sweep` at several in turn.
 - The adhesion law and the elastic body are objects (:mod:`tack.models`): ``law=``
-  :class:`JkrLimit`, :class:`Dugdale`, :class:`Exponential` or :class:`LennardJones`,
-  ``body=`` :class:`HalfSpace` or :class:`Layer`.
+  :class:`JkrLimit`, :class:`Dugdale`, :class:`SmoothedDugdale`, :class:`Exponential` or
+  :class:`LennardJones`, ``body=`` :class:`HalfSpace` or :class:`Layer`.
 - A result that may not be trusted issues a :class:`TackWarning` of its kind
   (:class:`UnderResolvedWarning`, :class:`ReferenceWarning`, ...) when the run returns.
 - :mod:`tack.surface` makes height arrays (seeded random roughness, spheres);
@@ -71,6 +71,7 @@ from .models import (
     JkrLimit,
     Layer,
     LennardJones,
+    SmoothedDugdale,
     Viscoelastic,
     body_arguments,
     law_arguments,
@@ -101,6 +102,7 @@ __all__ = [
     "ResultFileError",
     "RichardsonWarning",
     "SceneError",
+    "SmoothedDugdale",
     "SolverError",
     "TackError",
     "Viscoelastic",
@@ -315,7 +317,7 @@ def pull_off(
     dx: float,
     e_star: float,
     gamma: Any,
-    law: Union[JkrLimit, Dugdale, Exponential, LennardJones] = JkrLimit(),
+    law: Union[JkrLimit, Dugdale, SmoothedDugdale, Exponential, LennardJones] = JkrLimit(),
     body: Union[HalfSpace, Layer] = HalfSpace(),
     material: Optional[Viscoelastic] = None,
     gamma_reference: Optional[float] = None,

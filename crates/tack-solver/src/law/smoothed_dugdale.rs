@@ -1,8 +1,13 @@
 //! The Dugdale law with its step smoothed over an element's own opening: a smooth law, run by
 //! `smooth.rs`, that removes most of the Dugdale law's lattice trapping on coarse meshes.
 
-use super::Curve;
+use tack_fields as fields;
+
+use super::{Curve, REACH_FRACTION};
 use crate::SolverError;
+
+/// The scene name.
+pub(super) const NAME: &str = "smoothed_dugdale";
 
 /// The smoothing's half-width in openings `k σ0` of one element under the tension σ0
 /// ([`SmoothedDugdale::on_mesh`]). At the steepest point of the ramp an element's own
@@ -20,37 +25,60 @@ pub const SMOOTHING_OPENINGS: f64 = 2.0;
 /// spans more openings, which the measurements above favour.
 pub const LEAST_SMOOTHING: f64 = 0.02;
 
-/// The Dugdale law of range `h0 = γ/σ0` whose tension falls from σ0 to 0 across
+/// The Dugdale law of tension σ0 and range `h0 = γ/σ0` whose tension falls from σ0 to 0 across
 /// `h0 − s < g < h0 + s` by the quintic smoothstep `S(t) = t³(10 − 15t + 6t²)` instead of at
 /// once: `p(g) = −σ0 S((h0 + s − g)/(2s))`, which keeps the work `σ0 h0 = γ` (the ramp is odd
-/// about `h0`), the peak σ0 and a continuous slope. Bound to a mesh by
-/// [`SmoothedDugdale::on_mesh`] (`s` about an element's own opening), it converges to the
-/// Dugdale law as the mesh is refined, at first order like it but with an error 5 to 14 times
-/// smaller (docs/theory.md §3.7). Run it as a custom law:
-/// `AdhesionLaw::custom(SmoothedDugdale::on_mesh(sigma0, gamma, e_star, dx)?)`.
+/// about `h0`), the peak σ0 and a continuous slope. Bound to a mesh ([`SmoothedDugdale::on_mesh`],
+/// `s` about an element's own opening) it converges to the Dugdale law as the mesh is refined,
+/// at first order like it but with an error 11 to 62 times smaller (docs/theory.md §3.7). A
+/// scene names it `[adhesion] model = "smoothed_dugdale"` with `sigma0`, and the run binds it to
+/// its mesh; [`AdhesionLaw::from_model`](super::AdhesionLaw::from_model) makes it unbound
+/// ([`SmoothedDugdale::unbound`]), and [`AdhesionLaw::on_mesh`](super::AdhesionLaw::on_mesh)
+/// or the solver binds it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SmoothedDugdale {
-    /// The range `h0 = γ/σ0` > 0, where the tension is half of σ0.
+    /// The tension σ0 > 0.
+    pub sigma0: f64,
+    /// The range `h0 = γ/σ0`, where the tension is half of σ0 (NaN until bound).
     pub range: f64,
-    /// The ramp's half-width `s`, `0 < s < h0`.
+    /// The ramp's half-width `s`, `0 < s < h0` (NaN until bound).
     pub width: f64,
 }
 
 impl SmoothedDugdale {
-    /// The law of range `range` and ramp half-width `width`; errors name the bad value.
-    pub fn new(range: f64, width: f64) -> Result<Self, SolverError> {
-        let out = |field, value, allowed| SolverError::OutOfRange {
-            field,
-            value,
-            allowed,
-        };
-        if !(range.is_finite() && range > 0.0) {
-            return Err(out("SmoothedDugdale::range", range, "finite and > 0"));
+    /// The law of tension `sigma0` not yet bound to a work of adhesion and a mesh: its range
+    /// and width are NaN, and a solver made with it binds it to its own
+    /// (`AdhesiveSolver::with_law`).
+    pub fn unbound(sigma0: f64) -> Self {
+        Self {
+            sigma0,
+            range: f64::NAN,
+            width: f64::NAN,
         }
+    }
+
+    /// Whether the law has its range and width.
+    pub fn is_bound(&self) -> bool {
+        self.range.is_finite() && self.width.is_finite()
+    }
+
+    /// The law of tension `sigma0` and work `gamma` with the ramp's half-width `width` given,
+    /// `0 < width < γ/σ0`; errors name the bad value.
+    pub fn with_width(sigma0: f64, gamma: f64, width: f64) -> Result<Self, SolverError> {
+        positive(&[("sigma0", sigma0), ("gamma", gamma)])?;
+        let range = gamma / sigma0;
         if !(width.is_finite() && width > 0.0 && width < range) {
-            return Err(out("SmoothedDugdale::width", width, "in (0, range)"));
+            return Err(SolverError::OutOfRange {
+                field: "SmoothedDugdale::width",
+                value: width,
+                allowed: "in (0, γ/σ0)",
+            });
         }
-        Ok(Self { range, width })
+        Ok(Self {
+            sigma0,
+            range,
+            width,
+        })
     }
 
     /// The law of tension `sigma0` and work `gamma` on a mesh of elements `dx` over a modulus
@@ -61,25 +89,16 @@ impl SmoothedDugdale {
     /// capped on zones under about 3.5 elements). Errors name the value that is not finite and
     /// positive.
     pub fn on_mesh(sigma0: f64, gamma: f64, e_star: f64, dx: f64) -> Result<Self, SolverError> {
-        let given = [
+        positive(&[
             ("sigma0", sigma0),
             ("gamma", gamma),
             ("e_star", e_star),
             ("dx", dx),
-        ];
-        for (field, value) in given {
-            if !(value.is_finite() && value > 0.0) {
-                return Err(SolverError::OutOfRange {
-                    field,
-                    value,
-                    allowed: "finite and > 0",
-                });
-            }
-        }
+        ])?;
         let k = tack_kernels::FreeOperator::self_compliance_of(dx, e_star);
         let range = gamma / sigma0;
         let width = (SMOOTHING_OPENINGS * k * sigma0).clamp(LEAST_SMOOTHING * range, 0.5 * range);
-        Self::new(range, width)
+        Self::with_width(sigma0, gamma, width)
     }
 
     /// The ramp's argument `t` at gap `g`: 1 short of the ramp, 0 past it.
@@ -89,9 +108,23 @@ impl SmoothedDugdale {
     }
 }
 
+/// Each value finite and > 0, or the error naming the first that is not.
+fn positive(given: &[(&'static str, f64)]) -> Result<(), SolverError> {
+    for &(field, value) in given {
+        if !(value.is_finite() && value > 0.0) {
+            return Err(SolverError::OutOfRange {
+                field,
+                value,
+                allowed: "finite and > 0",
+            });
+        }
+    }
+    Ok(())
+}
+
 impl Curve for SmoothedDugdale {
     fn name(&self) -> &'static str {
-        "smoothed_dugdale"
+        NAME
     }
 
     fn label(&self) -> &'static str {
@@ -105,7 +138,25 @@ impl Curve for SmoothedDugdale {
     }
 
     fn meaning(&self) -> &'static str {
-        "the range h0 = γ/σ0 > 0 of the smoothed Dugdale law"
+        "the tension σ0 > 0 of the smoothed Dugdale law (the range is γ/σ0)"
+    }
+
+    /// The scene's `adhesion.sigma0`, as the Dugdale law's.
+    fn parameter(&self) -> (&'static str, f64) {
+        (fields::ADHESION_SIGMA0, self.sigma0)
+    }
+
+    /// σ0 finite and > 0, and the law bound to a mesh.
+    fn check_parameter(&self) -> Result<(), SolverError> {
+        crate::validate::positive(fields::ADHESION_SIGMA0, self.sigma0)?;
+        if !self.is_bound() {
+            return Err(SolverError::Refused {
+                field: fields::ADHESION_MODEL,
+                reason: "the smoothed Dugdale law is not bound to a mesh: make it with \
+                         SmoothedDugdale::on_mesh or bind it with AdhesionLaw::on_mesh",
+            });
+        }
+        Ok(())
     }
 
     fn symbol(&self) -> &'static str {
@@ -134,9 +185,16 @@ impl Curve for SmoothedDugdale {
         gamma / self.range
     }
 
-    /// `h0 + s`, where the tension is exactly 0.
+    /// Where the tension falls to [`REACH_FRACTION`] of the peak, just short of `h0 + s` (where
+    /// it is 0): `S(t) = REACH_FRACTION` at `t ≈ 1e-3`, solved by Newton's method.
     fn reach(&self) -> f64 {
-        self.range + self.width
+        let mut t = (REACH_FRACTION / 10.0).cbrt();
+        for _ in 0..4 {
+            let s = t * t * t * (10.0 - 15.0 * t + 6.0 * t * t);
+            let ds = 30.0 * t * t * (1.0 - t) * (1.0 - t);
+            t -= (s - REACH_FRACTION) / ds;
+        }
+        self.range + self.width - 2.0 * self.width * t
     }
 
     /// Its tension is σ0 up to the ramp and falls across it.

@@ -4,11 +4,14 @@
 
 use super::*;
 
-/// Every smooth law of the registry, at a length of 2 (not 1, so a γ/ℓ mix-up shows).
+/// Every smooth law of the registry, at a parameter of 2 (not 1, so a γ/ℓ mix-up shows): a
+/// length of 2, or the smoothed Dugdale law's σ0 = 2 bound at γ = 1 to elements of 0.05 on a
+/// unit modulus (range 0.5, ramp ±0.22).
 fn curves() -> Vec<AdhesionLaw> {
     AdhesionLaw::models()
         .filter_map(|m| AdhesionLaw::from_model(m, 2.0))
         .filter(AdhesionLaw::is_smooth)
+        .map(|l| l.on_mesh(1.0, 1.0, 0.05))
         .collect()
 }
 
@@ -32,7 +35,11 @@ fn every_model_round_trips_and_the_scene_field_lists_them() {
         &models[..],
         "the scene field's choices are the registry's"
     );
-    assert_eq!(curves().len(), 2, "the exponential and Lennard-Jones laws");
+    assert_eq!(
+        curves().len(),
+        3,
+        "the exponential, Lennard-Jones and smoothed Dugdale laws"
+    );
 }
 
 /// The work of separation `∫₀^∞ −p(g) dg` is γ: Simpson's rule in `u = ln(1 + g/ℓ)` up to

@@ -654,7 +654,7 @@ mod adhesion_tests {
         );
         assert!(
             err(&[exp[0], exp[1], "adhesion.sigma0=1"])
-                .contains("adhesion.sigma0 = 1 is read by adhesion.model = \"dugdale\" only")
+                .contains("adhesion.sigma0 = 1 is read by adhesion.model = \"dugdale\" or \"smoothed_dugdale\" only")
         );
         assert!(
             err(&[
@@ -855,7 +855,9 @@ mod adhesion_tests {
         let message = err(&criterion);
         assert!(
             message.contains("needs a finite-range law")
-                && message.ends_with("\"dugdale\", \"exponential\" or \"lennard_jones\""),
+                && message.ends_with(
+                    "\"dugdale\", \"exponential\", \"lennard_jones\" or \"smoothed_dugdale\""
+                ),
             "{message}"
         );
         let no_speed = [
@@ -907,6 +909,37 @@ mod adhesion_tests {
     }
 
     #[test]
+    fn the_smoothed_dugdale_law_is_bound_to_the_grid() {
+        let p = build(&["adhesion.model=\"smoothed_dugdale\"", "adhesion.sigma0=1.0"]).unwrap();
+        // γ = 0.1 and E* = 1 of the test scene, on its own grid's elements.
+        let dx = p.grid.dx();
+        let expected = tack_solver::SmoothedDugdale::on_mesh(1.0, 0.1, 1.0, dx).unwrap();
+        assert_eq!(p.law, AdhesionLaw::SmoothedDugdale(expected));
+        assert!(p.law.is_smooth() && p.law.convergence_order() == 1.0);
+        let lambda = p.references.maugis_lambda.unwrap();
+        assert!((lambda - tack_analytics::maugis_lambda(1.0, 0.1, 1.0, 1.0)).abs() < 1e-12);
+        assert!(
+            err(&["adhesion.model=\"smoothed_dugdale\""])
+                .contains("adhesion.sigma0 is required with")
+        );
+        assert!(
+            err(&[
+                "adhesion.model=\"smoothed_dugdale\"",
+                "adhesion.sigma0=1",
+                "adhesion.range=0.1"
+            ])
+            .contains("adhesion.range = 0.1 is read by")
+        );
+        for bad in ["0.0", "-1.0", "nan", "inf"] {
+            let message = err(&[
+                "adhesion.model=\"smoothed_dugdale\"",
+                &format!("adhesion.sigma0={bad}"),
+            ]);
+            assert!(message.starts_with("adhesion.sigma0 = "), "{message}");
+        }
+    }
+
+    #[test]
     fn the_dugdale_law_is_read_and_its_inputs_are_checked() {
         let p = build(&["adhesion.model=\"dugdale\"", "adhesion.sigma0=1.0"]).unwrap();
         assert_eq!(p.law, AdhesionLaw::Dugdale(Dugdale { sigma0: 1.0 }));
@@ -918,7 +951,7 @@ mod adhesion_tests {
         assert!(build(&[]).unwrap().law == AdhesionLaw::JkrLimit(JkrLimit { kappa: KAPPA }));
         assert!(
             err(&["adhesion.sigma0=1.0"])
-                .contains("adhesion.sigma0 = 1 is read by adhesion.model = \"dugdale\" only")
+                .contains("adhesion.sigma0 = 1 is read by adhesion.model = \"dugdale\" or \"smoothed_dugdale\" only")
         );
         assert!(err(&["adhesion.model=\"dugdale\""]).contains("adhesion.sigma0 is required with"));
         for bad in ["0.0", "-1.0", "nan", "inf"] {
