@@ -229,6 +229,9 @@ pub fn pull_off_richardson(
     let summary = &mut outcome.result.summary;
     crate::engine::insert_richardson(&mut summary.extra, &outcome.problem, forces, dx_over_a_c);
     summary
+        .warnings
+        .extend(crate::engine::richardson_warning(&outcome.problem.law));
+    summary
         .extra
         .insert("richardson_aliased_rms".into(), aliased);
     if aliasing {

@@ -62,7 +62,8 @@ class ConvergenceWarning(TackWarning, RuntimeWarning):
 
 class RichardsonWarning(TackWarning):
     """A Richardson extrapolation that does not hold: the coarse (2 dx) grid samples another
-    body (a height array with content above its Nyquist wave)."""
+    body (a height array with content above its Nyquist wave), or solves another law (the
+    smoothed Dugdale law, whose ramp is bound to the grid)."""
 
 
 #: (start of the sentence, class), first match wins.

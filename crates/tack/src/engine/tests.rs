@@ -140,6 +140,37 @@ fn richardson_takes_the_smooth_laws_second_order() {
     assert_eq!(e["pull_off_force_richardson"], f + (f - c) / 3.0);
 }
 
+/// The smoothed Dugdale law's Richardson pair is first order and says it is no error estimate
+/// (its ramp is bound to each grid); the other laws' pairs carry no such warning.
+#[test]
+fn richardson_under_the_smoothed_dugdale_law_warns() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../data/examples/smoothed_dugdale_sphere.toml");
+    let sets = ["grid.n=32".to_owned(), "grid.dx=0.6".to_owned()];
+    let scene = Scene::load(&path, &sets).unwrap();
+    let options = RunOptions {
+        command_line: None,
+        richardson: true,
+        threads: None,
+    };
+    let outcome = run(&scene, &options, &mut ()).unwrap();
+    let s = &outcome.result.summary;
+    assert_eq!(s.extra["richardson_order"], 1.0);
+    assert!(
+        s.warnings
+            .iter()
+            .any(|w| w.starts_with("richardson: the smoothed Dugdale law's ramp")),
+        "{:?}",
+        s.warnings
+    );
+    assert!(
+        richardson_warning(&tack_solver::AdhesionLaw::from(tack_solver::Dugdale {
+            sigma0: 1.0
+        }))
+        .is_none()
+    );
+}
+
 fn run_with(sets: &[&str]) -> RunOutcome {
     let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
     let scene = Scene::parse(JKR_EXAMPLE, ".", &sets).unwrap();
