@@ -5,6 +5,7 @@ use tack_fields as fields;
 
 use super::{Curve, REACH_FRACTION};
 use crate::SolverError;
+use crate::validate::positive;
 
 /// The scene name.
 pub(super) const NAME: &str = "smoothed_dugdale";
@@ -16,7 +17,7 @@ pub(super) const NAME: &str = "smoothed_dugdale";
 /// smooth sphere (docs/theory.md §3.7, "A sub-element variant"): half-widths of 0.57, 1.1, 2.3
 /// and 4.5 openings at λ = 1 and l/Δx = 10 left +3.6%, +1.6%, +0.47% and +0.15% of the
 /// pull-off (the Dugdale law +7.4%); 2 keeps the ramp narrow against the range where the
-/// zone is resolved (`s/h0 ≈ 1.8/(l/Δx)`).
+/// zone is resolved (`s/h0 ≈ 1.76/(l/Δx)`).
 pub const SMOOTHING_OPENINGS: f64 = 2.0;
 
 /// The least half-width of the ramp, as a fraction of the range: the custom-curve checks'
@@ -29,8 +30,8 @@ pub const LEAST_SMOOTHING: f64 = 0.02;
 /// `h0 − s < g < h0 + s` by the quintic smoothstep `S(t) = t³(10 − 15t + 6t²)` instead of at
 /// once: `p(g) = −σ0 S((h0 + s − g)/(2s))`, which keeps the work `σ0 h0 = γ` (the ramp is odd
 /// about `h0`), the peak σ0 and a continuous slope. Bound to a mesh ([`SmoothedDugdale::on_mesh`],
-/// `s` about an element's own opening) it converges to the Dugdale law as the mesh is refined,
-/// at first order like it but with an error 11 to 62 times smaller (docs/theory.md §3.7). A
+/// `s` about an element's own opening) it tends to the Dugdale law as the mesh is refined, with
+/// an error 11 to 62 times smaller on the same mesh and no regular order (docs/theory.md §3.7). A
 /// scene names it `[adhesion] model = "smoothed_dugdale"` with `sigma0`, and the run binds it to
 /// its mesh; [`AdhesionLaw::from_model`](super::AdhesionLaw::from_model) makes it unbound
 /// ([`SmoothedDugdale::unbound`]), and [`AdhesionLaw::on_mesh`](super::AdhesionLaw::on_mesh)
@@ -39,33 +40,34 @@ pub const LEAST_SMOOTHING: f64 = 0.02;
 pub struct SmoothedDugdale {
     /// The tension σ0 > 0.
     pub sigma0: f64,
-    /// The range `h0 = γ/σ0`, where the tension is half of σ0 (NaN until bound).
+    /// The range `h0 = γ/σ0`, where the tension is half of σ0 (0 until bound).
     pub range: f64,
-    /// The ramp's half-width `s`, `0 < s < h0` (NaN until bound).
+    /// The ramp's half-width `s`, `0 < s < h0` (0 until bound).
     pub width: f64,
 }
 
 impl SmoothedDugdale {
     /// The law of tension `sigma0` not yet bound to a work of adhesion and a mesh: its range
-    /// and width are NaN, and a solver made with it binds it to its own
+    /// and width are 0, and a solver made with it binds it to its own
     /// (`AdhesiveSolver::with_law`).
     pub fn unbound(sigma0: f64) -> Self {
         Self {
             sigma0,
-            range: f64::NAN,
-            width: f64::NAN,
+            range: 0.0,
+            width: 0.0,
         }
     }
 
     /// Whether the law has its range and width.
     pub fn is_bound(&self) -> bool {
-        self.range.is_finite() && self.width.is_finite()
+        self.range > 0.0 && self.width > 0.0
     }
 
     /// The law of tension `sigma0` and work `gamma` with the ramp's half-width `width` given,
     /// `0 < width < γ/σ0`; errors name the bad value.
     pub fn with_width(sigma0: f64, gamma: f64, width: f64) -> Result<Self, SolverError> {
-        positive(&[("sigma0", sigma0), ("gamma", gamma)])?;
+        positive("sigma0", sigma0)?;
+        positive("gamma", gamma)?;
         let range = gamma / sigma0;
         if !(width.is_finite() && width > 0.0 && width < range) {
             return Err(SolverError::OutOfRange {
@@ -89,12 +91,14 @@ impl SmoothedDugdale {
     /// capped on zones under about 3.5 elements). Errors name the value that is not finite and
     /// positive.
     pub fn on_mesh(sigma0: f64, gamma: f64, e_star: f64, dx: f64) -> Result<Self, SolverError> {
-        positive(&[
+        for (field, value) in [
             ("sigma0", sigma0),
             ("gamma", gamma),
             ("e_star", e_star),
             ("dx", dx),
-        ])?;
+        ] {
+            positive(field, value)?;
+        }
         let k = tack_kernels::FreeOperator::self_compliance_of(dx, e_star);
         let range = gamma / sigma0;
         let width = (SMOOTHING_OPENINGS * k * sigma0).clamp(LEAST_SMOOTHING * range, 0.5 * range);
@@ -106,20 +110,6 @@ impl SmoothedDugdale {
     fn t(&self, g: f64) -> f64 {
         ((self.range + self.width - g) / (2.0 * self.width)).clamp(0.0, 1.0)
     }
-}
-
-/// Each value finite and > 0, or the error naming the first that is not.
-fn positive(given: &[(&'static str, f64)]) -> Result<(), SolverError> {
-    for &(field, value) in given {
-        if !(value.is_finite() && value > 0.0) {
-            return Err(SolverError::OutOfRange {
-                field,
-                value,
-                allowed: "finite and > 0",
-            });
-        }
-    }
-    Ok(())
 }
 
 impl Curve for SmoothedDugdale {
