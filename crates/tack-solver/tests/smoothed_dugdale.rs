@@ -7,14 +7,13 @@
 //! Units: R = E* = γ = 1 (forces in πγR). The cohesive zone ahead of a straight crack is
 //! `l = πE*γ/(4σ0²)` long.
 
+mod sphere_run;
+
 use std::f64::consts::PI;
 use tack_analytics::{maugis_lambda, maugis_pull_off_hat};
 use tack_geometry::{Boundary, Grid, Sphere, Surface};
 use tack_kernels::operator_for;
-use tack_solver::{
-    AdhesionLaw, AdhesiveOptions, AdhesiveSolver, ApproachPath, Curve, Dugdale, SmoothedDugdale,
-    SnapshotRequest,
-};
+use tack_solver::{AdhesionLaw, AdhesiveOptions, AdhesiveSolver, Curve, Dugdale, SmoothedDugdale};
 
 /// σ0 of Maugis parameter `lambda` for R = E* = γ = 1.
 fn sigma0_of(lambda: f64) -> f64 {
@@ -22,35 +21,20 @@ fn sigma0_of(lambda: f64) -> f64 {
 }
 
 /// The pull-off over Maugis's, less one, of the smooth sphere at `lambda` on a free grid of
-/// element `dx` and half-width `half`, loaded from out of reach to `d = 1` and retracted in
-/// steps `step` until the zone lets go; the Dugdale law or its smoothed variant on that mesh.
+/// element `dx` and half-width `half` (`sphere_run`), loaded from out of reach to `d = 1` and
+/// retracted in steps `step` past where the zone lets go; the Dugdale law or its smoothed
+/// variant on that mesh.
 fn pull_off_error(lambda: f64, dx: f64, half: f64, step: f64, smoothed: bool) -> f64 {
     let sigma0 = sigma0_of(lambda);
     let n = 2 * (half / dx).round() as usize + 1;
-    let grid = Grid::square(n, dx, Boundary::Free).unwrap();
-    let surface = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
-    let op = operator_for(grid, 1.0).unwrap();
     let law = if smoothed {
         AdhesionLaw::from(SmoothedDugdale::on_mesh(sigma0, 1.0, 1.0, dx).unwrap())
     } else {
         AdhesionLaw::Dugdale(Dugdale { sigma0 })
     };
     let reach = law.reach(1.0).unwrap();
-    let mut solver =
-        AdhesiveSolver::with_law(op, &surface, 1.0, law, AdhesiveOptions::default()).unwrap();
-    let path = ApproachPath {
-        start: -reach - step,
-        max_approach: 1.0,
-        load_step: step,
-        unload_step: step,
-        coarse_unload_step: None,
-        refine_pull_off: false,
-        retract_to: None,
-        max_steps: 100_000,
-    };
-    let r = solver
-        .run_path(&path, &SnapshotRequest::None, &mut ())
-        .unwrap();
+    // Retracted to d = −3, past where the zone lets go (−1.8 at λ = 1).
+    let r = sphere_run::run(&law, n, dx, (-reach - step, 1.0, step, -3.0));
     assert!(r.completed && r.all_converged(), "λ = {lambda}, Δx = {dx}");
     assert!(
         r.records.iter().all(|s| !s.edge_contact),
