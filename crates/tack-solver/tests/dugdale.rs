@@ -7,6 +7,8 @@
 //! Units: R = E* = γ = 1 (forces in πγR below). The cohesive zone ahead of a straight crack is
 //! `l = πE*γ/(4σ0²)` long; the meshes resolve it by the number of elements given per test.
 
+mod sphere_run;
+
 use std::f64::consts::PI;
 use tack_analytics::{MaugisBranch, maugis_force_at, maugis_lambda, maugis_pull_off_hat};
 use tack_geometry::{Boundary, Grid, Sphere, Surface};
@@ -27,25 +29,8 @@ fn sigma0_of(lambda: f64) -> f64 {
 fn cycle(lambda: f64, dx: f64, half: f64, step: f64) -> PathResult {
     let sigma0 = sigma0_of(lambda);
     let n = 2 * (half / dx).round() as usize + 1;
-    let grid = Grid::square(n, dx, Boundary::Free).unwrap();
-    let surface = Surface::from_shape(grid, &Sphere::new(1.0).unwrap());
-    let op = operator_for(grid, 1.0).unwrap();
     let law = AdhesionLaw::Dugdale(Dugdale { sigma0 });
-    let mut solver =
-        AdhesiveSolver::with_law(op, &surface, 1.0, law, AdhesiveOptions::default()).unwrap();
-    let path = ApproachPath {
-        start: -1.0 / sigma0 - step,
-        max_approach: 1.0,
-        load_step: step,
-        unload_step: step,
-        coarse_unload_step: None,
-        refine_pull_off: false,
-        retract_to: None,
-        max_steps: 100_000,
-    };
-    let r = solver
-        .run_path(&path, &SnapshotRequest::None, &mut ())
-        .unwrap();
+    let r = sphere_run::run_to(&law, n, dx, (-1.0 / sigma0 - step, 1.0, step), None);
     assert!(r.completed && r.all_converged(), "λ = {lambda}, Δx = {dx}");
     assert!(
         r.records.iter().all(|s| !s.edge_contact),
