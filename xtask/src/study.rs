@@ -7,19 +7,15 @@ use std::fmt::Write as _;
 use std::time::Instant;
 use tack::problem::Problem;
 
-/// The rough sphere of the loading study: R = 1 on a free L = R grid of `n²`, E* = 1,
-/// γ = 1.44868e-4 (a_c ≈ 0.078 R), random roughness of Hurst exponent 0.5 and rms height `h`
-/// (0.0052: the speed-bar scene of `cargo xtask bench`), seed `seed`, the bench's retraction
-/// steps (5.5e-4 while compressive, 5.5e-5 once tensile); the Dugdale law at Maugis parameter
-/// `lambda` (of R = 1) when given.
-fn rough_scene(n: usize, seed: u64, h: f64, lambda: Option<f64>) -> Result<tack::Scene> {
-    rough_scene_with(n, seed, h, dugdale_sets(ROUGH_GAMMA, lambda))
-}
-
-/// The work of adhesion of [`rough_scene`]: a_c ≈ 0.078 R.
+/// The work of adhesion of [`rough_scene_with`]: a_c ≈ 0.078 R.
 const ROUGH_GAMMA: f64 = 1.44868e-4;
 
-/// [`rough_scene`] with the law's overrides `sets` (none: the zero-range law).
+/// The rough sphere of the studies: R = 1 on a free L = R grid of `n²`, E* = 1,
+/// γ = [`ROUGH_GAMMA`] (a_c ≈ 0.078 R), random roughness of Hurst exponent 0.5 and rms height
+/// `h` (0.0052: the speed-bar scene of `cargo xtask bench`), seed `seed` (0: the smooth
+/// sphere), the bench's retraction steps (5.5e-4 while compressive, 5.5e-5 once tensile), under
+/// the law of the overrides `sets` (none: the zero-range law; [`dugdale_sets`],
+/// [`exponential_sets`]).
 fn rough_scene_with(n: usize, seed: u64, h: f64, sets: Vec<String>) -> Result<tack::Scene> {
     let gamma = ROUGH_GAMMA;
     // Seed 0: the smooth sphere, the reference of the same law, mesh and path.
@@ -138,6 +134,25 @@ fn run_loaded(scene: &tack::Scene, load_steps: usize) -> Result<StudyRun> {
     })
 }
 
+/// Each law of a study, its name and overrides: zero-range, Dugdale at each `--lambdas` λ,
+/// exponential at each `--mus` μ.
+fn study_laws(opts: &Opts) -> Vec<(String, Vec<String>)> {
+    std::iter::once(("zero-range".to_string(), vec![]))
+        .chain(opts.lambdas.iter().map(|&l| {
+            (
+                format!("Dugdale λ = {l}"),
+                dugdale_sets(ROUGH_GAMMA, Some(l)),
+            )
+        }))
+        .chain(opts.mus.iter().map(|&m| {
+            (
+                format!("exponential μ = {m}"),
+                exponential_sets(ROUGH_GAMMA, m),
+            )
+        }))
+        .collect()
+}
+
 /// `cargo xtask study loading [--seeds N] [--n N] [--lambdas L,L] [--mus M,M] [--steps K,K]`:
 /// the rough sphere's |F/F_JKR| against the number of load steps, zero-range, Dugdale and
 /// exponential.
@@ -155,21 +170,7 @@ fn loading(opts: &Opts) -> Result<String> {
         "---|".repeat(opts.steps.len()),
         n = opts.n
     );
-    // Each law's name and overrides: zero-range, Dugdale at each λ, exponential at each μ.
-    let laws: Vec<(String, Vec<String>)> = std::iter::once(("zero-range".to_string(), vec![]))
-        .chain(opts.lambdas.iter().map(|&l| {
-            (
-                format!("Dugdale λ = {l}"),
-                dugdale_sets(ROUGH_GAMMA, Some(l)),
-            )
-        }))
-        .chain(opts.mus.iter().map(|&m| {
-            (
-                format!("exponential μ = {m}"),
-                exponential_sets(ROUGH_GAMMA, m),
-            )
-        }))
-        .collect();
+    let laws = study_laws(opts);
     for (name, sets) in &laws {
         for seed in opts.first_seed..=opts.seeds {
             let scene = rough_scene_with(opts.n, seed, 0.0052, sets.clone())?;
@@ -199,7 +200,7 @@ fn loading(opts: &Opts) -> Result<String> {
 
 /// `cargo xtask study dissipation`: the loop's dissipated energy of the rough sphere against α*
 /// (H = 0.5, the rms height set by α*) with the apparent work of adhesion of both branches,
-/// zero-range and Dugdale, each loaded in the last of `--steps` equal steps (default 20); the
+/// zero-range, Dugdale (`--lambdas`) and exponential (`--mus`), each loaded in the last of `--steps` equal steps (default 20); the
 /// smooth sphere (seed 0) as the reference. Writes the table and `results/study-dissipation.svg`.
 fn dissipation(opts: &Opts) -> Result<String> {
     let (gamma, n) = (1.44868e-4, opts.n);
@@ -211,11 +212,7 @@ fn dissipation(opts: &Opts) -> Result<String> {
     } else {
         20
     };
-    let laws: Vec<Option<f64>> = std::iter::once(None)
-        .chain(opts.lambdas.iter().map(|&l| Some(l)))
-        .collect();
-    let name =
-        |law: &Option<f64>| law.map_or("zero-range".to_string(), |l| format!("Dugdale λ = {l}"));
+    let laws = study_laws(opts);
     let mut s = format!(
         "## Dissipation of a load–retract cycle: rough sphere (H = 0.5, R = L, {n}²)\n\n\
          Loaded in {k} equal steps from out of reach to d = 0.02255 and retracted until \
@@ -224,7 +221,7 @@ fn dissipation(opts: &Opts) -> Result<String> {
          | α* | h | {} |\n|---|---|{}\n",
         opts.seeds,
         laws.iter()
-            .map(|l| format!("{}: W (range) · γ_app approach/retraction", name(l)))
+            .map(|(name, _)| format!("{name}: W (range) · γ_app approach/retraction"))
             .collect::<Vec<_>>()
             .join(" | "),
         "---|".repeat(laws.len())
@@ -233,9 +230,9 @@ fn dissipation(opts: &Opts) -> Result<String> {
     // Per law: (α*, mean W, lo, hi) and the smooth sphere's W.
     let mut curves: Vec<Vec<(f64, f64, f64, f64)>> = vec![Vec::new(); laws.len()];
     let mut smooth = Vec::new();
-    for law in &laws {
-        let r = run_loaded(&rough_scene(n, 0, 0.0, *law)?, k)?;
-        eprintln!("smooth {}: W = {:?}", name(law), r.dissipated);
+    for (name, sets) in &laws {
+        let r = run_loaded(&rough_scene_with(n, 0, 0.0, sets.clone())?, k)?;
+        eprintln!("smooth {name}: W = {:?}", r.dissipated);
         smooth.push(r.dissipated.unwrap_or(f64::NAN));
     }
     writeln!(
@@ -250,19 +247,21 @@ fn dissipation(opts: &Opts) -> Result<String> {
     for alpha in alphas {
         let h = tack_analytics::rms_height_from_alpha_star(1.0, gamma, alpha, 0.5, q0, q1);
         let mut row = format!("| {alpha} | {h:.3e} |");
-        for (li, law) in laws.iter().enumerate() {
+        for (li, (name, sets)) in laws.iter().enumerate() {
             let (mut w, mut ga, mut gr) = (Vec::new(), Vec::new(), Vec::new());
+            let mut unconverged = 0usize;
             for seed in 1..=opts.seeds {
-                let r = run_loaded(&rough_scene(n, seed, h, *law)?, k)?;
+                let r = run_loaded(&rough_scene_with(n, seed, h, sets.clone())?, k)?;
                 eprintln!(
-                    "α* {alpha} {} seed {seed}: W = {:?}, |F/F_JKR| = {:.3}, γ_app {:?}/{:?}, {:.1} s",
-                    name(law),
+                    "α* {alpha} {name} seed {seed}: W = {:?}, |F/F_JKR| = {:.3}, γ_app {:?}/{:?}, {:.1} s{}",
                     r.dissipated,
                     r.ratio.abs(),
                     r.gamma_approach,
                     r.gamma_retraction,
-                    r.seconds
+                    r.seconds,
+                    if r.converged { "" } else { " (not converged)" }
                 );
+                unconverged += usize::from(!r.converged);
                 w.extend(r.dissipated);
                 ga.extend(r.gamma_approach.map(|g| g / gamma));
                 gr.extend(r.gamma_retraction.map(|g| g / gamma));
@@ -275,10 +274,15 @@ fn dissipation(opts: &Opts) -> Result<String> {
                 });
             write!(
                 row,
-                " {:.3} ({lo:.3}–{hi:.3}) · {:.2}/{:.2} |",
+                " {:.3} ({lo:.3}–{hi:.3}) · {:.2}/{:.2}{} |",
                 mean(&w),
                 mean(&ga),
-                mean(&gr)
+                mean(&gr),
+                if unconverged > 0 {
+                    format!(" ({unconverged} not converged)")
+                } else {
+                    String::new()
+                }
             )?;
             curves[li].push((alpha, mean(&w), lo, hi));
         }
@@ -290,10 +294,10 @@ fn dissipation(opts: &Opts) -> Result<String> {
     let series = laws
         .iter()
         .enumerate()
-        .map(|(li, law)| {
+        .map(|(li, (name, _))| {
             let (c, w0) = (&curves[li], smooth[li]);
             crate::plot::Series::new(
-                name(law),
+                name.clone(),
                 c.iter().map(|p| (p.0, p.1 / w0)).collect(),
                 crate::plot::Style::ErrorBars(c.iter().map(|p| 0.5 * (p.3 - p.2) / w0).collect()),
                 li,
@@ -430,7 +434,7 @@ struct Opts {
     n: usize,
     seeds: u64,
     lambdas: Vec<f64>,
-    /// Tabor parameters of the exponential law (`--mus`; loading study only).
+    /// Tabor parameters of the exponential law (`--mus`; loading and dissipation studies).
     mus: Vec<f64>,
     steps: Vec<usize>,
 }
