@@ -72,8 +72,8 @@ commands:
                           under the zero-range law, the Dugdale law at each Maugis λ (default
                           1,2,3) and the exponential law at each Tabor μ (--mus, default none);
                           dissipation: the loop's dissipated energy against
-                          α* = 0.2..0.7 under the same laws (loaded in 20 steps, 320
-                          with --mus, unless --steps), and
+                          α* = 0.2..0.7 under the same laws (loaded in 320 steps unless
+                          --steps), and
                           results/study-dissipation.svg; jkr-limit: the smooth sphere's
                           Dugdale pull-off at each λ beside the criterion at a_c/dx = R
                           (default 20,40,80, each double the last); rate: a standard linear

@@ -198,30 +198,29 @@ fn loading(opts: &Opts) -> Result<String> {
     Ok(s)
 }
 
-/// The dissipation study's load steps by default when a smooth law runs (`--mus`): about ρ/10
-/// a step at μ = 1 (the step is the depth from out of reach over the count). The loop of a
-/// cycle that is reversible, the smooth sphere at μ = 1, is then the trapezoid rule's error on
-/// its approach branch: 0.169, 0.057 and 0.013 πγR·d_s for 20, 80 and 320 steps, where the
-/// zero-range loops of 320 steps are those of 20 to 1%.
-const SMOOTH_LOAD_STEPS: usize = 320;
+/// The dissipation study's load steps by default: about ρ/10 a step under the exponential law
+/// at μ = 1 (the step is the depth from out of reach over the count). Where the retraction
+/// retraces the approach the loop is the trapezoid rule's error on the approach branch: the
+/// smooth sphere at μ = 1, a reversible cycle, read 0.169, 0.057 and 0.013 πγR·d_s for 20, 80
+/// and 320 steps, and the Dugdale law's at λ = 1 2.22 and 1.84 for 20 and 320 (20 until
+/// 2026-11-30); the zero-range loops of 320 steps are those of 20 to 1%.
+const LOOP_LOAD_STEPS: usize = 320;
 
 /// `cargo xtask study dissipation`: the loop's dissipated energy of the rough sphere against α*
 /// (H = 0.5, the rms height set by α*) with the apparent work of adhesion of both branches,
-/// zero-range, Dugdale (`--lambdas`) and exponential (`--mus`), each loaded in the last of `--steps` equal steps (default 20, [`SMOOTH_LOAD_STEPS`] with `--mus`); the
-/// smooth sphere (seed 0) as the reference. Writes the table and `results/study-dissipation.svg`.
+/// zero-range, Dugdale (`--lambdas`) and exponential (`--mus`), each loaded in the last of
+/// `--steps` equal steps (default [`LOOP_LOAD_STEPS`]); the smooth sphere (seed 0) as the
+/// reference. Writes the table and `results/study-dissipation.svg`.
 fn dissipation(opts: &Opts) -> Result<String> {
     let (gamma, n) = (1.44868e-4, opts.n);
     let q0 = 2.0 * std::f64::consts::PI;
     let q1 = std::f64::consts::PI * n as f64;
-    // The loading study's default step counts are not this study's: 20 unless given, or
-    // [`SMOOTH_LOAD_STEPS`] with a smooth law, whose reversible approach branch the loop
-    // integral must resolve.
+    // The loading study's default step counts are not this study's: [`LOOP_LOAD_STEPS`]
+    // unless given.
     let k = if opts.steps_given {
-        opts.steps.last().copied().unwrap_or(20)
-    } else if opts.mus.is_empty() {
-        20
+        opts.steps.last().copied().unwrap_or(LOOP_LOAD_STEPS)
     } else {
-        SMOOTH_LOAD_STEPS
+        LOOP_LOAD_STEPS
     };
     let laws = study_laws(opts);
     let mut s = format!(
