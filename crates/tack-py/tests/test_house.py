@@ -128,3 +128,20 @@ def test_the_reference_gamma_of_a_pattern_is_the_scenes():
         tack.pull_off(sphere, gamma=0.02, gamma_reference=0.02, **common)
     with pytest.raises(tack.TackError, match="^gamma_reference = -1 is invalid"):
         tack.pull_off(sphere, gamma=rings, gamma_reference=-1.0, **common)
+
+
+def test_a_loop_its_approach_does_not_resolve_warns(repo):
+    # The exponential example's sphere at Tabor mu = 1 (range 0.01), loaded in steps of 1.07
+    # ranges from out of reach: keeping every other approach step moves the loop 30 times over.
+    coarse = {
+        "adhesion.range": 0.01,
+        "protocol.start": -0.1947,
+        "protocol.max_approach": 0.03,
+        "protocol.load_step": 0.0107,
+        "protocol.coarse_unload_step": 0.002,
+        "protocol.unload_step": 2e-4,
+    }
+    scene = repo / "data/examples/exponential_sphere.toml"
+    with pytest.warns(tack.UnderResolvedWarning, match=r"tack.run: dissipated_energy: the loop"):
+        r = tack.run(scene, overrides=coarse)
+    assert any(w.startswith("dissipated_energy:") for w in r.summary["warnings"])

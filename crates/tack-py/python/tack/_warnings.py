@@ -72,6 +72,7 @@ _KINDS = (
     ("under-resolved", UnderResolvedWarning),
     ("pull-off not resolved", UnderResolvedWarning),
     ("the pull-off is carried by", UnderResolvedWarning),
+    ("dissipated_energy:", UnderResolvedWarning),
     ("the closed-form references", ReferenceWarning),
     ("loading history", LoadingHistoryWarning),
     ("full contact", FullContactWarning),

@@ -171,6 +171,54 @@ fn richardson_under_the_smoothed_dugdale_law_warns() {
     );
 }
 
+/// A recorded loop that its approach's steps leave uncertain says so: the exponential example's
+/// sphere at Tabor μ = 1 (ρ = 0.01, 5.4 elements per process zone), loaded in steps of 1.07ρ
+/// from out of reach, reads a loop of 8.6e-7 that keeping every other approach step moves by
+/// 2.7e-5; at μ = 3 on its default path (steps of ρ/17) the loop, 3.35e-5, moves by 1.2% and
+/// nothing is said.
+#[test]
+fn a_loop_the_approach_does_not_resolve_is_flagged() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../data/examples/exponential_sphere.toml");
+    let warned = |sets: &[&str]| {
+        let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        let outcome = run(
+            &Scene::load(&path, &sets).unwrap(),
+            &RunOptions::default(),
+            &mut (),
+        )
+        .unwrap();
+        let c =
+            outcome
+                .path
+                .cycle_under(&tack_solver::AdhesionLaw::from(tack_solver::Exponential {
+                    range: outcome.result.summary.extra["range"],
+                }));
+        let said = outcome
+            .result
+            .summary
+            .warnings
+            .iter()
+            .any(|w| w.starts_with("dissipated_energy: the loop"));
+        (
+            c.dissipated_energy.unwrap(),
+            c.approach_sampling.unwrap(),
+            said,
+        )
+    };
+    let (w, moved, said) = warned(&[
+        "adhesion.range=0.01",
+        "protocol.start=-0.1947",
+        "protocol.max_approach=0.03",
+        "protocol.load_step=0.0107",
+        "protocol.coarse_unload_step=0.002",
+        "protocol.unload_step=2e-4",
+    ]);
+    assert!(said && moved > 10.0 * w.abs(), "{w} {moved}");
+    let (w, moved, said) = warned(&[]);
+    assert!(!said && moved < 0.05 * w, "{w} {moved}");
+}
+
 fn run_with(sets: &[&str]) -> RunOutcome {
     let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
     let scene = Scene::parse(JKR_EXAMPLE, ".", &sets).unwrap();
