@@ -274,7 +274,7 @@ pub const LOOP_SAMPLING_FRACTION: f64 = 0.1;
 /// the retraction retraces the approach and the loop is its sampling's error at every step, on
 /// a 128² sphere loaded in 20, 80 and 320 steps (1.33ρ, 0.33ρ, 0.083ρ), moves by 3.5e-3,
 /// 2.7e-3 and 1.1e-3 of the scale (by 0.41, 0.89 and 1.07 of the loop), and Python's
-/// `pull_off` of a sphere at μ = 1 on its default path (steps of ρ/50) by 3.7e-4; a sphere at
+/// `pull_off` of a sphere at μ = 1 on its default path by 3.7e-4; a sphere at
 /// μ = 1 loaded in steps of 1.07ρ by 6.9e-2. So the warning marks loads coarser than about ρ/5
 /// and lets a reversible cycle sampled finely pass as zero.
 pub const LOOP_SAMPLING_FLOOR: f64 = 2e-3;
@@ -295,7 +295,10 @@ fn loop_sampling_warning(problem: &Problem, path: &PathResult) -> Option<String>
         d = (d.0.min(r.approach), d.1.max(r.approach));
     }
     let scale = tension * (d.1 - d.0);
-    if !(moved > LOOP_SAMPLING_FRACTION * w.abs() && moved > LOOP_SAMPLING_FLOOR * scale) {
+    if tension <= 0.0
+        || moved <= LOOP_SAMPLING_FRACTION * w.abs()
+        || moved <= LOOP_SAMPLING_FLOOR * scale
+    {
         return None;
     }
     Some(format!(
