@@ -166,11 +166,7 @@ pub fn execute(
             .filter(|_| matches!(problem.law, tack_solver::AdhesionLaw::JkrLimit(_)))
             .map(|a| problem.grid.dx() / a);
         let forces = (path.pull_off_force(), coarse_f);
-        insert_richardson(&mut result.summary.extra, &problem, forces, dx_over_a_c);
-        result
-            .summary
-            .warnings
-            .extend(richardson_warning(&problem.law));
+        insert_richardson(&mut result.summary, &problem, forces, dx_over_a_c);
     }
     Ok(RunOutcome {
         problem,
@@ -186,14 +182,16 @@ pub fn execute(
 /// criterion and the Dugdale law, second for the smooth laws, where a first-order rule would
 /// overshoot by twice the fine error), `pull_off_force_coarse`, `pull_off_force_richardson`,
 /// `pull_off_error_estimate` (with the criterion's floor when `dx_over_a_c` is given) and,
-/// where F_JKR applies, `pull_off_ratio_richardson`. Shared by `--richardson` and
-/// [`crate::heights_richardson`].
+/// where F_JKR applies, `pull_off_ratio_richardson`; and [`richardson_warning`] where the
+/// law has one. Shared by `--richardson` and [`crate::heights_richardson`].
 pub(crate) fn insert_richardson(
-    extra: &mut std::collections::BTreeMap<String, f64>,
+    summary: &mut tack_io::Summary,
     problem: &Problem,
     (fine, coarse): (f64, f64),
     dx_over_a_c: Option<f64>,
 ) {
+    summary.warnings.extend(richardson_warning(&problem.law));
+    let extra = &mut summary.extra;
     let order = problem.law.convergence_order();
     let extrapolated = tack_solver::richardson(fine, coarse, order);
     extra.insert("richardson_order".into(), order);

@@ -227,10 +227,7 @@ pub fn pull_off_richardson(
     let (aliasing, aliased, rms) = aliases(heights);
     let forces = (outcome.pull_off_force(), coarse_f);
     let summary = &mut outcome.result.summary;
-    crate::engine::insert_richardson(&mut summary.extra, &outcome.problem, forces, dx_over_a_c);
-    summary
-        .warnings
-        .extend(crate::engine::richardson_warning(&outcome.problem.law));
+    crate::engine::insert_richardson(summary, &outcome.problem, forces, dx_over_a_c);
     summary
         .extra
         .insert("richardson_aliased_rms".into(), aliased);
