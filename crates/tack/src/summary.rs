@@ -3,7 +3,7 @@
 //! [`tack_io::RunResult`] that [`crate::engine`] hands back.
 
 use tack_fields as fields;
-use tack_solver::{AdhesionLaw, PathResult, Phase};
+use tack_solver::{AdhesionLaw, Cycle, PathResult, Phase};
 
 use crate::problem::Problem;
 
@@ -137,7 +137,7 @@ pub fn summary(problem: &Problem, path: &PathResult) -> tack_io::Summary {
         extra,
         status: Some(status.to_owned()),
         adhesion_model: Some(model_name(&problem.law).to_owned()),
-        warnings: warnings(problem, path),
+        warnings: warnings(problem, path, &cycle),
     }
 }
 
@@ -177,8 +177,9 @@ pub const MIN_PULL_OFF_ELEMENTS: usize = 20;
 /// The warnings of a run: the problem's own (under-resolved, reference not applicable), then
 /// what the path shows (stopped at `max_steps`, steps that did not converge, contact at the
 /// edge of a free grid, a pull-off not resolved by the path or carried by a handful of
-/// elements).
-pub fn warnings(problem: &Problem, path: &PathResult) -> Vec<String> {
+/// elements, a loop its approach does not resolve), from the path's `cycle`
+/// ([`PathResult::cycle_under`] the problem's law, as [`summary`] has it).
+pub fn warnings(problem: &Problem, path: &PathResult, cycle: &Cycle) -> Vec<String> {
     let mut out = problem.warnings.clone();
     let records = &path.records;
     let adhesive = problem.gamma > 0.0;
@@ -259,7 +260,7 @@ pub fn warnings(problem: &Problem, path: &PathResult) -> Vec<String> {
             }
         }
     }
-    out.extend(loop_sampling_warning(problem, path));
+    out.extend(loop_sampling_warning(problem, path, cycle));
     out
 }
 
@@ -282,11 +283,10 @@ pub const LOOP_SAMPLING_FLOOR: f64 = 2e-3;
 /// The warning of a recorded loop that its approach's steps leave uncertain (docs/theory.md
 /// §3.7, "Cycle quantities"): on a cycle the retraction retraces, the loop is the trapezoids'
 /// error on the coarser branch alone.
-fn loop_sampling_warning(problem: &Problem, path: &PathResult) -> Option<String> {
+fn loop_sampling_warning(problem: &Problem, path: &PathResult, cycle: &Cycle) -> Option<String> {
     if problem.path.refine_pull_off {
         return None;
     }
-    let cycle = path.cycle_under(&problem.law);
     let (w, moved) = (cycle.dissipated_energy?, cycle.approach_sampling?);
     let end = path.records.last()?.approach;
     let (mut tension, mut d) = (0.0f64, (f64::INFINITY, end));
