@@ -138,7 +138,7 @@ impl Curve for SmoothedDugdale {
 
     /// σ0 finite and > 0, and the law bound to a mesh.
     fn check_parameter(&self) -> Result<(), SolverError> {
-        crate::validate::positive(fields::ADHESION_SIGMA0, self.sigma0)?;
+        positive(fields::ADHESION_SIGMA0, self.sigma0)?;
         if !self.is_bound() {
             return Err(SolverError::Refused {
                 field: fields::ADHESION_MODEL,
