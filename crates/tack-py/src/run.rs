@@ -19,6 +19,15 @@ pub const MAX_THREADS: usize = tack::MAX_THREADS;
 /// The scene fields of the messages of `tack::heights::pull_off` and the arguments of
 /// `tack.pull_off` they stand for (the scene is written by the library from the arguments).
 const PULL_OFF_NAMES: Names = &[
+    // An array's default path: a sphere-like array or a given radius, never a scene's shape.
+    (
+        concat!(
+            "a sphere (",
+            field_name!(geometry.shape),
+            " = \"sphere\") or a sphere-like height map"
+        ),
+        "a radius (radius=...) or a sphere-like height array",
+    ),
     (fields::MATERIAL_E_STAR, "e_star"),
     (fields::MATERIAL_GAMMA, "gamma"),
     (

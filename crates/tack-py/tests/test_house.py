@@ -145,3 +145,59 @@ def test_a_loop_its_approach_does_not_resolve_warns(repo):
     with pytest.warns(tack.UnderResolvedWarning, match=r"tack.run: dissipated_energy: the loop"):
         r = tack.run(scene, overrides=coarse)
     assert any(w.startswith("dissipated_energy:") for w in r.summary["warnings"])
+
+
+def test_a_body_the_references_do_not_describe_warns_in_their_class(small_sphere):
+    # A sphere on a periodic strip is a row of spheres: "no F_JKR reference" is a
+    # ReferenceWarning, not a bare TackWarning.
+    # (The strip also warns of full contact and of a pull-off on few elements.)
+    with warnings.catch_warnings(record=True) as record:
+        warnings.simplefilter("always")
+        tack.run(
+            small_sphere,
+            overrides={"grid": {"nx": 32, "ny": 1, "dx": 0.45, "boundary": "periodic"}},
+        )
+    [reference] = [w for w in record if "no F_JKR reference" in str(w.message)]
+    assert type(reference.message) is tack.ReferenceWarning
+    assert all(type(w.message) is not tack.TackWarning for w in record), record
+
+
+def test_an_edge_below_a_one_step_load_is_an_edge_contact_warning(tmp_path):
+    # A map roughness that dips one element of the outermost ring below the approach of a
+    # one-step load.
+    # The sphere's own height there is 3.24; the approach 1.0, from its vertex at 0.
+    dip = np.zeros((32, 32))
+    dip[0, 16] = 0.5 - SPHERE[0, 16]
+    np.savetxt(tmp_path / "dip.txt", dip)
+    scene = f"""
+version = 1
+[material]
+e_star = 1.0
+gamma = 0.125
+[geometry]
+shape = "sphere"
+radius = 8.0
+[roughness]
+kind = "file"
+path = "{tmp_path / 'dip.txt'}"
+[grid]
+n = 32
+dx = 0.45
+[protocol]
+start = 1.0
+max_approach = 1.0
+load_step = 1.0
+unload_step = 0.02
+"""
+    with pytest.warns(tack.EdgeContactWarning) as record:
+        tack.run(scene)
+    [edge] = [w for w in record if "the one-step load to" in str(w.message)]
+    assert type(edge.message) is tack.EdgeContactWarning
+
+
+def test_an_array_without_a_radius_is_told_in_the_arguments_names():
+    with pytest.raises(tack.SceneError) as info:
+        tack.pull_off(np.zeros((32, 32)), **PULL_OFF)
+    message = str(info.value)
+    assert "a radius (radius=...) or a sphere-like height array" in message, message
+    assert not SCENE_FIELDS.search(message) and "geometry." not in message, message

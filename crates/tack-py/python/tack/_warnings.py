@@ -74,6 +74,10 @@ _KINDS = (
     ("the pull-off is carried by", UnderResolvedWarning),
     ("dissipated_energy:", UnderResolvedWarning),
     ("the closed-form references", ReferenceWarning),
+    # "no F_JKR reference", "no F_MDR reference", "no F_JG reference": periodic strips and arrays.
+    ("no F_", ReferenceWarning),
+    # A one-step load that puts elements of a free grid's outermost ring below the approach.
+    ("the one-step load to", EdgeContactWarning),
     ("loading history", LoadingHistoryWarning),
     ("full contact", FullContactWarning),
     ("contact reached the edge", EdgeContactWarning),
