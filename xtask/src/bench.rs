@@ -371,7 +371,7 @@ pub type Table = fn(&mut Vec<Row>) -> Result<()>;
 /// `results/bench.json`.
 pub fn all(args: &[String], extra: &[(&str, Table)]) -> Result<()> {
     let full = args.iter().any(|a| a == "--full");
-    // 4096² rough-sphere pull-off (hours on 2 cores) only when asked.
+    // 4096² rough-sphere pull-off (about half an hour on 2 cores) only when asked.
     let huge = args.iter().any(|a| a == "--4096");
     let mut rows = Vec::new();
 

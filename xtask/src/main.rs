@@ -60,7 +60,7 @@ commands:
                           bit for bit; periodic contact 256² … 4096²; free Hertz; bench-dugdale's
                           and bench-visco's tables); writes results/bench.json
   convergence [N...]      pull-off convergence on smooth, wavy (α = 0.5, 1) and band-limited
-                          rough spheres (H = 0.3, 0.7, three seeds) at n = 64 128 256 512 (or
+                          rough spheres (H = 0.3, 0.7, three seeds) at n = 64 … 1024 (or
                           the N given): Richardson, observed order, error estimate against the
                           distance to the finest Richardson value, time per level; writes
                           results/convergence.json
