@@ -509,8 +509,11 @@ fn cycle_lines(outcome: &RunOutcome) -> Vec<String> {
         _ => "none".to_owned(),
     };
     if let Some(w) = get("dissipated_energy") {
+        let sampling = get("dissipated_energy_sampling")
+            .map(|m| format!(" (± {} by the approach's steps)", rounded(m)))
+            .unwrap_or_default();
         lines.push(format!(
-            "cycle       dissipated ∮F dd = {}; jump in at {}, out at {}",
+            "cycle       dissipated ∮F dd = {}{sampling}; jump in at {}, out at {}",
             rounded(w),
             jump("jump_in_approach", "jump_in_force"),
             jump("jump_out_approach", "jump_out_force")

@@ -198,6 +198,7 @@ fn the_refined_retraction_does_not_report_the_loop_as_measured() {
     );
     assert!(plain.0.contains("cycle       dissipated"), "{}", plain.0);
     assert!(plain.1.extra.contains_key("dissipated_energy"));
+    assert!(plain.1.extra["dissipated_energy_sampling"] >= 0.0);
     std::fs::remove_file(&plain_h5).expect("rm");
     let (refined, h5) = run_example(
         &scratch,
@@ -205,7 +206,12 @@ fn the_refined_retraction_does_not_report_the_loop_as_measured() {
         &["protocol.refine_pull_off=true"],
     );
     let summary = tack_io::read_result(&h5).expect("read").summary;
-    for key in ["dissipated_energy", "jump_out_approach", "jump_out_force"] {
+    for key in [
+        "dissipated_energy",
+        "dissipated_energy_sampling",
+        "jump_out_approach",
+        "jump_out_force",
+    ] {
         assert!(
             !summary.extra.contains_key(key),
             "{key} reported: {refined}"

@@ -79,6 +79,10 @@ pub fn summary(problem: &Problem, path: &PathResult) -> tack_io::Summary {
     let retraction_measured = !problem.path.refine_pull_off;
     if let Some(w) = cycle.dissipated_energy.filter(|_| retraction_measured) {
         extra.insert("dissipated_energy".to_owned(), w);
+        // The loop's uncertainty from the approach's sampling (the loop sampling warning's).
+        if let Some(moved) = cycle.approach_sampling {
+            extra.insert("dissipated_energy_sampling".to_owned(), moved);
+        }
     }
     if let Some((d, f)) = cycle.jump_in {
         extra.insert("jump_in_approach".to_owned(), d);
@@ -360,7 +364,7 @@ pub const MIN_TENSILE_STEPS: usize = 3;
 /// Names of every scalar [`summary`] can record: the [`tack_io::Summary`] fields, then its
 /// `extra` keys. A run need not have all of them (`d_jkr` only for spheres, `crop_rows` only
 /// when cropped, ...). Parameter sweeps collect quantities by these names.
-pub const SUMMARY_QUANTITIES: [&str; 48] = [
+pub const SUMMARY_QUANTITIES: [&str; 49] = [
     "pull_off_force",
     "f_jkr",
     "pull_off_ratio",
@@ -392,6 +396,7 @@ pub const SUMMARY_QUANTITIES: [&str; 48] = [
     "unload_speed",
     "dwell",
     "dissipated_energy",
+    "dissipated_energy_sampling",
     "jump_in_approach",
     "jump_in_force",
     "jump_out_approach",

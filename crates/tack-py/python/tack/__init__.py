@@ -352,9 +352,11 @@ def pull_off(
             criterion, ``kappa`` its constant) or :class:`tack.Dugdale` (a cohesive zone of
             tension ``sigma0``; the path approaches from out of range, so the curve has both
             branches, and the summary holds ``maugis_lambda`` and ``f_maugis`` (spheres),
-            ``dissipated_energy``, the jumps in and out and the apparent work of adhesion of
-            each branch), or a smooth law, :class:`tack.Exponential` or
-            :class:`tack.LennardJones` (every element carries the traction of its gap; the
+            ``dissipated_energy`` with ``dissipated_energy_sampling``, the jumps in and out and
+            the apparent work of adhesion of each branch), :class:`tack.SmoothedDugdale` (the
+            same with its step smoothed over about an element), or a smooth law,
+            :class:`tack.Exponential` or :class:`tack.LennardJones` (every element carries the
+            traction of its gap; the
             summary holds ``tabor_mu`` (spheres), ``range``, ``peak_tension`` and
             ``process_zone_elements``).
         body: :class:`tack.HalfSpace` (default) or :class:`tack.Layer` (a film on a rigid

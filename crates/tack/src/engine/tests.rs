@@ -200,6 +200,13 @@ fn a_loop_the_approach_does_not_resolve_is_flagged() {
             .warnings
             .iter()
             .any(|w| w.starts_with("dissipated_energy: the loop"));
+        // The summary records the loop and its sampling's uncertainty.
+        let extra = &outcome.result.summary.extra;
+        assert_eq!(extra["dissipated_energy"], c.dissipated_energy.unwrap());
+        assert_eq!(
+            extra["dissipated_energy_sampling"],
+            c.approach_sampling.unwrap()
+        );
         (
             c.dissipated_energy.unwrap(),
             c.approach_sampling.unwrap(),
