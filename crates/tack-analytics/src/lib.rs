@@ -102,3 +102,8 @@ pub use wavy_dugdale::{
 pub use westergaard::{
     westergaard_half_width, westergaard_mean_pressure, westergaard_p_star, westergaard_pressure,
 };
+
+/// The example of README.md, run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctest;

@@ -1,12 +1,13 @@
 //! Grids, surfaces and shapes: the rigid body's gap `f(x, y)` at zero approach, sampled on a grid.
 //!
 //! A [`Grid`] is a validated set of square elements with a boundary kind; a [`Surface`] holds
-//! one height per element. Shapes ([`Sphere`], [`Ellipsoid`], [`Waviness1d`], [`Waviness2d`], [`FlatPunch`])
+//! one height per element. Shapes ([`Sphere`], [`Ellipsoid`], [`PowerLaw`], [`Waviness1d`],
+//! [`Waviness2d`], [`FlatPunch`])
 //! are analytic height functions sampled onto a grid; [`rough_surface`] generates seeded random
 //! roughness (one continuous surface whatever the resolution) and [`read_height_map_file`]
 //! imports measured heights; [`coarsen_band_limited`] takes a band-limited map to twice its
-//! element size; [`AdhesionPattern`] generates work-of-adhesion fields (stripes, checkerboard,
-//! seeded log-normal random) per element. Surfaces compose by adding
+//! element size; [`AdhesionPattern`] generates work-of-adhesion fields (stripes, rings,
+//! checkerboard, seeded log-normal random) per element. Surfaces compose by adding
 //! heights, so a macro shape plus roughness needs no special case.
 //!
 //! Element `(i, j)` has its centre at `((i − ⌊nx/2⌋)Δx, (j − ⌊ny/2⌋)Δx)`, so the sphere's apex
@@ -62,3 +63,8 @@ pub use shapes::{
     Sphere, Waviness1d, Waviness2d,
 };
 pub use surface::{Surface, Window};
+
+/// The example of README.md, run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctest;

@@ -111,3 +111,9 @@ pub use sweep::{
     read_sweep_table, write_sweep_table,
 };
 pub use write::{not_a_regular_file, write_atomically, write_result, write_text_atomically};
+
+/// The example of README.md, run as a doctest (it writes and removes a file in the temporary
+/// directory).
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctest;

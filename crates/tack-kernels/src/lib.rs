@@ -5,8 +5,9 @@
 //! An elastic [`Layer`] on a rigid base has the same two operators, [`FreeLayerOperator`] and
 //! [`PeriodicLayerOperator`] (built by [`layer_operator_for`]), whose spectrum is the
 //! half-space's times [`layer_compliance_factor`].
-//! FFT plans and all scratch buffers are allocated once, at construction; `apply` allocates nothing
-//! of its own. Nothing in this crate does IO.
+//! FFT plans and scratch buffers are allocated once, at construction, except the scratch of each
+//! thread's lane, allocated the first time `apply` runs inside a rayon pool of that size; after
+//! that `apply` allocates nothing of its own. Nothing in this crate does IO.
 //!
 //! Pressure is positive when compressive and pushes the surface in (positive displacement).
 //! The free operator samples [`love_rectangle`] on a zero-padded grid, so it equals the direct
@@ -175,3 +176,8 @@ pub fn layer_operator_for(
         Boundary::Periodic => Box::new(PeriodicLayerOperator::new(grid, e_star, *layer)?),
     })
 }
+
+/// The example of README.md, run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctest;

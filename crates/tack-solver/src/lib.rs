@@ -130,3 +130,8 @@ pub use path::{
 pub use rounds::{CASCADE_GENERATIONS, CASCADE_MARGIN, LOOSE_ATTACH_MARGIN, LOOSE_DETACH_MARGIN};
 pub use state::{ContactState, StepRecord};
 pub use viscoelastic::{Prony, PronyArm, Rates};
+
+/// The example of README.md, run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctest;

@@ -48,8 +48,9 @@
 //!   [`run_sweep`] with a [`SweepObserver`] for progress and cancellation;
 //! - [`merge`](mod@merge): [`merge()`] into one table, [`MergeReport`].
 //!
-//! Each point is solved by [`tack::run_to_file`] on the sweep's thread pool, sequentially
-//! within the point, so results do not depend on the number of threads or shards.
+//! Each point is solved by [`tack::run_to_file`] on the sweep's thread pool, its transforms
+//! split across the pool's threads; every transform gives the same bits on any thread count
+//! (`tack_kernels`), so results do not depend on the number of threads or shards.
 
 pub mod merge;
 pub mod sweep;
