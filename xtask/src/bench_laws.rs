@@ -168,7 +168,7 @@ pub fn run_table(args: &[String]) -> Result<()> {
 /// one load step and the retraction) under the exponential law at Tabor μ = 3 of R, against the
 /// zero-range run of the same scene and path; then both again on the refined retraction
 /// (`protocol.refine_pull_off`: coarse steps, the pull-off's brackets retraced in the fine
-/// step), which finds the same pull-off (the bits under the zero-range law, 2e-10 under the
+/// step), which finds the same pull-off (to 6e-14 under the zero-range law, 2e-10 under the
 /// exponential one on 2026-11-30) for less: the pull-off at equal error. Rows into `rows`.
 fn rough_table(rows: &mut Vec<Row>) -> Result<()> {
     let n = 256;
@@ -182,6 +182,8 @@ fn rough_table(rows: &mut Vec<Row>) -> Result<()> {
     let refined = format!("{}=true", tack_fields::PROTOCOL_REFINE_PULL_OFF);
     println!("L2. the bench's rough sphere on {n}² (seed 1): exponential μ = 3 against zero-range");
     let threads = rayon::current_num_threads();
+    // The plain path's pull-offs, which the refined path must find (equal error).
+    let mut plain: Option<[f64; 2]> = None;
     for (path, extra) in [("plain", None), ("refined", Some(&refined))] {
         let with = |law: &[String]| -> Result<tack::Scene> {
             let sets: Vec<String> = law.iter().chain(extra).cloned().collect();
@@ -214,6 +216,25 @@ fn rough_table(rows: &mut Vec<Row>) -> Result<()> {
             "   exponential / zero-range time: {:.1} (the issue's target: ≤ 2)",
             exp.seconds / jkr.seconds
         );
+        match plain {
+            None => plain = Some([jkr.force, exp.force]),
+            Some(before) => {
+                for (label, f, f0) in [
+                    ("jkr_limit", jkr.force, before[0]),
+                    ("exponential", exp.force, before[1]),
+                ] {
+                    let moved = (f / f0 - 1.0).abs();
+                    println!("   {label}: the refined pull-off differs by {moved:.1e}");
+                    // 2e-10 under the exponential law on 2026-11-30: far below any error the
+                    // comparison could hide.
+                    anyhow::ensure!(
+                        moved < 1e-6,
+                        "{label}: the refined retraction found another pull-off ({f:e} against \
+                         {f0:e}): the ratio is no longer one at equal error"
+                    );
+                }
+            }
+        }
     }
     Ok(())
 }
