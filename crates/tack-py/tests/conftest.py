@@ -32,3 +32,21 @@ def repo() -> Path:
 @pytest.fixture
 def small_sphere() -> str:
     return SMALL_SPHERE
+
+
+@pytest.fixture(autouse=True)
+def _every_warning_has_its_class(monkeypatch):
+    """Every sentence a run issues, in any test, maps to a warning class of its kind: a new
+    warning of the Rust side without its prefix in ``tack._warnings._KINDS`` would reach users
+    as a bare ``TackWarning``, which no filter of a kind catches."""
+    import tack
+    import tack._warnings as kinds
+
+    original = kinds.kind
+
+    def checked(sentence: str):
+        cls = original(sentence)
+        assert cls is not tack.TackWarning, f"no warning class for the sentence: {sentence}"
+        return cls
+
+    monkeypatch.setattr(kinds, "kind", checked)
