@@ -165,35 +165,21 @@ def test_a_body_the_references_do_not_describe_warns_in_their_class(small_sphere
     assert all(type(w.message) is not tack.TackWarning for w in record), record
 
 
-def test_an_edge_below_a_one_step_load_is_an_edge_contact_warning(tmp_path):
+def test_an_edge_below_a_one_step_load_is_an_edge_contact_warning(small_sphere, tmp_path):
     # A map roughness that dips one element of the outermost ring below the approach of a
     # one-step load.
     # The sphere's own height there is 3.24; the approach 1.0, from its vertex at 0.
     dip = np.zeros((32, 32))
     dip[0, 16] = 0.5 - SPHERE[0, 16]
     np.savetxt(tmp_path / "dip.txt", dip)
-    scene = f"""
-version = 1
-[material]
-e_star = 1.0
-gamma = 0.125
-[geometry]
-shape = "sphere"
-radius = 8.0
-[roughness]
-kind = "file"
-path = "{tmp_path / 'dip.txt'}"
-[grid]
-n = 32
-dx = 0.45
-[protocol]
-start = 1.0
-max_approach = 1.0
-load_step = 1.0
-unload_step = 0.02
-"""
+    overrides = {
+        "roughness": {"kind": "file", "path": str(tmp_path / "dip.txt")},
+        "protocol.start": 1.0,
+        "protocol.max_approach": 1.0,
+        "protocol.load_step": 1.0,
+    }
     with pytest.warns(tack.EdgeContactWarning) as record:
-        tack.run(scene)
+        tack.run(small_sphere, overrides=overrides)
     [edge] = [w for w in record if "the one-step load to" in str(w.message)]
     assert type(edge.message) is tack.EdgeContactWarning
 
