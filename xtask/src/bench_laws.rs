@@ -151,7 +151,7 @@ pub fn tables(rows: &mut Vec<Row>) -> Result<()> {
     rough_table(rows)
 }
 
-/// `cargo xtask bench-laws [--full | --levels]`: the table (64² and 128²; `--full` adds 256²)
+/// `cargo xtask bench-laws [--full | --levels] [--seed N]`: the table (64² and 128²; `--full` adds 256²)
 /// and the rough sphere's, and with `--full` its levels at equal error ([`rough_levels`];
 /// `--levels` runs those alone), printed and written to `results/bench_laws.json`
 /// (`results/bench_laws_levels.json` with `--levels`).
@@ -159,13 +159,26 @@ pub fn run_table(args: &[String]) -> Result<()> {
     let mut rows = Vec::new();
     let full = args.iter().any(|a| a == "--full");
     let levels_only = args.iter().any(|a| a == "--levels");
+    let seed = match args.iter().position(|a| a == "--seed") {
+        Some(i) => {
+            let value = args.get(i + 1).map_or("", String::as_str);
+            value.parse::<u64>().map_err(|_| {
+                anyhow::anyhow!("--seed {value:?} is invalid: must be a whole number ≥ 0")
+            })?
+        }
+        None => 1,
+    };
+    anyhow::ensure!(
+        seed == 1 || levels_only || full,
+        "--seed {seed} applies to the levels at equal error: give --levels or --full"
+    );
     if levels_only {
-        rough_levels(&mut rows)?;
+        rough_levels(seed, &mut rows)?;
     } else {
         table(full, &mut rows)?;
         rough_table(&mut rows)?;
         if full {
-            rough_levels(&mut rows)?;
+            rough_levels(seed, &mut rows)?;
         }
     }
     // `--levels` alone keeps the whole bench's file and writes its own.
@@ -273,16 +286,19 @@ type Level = (usize, f64, f64);
 /// for each exponential level, the cheapest zero-range level whose error is no larger: the
 /// issue's rough-sphere ratio at equal error (each law against its own converged value, as the
 /// peers' case is). The finest levels' differences from the next are printed as the
-/// references' own uncertainty. Rows into `rows`.
-fn rough_levels(rows: &mut Vec<Row>) -> Result<()> {
-    let base = crate::bench::rough_sphere_scene(256, false)?;
+/// references' own uncertainty. `seed` replaces the bench's seed 1 (`--seed N`: the same
+/// sphere with another surface). Rows into `rows`.
+fn rough_levels(seed: u64, rows: &mut Vec<Row>) -> Result<()> {
+    let bench = crate::bench::rough_sphere_scene(256, false)?;
+    let seeded = format!("{}={seed}", tack_fields::ROUGHNESS_SEED);
+    let base = tack::Scene::parse(&bench.text, ".", std::slice::from_ref(&seeded))?;
     let gamma = base.file.material.gamma;
     let range = (gamma * gamma / TABOR.powi(3)).cbrt();
     let threads = rayon::current_num_threads();
     let q1 = format!("{}={}", tack_fields::ROUGHNESS_Q1, 256.0 * PI);
     println!(
-        "L3. the bench's rough sphere at equal error: one surface (q1 = 256π, the 256² grid's) \
-         on finer grids, each law against its finest level"
+        "L3. the bench's rough sphere (seed {seed}) at equal error: one surface (q1 = 256π, the \
+         256² grid's) on finer grids, each law against its finest level"
     );
     let bench_force = crate::bench::timed_pull_off(&base, threads)?.force;
     let mut levels: Vec<(&str, Vec<Level>)> = Vec::new();
@@ -293,6 +309,7 @@ fn rough_levels(rows: &mut Vec<Row>) -> Result<()> {
         let mut runs = Vec::new();
         for &n in sizes {
             let mut sets = vec![
+                seeded.clone(),
                 q1.clone(),
                 format!("{}={n}", tack_fields::GRID_N),
                 format!("{}={}", tack_fields::GRID_DX, 1.0 / n as f64),

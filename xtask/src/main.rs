@@ -43,14 +43,15 @@ commands:
   bench-dugdale [N...]     Dugdale smooth sphere at Tabor mu = 3 on N² (default 128 256 512),
                            cycle, pull-off protocol and refined, against the FFT floor; Dugdale vs
                            zero-range rough sphere at 256²
-  bench-laws [--full|--levels]
+  bench-laws [--full|--levels] [--seed N]
                           every adhesion law (exponential, Dugdale, zero-range)
                           on the peers' case (R = 1, E* = 1, gamma = 1e-3, L = 1, mu = 3) at
                           64² and 128² (--full: 256²): time, FFT pairs, products and error
                           against the same law's converged pull-off, beside the peers' figures;
                           the bench's rough sphere at 256², exponential mu = 3 against
                           zero-range (--full, or --levels alone: both laws on its surface
-                          up to 1024² and 2048², the ratio at equal error, ~15 min);
+                          up to 1024² and 2048², the ratio at equal error, ~9 min;
+                          --seed N: another surface, default 1);
                           writes results/bench_laws.json (also table 11 of bench)
   bench-visco [N...]       viscoelastic pull-off (the example scene viscoelastic_sphere, no hold)
                           against the elastic one of the same grid and steps on N² (default
