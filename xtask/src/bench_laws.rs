@@ -279,7 +279,7 @@ const EXPONENTIAL_LEVELS: [usize; 3] = [256, 512, 1024];
 /// One level of [`rough_levels`]: (n, seconds, pull-off force).
 type Level = (usize, f64, f64);
 
-/// The bench's rough sphere at equal error (`--full`, `--levels`; about 15 minutes on 2 cores):
+/// The bench's rough sphere at equal error (`--full`, `--levels`; 9–11 minutes on 2 cores):
 /// each law's pull-off over grids that sample one continuous surface, the bench's own (its
 /// band fixed at the 256² grid's `q1 = 256π`, so the 256² level is the bench's run, checked bit
 /// for bit, and finer grids resolve its shortest wave), against the law's finest level; then,

@@ -50,7 +50,7 @@ commands:
                           against the same law's converged pull-off, beside the peers' figures;
                           the bench's rough sphere at 256², exponential mu = 3 against
                           zero-range (--full, or --levels alone: both laws on its surface
-                          up to 1024² and 2048², the ratio at equal error, ~9 min;
+                          up to 1024² and 2048², the ratio at equal error, ~10 min;
                           --seed N: another surface, default 1);
                           writes results/bench_laws.json (also table 11 of bench)
   bench-visco [N...]       viscoelastic pull-off (the example scene viscoelastic_sphere, no hold)
