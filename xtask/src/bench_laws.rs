@@ -388,11 +388,25 @@ fn rough_levels(seed: u64, rows: &mut Vec<Row>) -> Result<()> {
                     ],
                 ));
             }
-            None => println!(
-                "     exponential {n}² ({:.2}%): no zero-range level short of the reference \
-                 is as close",
-                100.0 * e
-            ),
+            None => {
+                // The reference itself is the coarsest level that could be as close: a bound.
+                let &(m, t, _) = zero.last().expect("levels");
+                println!(
+                    "     exponential {n}² ({:.2}%, {seconds:.2} s): no zero-range level short \
+                     of its reference {m}² ({t:.2} s) is as close: at most {:.2}×",
+                    100.0 * e,
+                    seconds / t
+                );
+                rows.push(Row::new(
+                    "laws_rough_levels",
+                    format!("equal error, exponential {n}²"),
+                    vec![
+                        ("error", e),
+                        ("zero_range_n", m as f64),
+                        ("ratio_at_most", seconds / t),
+                    ],
+                ));
+            }
         }
     }
     Ok(())
